@@ -1,0 +1,1 @@
+"""Rolling-body models, integrators and invariant checks."""

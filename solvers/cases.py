@@ -1,0 +1,157 @@
+"""The case registry (solvers/cases.yaml), validated once, and the builder that turns a
+case id plus named parameters into a kernel model: (model code, parameter vector p)."""
+
+import math
+from dataclasses import dataclass
+from functools import cache
+from pathlib import Path
+from typing import Literal
+
+import numpy as np
+import yaml
+from pydantic import BaseModel, ConfigDict, Field
+
+from solvers.bodies import STATE_LABELS, check_state, fill_body, fill_inertia
+from solvers.errors import InputError
+from solvers.kernels import integrals as Q
+from solvers.kernels import layout as L
+
+PARAM_SLOTS = {"S1": L.S1, "S2": L.S2, "S3": L.S3, "g": L.GRAV, "eps": L.BRUN, "k": L.CURV}
+
+
+class IntegralSpec(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+    name: Literal[Q.NAMES]  # type: ignore[valid-type]
+    when: list[str] = Field(description="parameters that must be zero for the integral")
+    any_nonzero: list[str] = Field(default_factory=list,
+                                   description="at least one must be nonzero (else redundant)")
+
+
+class CaseSpec(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+    id: str
+    title: str
+    surface: Literal["plane", "sphere"]
+    body: Literal["ball", "routh", "disk", "ellipsoid", "revolution", "general", "flat"]
+    symmetry: Literal["none", "axial", "spherical"]
+    fixed_k: Literal["2/R"] | None = None
+    required: list[str]
+    optional: dict[str, float | None]
+    example: dict[str, float]
+    state: list[float]
+    integrals: list[IntegralSpec]
+
+    @property
+    def param_names(self) -> list[str]:
+        return [*self.required, *self.optional]
+
+
+@cache
+def registry() -> dict[str, CaseSpec]:
+    raw = yaml.safe_load((Path(__file__).parent / "cases.yaml").read_text())
+    return {cid: CaseSpec(id=cid, **spec) for cid, spec in raw.items()}
+
+
+def case_ids() -> list[str]:
+    return list(registry())
+
+
+def get_case(case_id: str) -> CaseSpec:
+    try:
+        return registry()[case_id]
+    except KeyError:
+        raise InputError(f"unknown case {case_id!r}; known cases: "
+                         + ", ".join(registry())) from None
+
+
+@dataclass(frozen=True)
+class Model:
+    """What the kernels need for one run, plus names for people."""
+    case: CaseSpec
+    params: dict[str, float]
+    model: int
+    p: np.ndarray
+    integral_names: tuple[str, ...]   # always "energy" first; "gamma2" for (M, gamma)
+    integral_codes: tuple[int, ...]
+
+    @property
+    def state_labels(self) -> tuple[str, ...]:
+        return STATE_LABELS[self.model]
+
+    @property
+    def dim(self) -> int:
+        return L.STATE_DIM[self.model]
+
+
+def _finite(name: str, value) -> float:
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise InputError(f"{name} = {value!r}: not a number") from None
+    if not math.isfinite(v):
+        raise InputError(f"{name} = {value!r}: must be a finite number")
+    return v
+
+
+def build(case_id: str, params: dict | None = None, *, allow_any_inertia: bool = False) -> Model:
+    """Validate `params` for `case_id` and build its kernel model."""
+    case = get_case(case_id)
+    params = dict(params or {})
+    unknown = [k for k in params if k not in case.param_names]
+    if "k" in params and case.fixed_k:
+        raise InputError(f"k is fixed by the case {case_id} (k = {case.fixed_k}: "
+                         "R0/(R0 - R) = -1); give only R")
+    if unknown:
+        raise InputError(f"unknown parameter{'s' * (len(unknown) > 1)} "
+                         f"{', '.join(unknown)} for case {case_id}; its parameters are: "
+                         + " ".join(case.param_names))
+    missing = [k for k in case.required if k not in params]
+    if missing:
+        raise InputError(f"missing parameter{'s' * (len(missing) > 1)} {', '.join(missing)} "
+                         f"for case {case_id} (required: {' '.join(case.required)})")
+    prm: dict[str, float | None] = {}
+    for name in case.param_names:
+        if name in params:
+            prm[name] = _finite(name, params[name])
+        else:
+            prm[name] = case.optional[name]
+    p = np.zeros(L.N_PARAMS)
+    fill_inertia(case.body, case.symmetry, prm, p, allow_any_inertia)
+    model = fill_body(case.body, prm, p)
+    for name, slot in PARAM_SLOTS.items():
+        if name in prm:
+            p[slot] = prm[name]
+    if case.fixed_k == "2/R":
+        p[L.CURV] = 2.0 / prm["R"]
+    if case.body == "flat" and not p[L.CURV] < 0:
+        raise InputError(f"k = {p[L.CURV]!r}: a flat base rolls on the outside of a fixed "
+                         "ball, so k = -1/R0 < 0 (CONVENTIONS.md; the paper's eq3.15 writes "
+                         "k = +1/R with gamma pointing out of the support)")
+    names, codes = ["energy"], [Q.ENERGY]
+    if model == L.MODEL_FULL:
+        names.append("gamma2")
+        codes.append(Q.GEOM)
+    for spec in case.integrals:
+        nonzero = not spec.any_nonzero or any(prm.get(c, 0.0) != 0.0 for c in spec.any_nonzero)
+        if nonzero and all(prm.get(c, 0.0) == 0.0 for c in spec.when):
+            names.append(spec.name)
+            codes.append(Q.NAMES.index(spec.name))
+    p.setflags(write=False)
+    return Model(case, {k: v for k, v in prm.items() if v is not None}, model, p,
+                 tuple(names), tuple(codes))
+
+
+def initial_state(model: Model, state) -> np.ndarray:
+    """Validate an initial state for the model: length, finiteness, |gamma| = 1, fit."""
+    labels = model.state_labels
+    try:
+        values = list(state)
+    except TypeError:
+        raise InputError(f"state = {state!r}: expected {len(labels)} numbers "
+                         f"({', '.join(labels)})") from None
+    if len(values) != len(labels):
+        raise InputError(f"state has {len(values)} values; case {model.case.id} needs "
+                         f"{len(labels)}: {', '.join(labels)}")
+    y0 = np.array([_finite(n, v) for n, v in zip(labels, values, strict=True)])
+    check_state(model.model, model.p, y0, shell=model.case.fixed_k is not None)
+    return y0

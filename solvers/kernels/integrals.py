@@ -1,0 +1,100 @@
+"""First integrals, compiled, dispatched on an integer code; float64 or complex128 states.
+
+One source of truth for reporting drift, for projection inside the integrator, and for
+the exact (complex-step) checks of the catalogue. Which integrals hold for which case and
+under which conditions is decided by the Python layer (solvers/cases.yaml).
+"""
+
+import numpy as np
+
+from solvers.kernels import layout as L
+from solvers.kernels.fields import contact_inertia, flat_kinematics
+from solvers.kernels.jit import kernel
+from solvers.kernels.linalg import solve3
+from solvers.kernels.support import support
+
+ENERGY = 0      # H = (M, omega)/2 + U                                     eq1.7
+GEOM = 1        # gamma^2                                                  eq1.7
+M2 = 2          # M^2                                     eq2.17, eq3.12 (U = 0)
+AREA = 3        # (M, gamma)                                               eq2.17
+UNBALANCED = 4  # M^2 - m r^2 (M, omega)                       eq-d*2, eq-d*-2, eq*
+JELLETT = 5     # (M, r)                                         eq2.15 (K2 * R)
+ROUTH = 6       # omega3 / rho, rho = (I1 I3 + m (r, I r))^-1/2         eq2.15 (K1)
+GYRO_M2 = 7     # (M + S)^2                                       eq2-25 (Markeev)
+GYRO_AREA = 8   # (M + S, gamma)                                  eq2-25 (Markeev)
+BORISOV_FEDOROV = 9  # (M, Abar gamma), Abar = E - 2 (I + D)/tr(I + D), D = m R^2   eq3.13
+N_INTEGRAL_CODES = 10
+
+NAMES = ("energy", "gamma2", "M2", "area", "unbalanced_F", "jellett", "routh",
+         "gyro_M2", "gyro_area", "borisov_fedorov")
+
+
+@kernel
+def _omega_r(model, y, p, w, r):
+    """omega and r of the state; returns a status code."""
+    if model == L.MODEL_FLAT:
+        return flat_kinematics(p, y, r, w)
+    J = np.empty((3, 3), dtype=y.dtype)
+    if support(p, y[3:6], r, J) == 0.0:
+        return L.SING_EDGE
+    IQ = np.empty((3, 3), dtype=y.dtype)
+    contact_inertia(p, r, IQ)
+    if solve3(IQ, y[0:3], w) == 0:
+        return L.SING_INERTIA
+    return L.OK
+
+
+@kernel
+def integral(code, model, y, p):
+    """Value of integral `code` at state y (NaN if undefined there)."""
+    w = np.empty(3, dtype=y.dtype)
+    r = np.empty(3, dtype=y.dtype)
+    if _omega_r(model, y, p, w, r) != L.OK:
+        return np.nan + 0.0 * y[0]
+    M0, M1, M2_ = y[0], y[1], y[2]
+    m = p[L.MASS]
+    Mw = M0 * w[0] + M1 * w[1] + M2_ * w[2]
+    MM = M0 * M0 + M1 * M1 + M2_ * M2_
+    if code == ENERGY:
+        H = 0.5 * Mw
+        if model == L.MODEL_FULL:
+            g = y[3:6]
+            H += m * p[L.GRAV] * (r[0] * g[0] + r[1] * g[1] + r[2] * g[2])
+            H += 0.5 * p[L.BRUN] * (p[L.I1] * g[0] * g[0] + p[L.I2] * g[1] * g[1]
+                                    + p[L.I3] * g[2] * g[2])
+        return H
+    if code == GEOM:
+        return y[3] * y[3] + y[4] * y[4] + y[5] * y[5]
+    if code == M2:
+        return MM
+    if code == AREA:
+        return M0 * y[3] + M1 * y[4] + M2_ * y[5]
+    if code == UNBALANCED:
+        return MM - m * (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]) * Mw
+    if code == JELLETT:
+        return M0 * r[0] + M1 * r[1] + M2_ * r[2]
+    if code == ROUTH:
+        rIr = p[L.I1] * r[0] * r[0] + p[L.I2] * r[1] * r[1] + p[L.I3] * r[2] * r[2]
+        return w[2] * np.sqrt(p[L.I1] * p[L.I3] + m * rIr)
+    if code == GYRO_M2:
+        a0 = M0 + p[L.S1]
+        a1 = M1 + p[L.S2]
+        a2 = M2_ + p[L.S3]
+        return a0 * a0 + a1 * a1 + a2 * a2
+    if code == GYRO_AREA:
+        return (M0 + p[L.S1]) * y[3] + (M1 + p[L.S2]) * y[4] + (M2_ + p[L.S3]) * y[5]
+    if code == BORISOV_FEDOROV:
+        D = m * p[L.BALL_C] * p[L.BALL_C]
+        tr = p[L.I1] + p[L.I2] + p[L.I3] + 3.0 * D
+        acc = 0.0 * y[0]
+        for i in range(3):
+            acc += y[i] * (1.0 - 2.0 * (p[L.I1 + i] + D) / tr) * y[3 + i]
+        return acc
+    return np.nan + 0.0 * y[0]
+
+
+@kernel
+def integral_series(code, model, Y, p, out):
+    """integral(code) along the rows of Y."""
+    for n in range(Y.shape[0]):
+        out[n] = integral(code, model, Y[n], p)

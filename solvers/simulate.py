@@ -1,0 +1,155 @@
+"""One entry point for a run: `simulate(case, params, state0, t_end, ...)`.
+
+It validates everything first (InputError, nothing runs), integrates with the compiled
+in-house Runge-Kutta kernels or, for `scipy-*` methods, with scipy's solve_ivp on the
+independent NumPy field of solvers/reference.py, and reports the drift of every
+invariant the case carries. A run that meets a singularity returns what it computed up to
+there, with status "singular" and a message saying where: never NaN as a result.
+"""
+
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from solvers.cases import Model, build, initial_state
+from solvers.errors import InputError
+from solvers.kernels.integrals import integral_series
+
+SCIPY_METHODS = {"scipy-dop853": "DOP853", "scipy-rk45": "RK45", "scipy-lsoda": "LSODA",
+                 "scipy-radau": "Radau"}
+DEFAULT_METHOD = "dop853"
+MAX_SAMPLES = 200_000
+
+
+def compiled_methods() -> tuple[str, ...]:
+    from solvers.tableaux import TABLEAUX
+    return tuple(TABLEAUX)
+
+
+def methods() -> tuple[str, ...]:
+    return (*compiled_methods(), *SCIPY_METHODS)
+
+
+@dataclass
+class SimulationResult:
+    case: str
+    params: dict[str, float]
+    state_labels: tuple[str, ...]
+    t: np.ndarray
+    state: np.ndarray
+    invariants: dict[str, np.ndarray]
+    stats: dict = field(default_factory=dict)
+    status: str = "ok"          # ok | singular | budget
+    message: str = ""
+
+    @property
+    def ok(self) -> bool:
+        return self.status == "ok"
+
+    def drift(self, name: str) -> float:
+        """max |F(t) - F(0)| / max(|F(0)|, 1) along the run."""
+        v = self.invariants[name]
+        return float(np.max(np.abs(v - v[0])) / max(abs(v[0]), 1.0)) if len(v) else 0.0
+
+    def to_json(self) -> dict:
+        return {
+            "case": self.case,
+            "params": self.params,
+            "status": self.status,
+            "message": self.message,
+            "state_labels": list(self.state_labels),
+            "t": self.t.tolist(),
+            "state": self.state.tolist(),
+            "invariants": {k: v.tolist() for k, v in self.invariants.items()},
+            "stats": self.stats,
+        }
+
+
+def _check_run_options(t_end, method, rtol, atol, samples):
+    for name, v in (("t_end", t_end), ("rtol", rtol), ("atol", atol)):
+        if not isinstance(v, int | float) or not math.isfinite(v):
+            raise InputError(f"{name} = {v!r}: must be a finite number")
+    if not t_end > 0:
+        raise InputError(f"t_end = {t_end!r}: must be positive")
+    if not 1e-16 <= rtol <= 0.1:
+        raise InputError(f"rtol = {rtol!r}: must lie in [1e-16, 0.1]")
+    if not 0 < atol <= 1.0:
+        raise InputError(f"atol = {atol!r}: must lie in (0, 1]")
+    if isinstance(samples, bool) or not isinstance(samples, int) or not 2 <= samples <= MAX_SAMPLES:
+        raise InputError(f"samples = {samples!r}: must be an integer in [2, {MAX_SAMPLES}]")
+    if method not in methods():
+        raise InputError(f"method = {method!r}: unknown; choose one of {', '.join(methods())}")
+
+
+def _run_scipy(model: Model, y0, t_out, method, rtol, atol):
+    from scipy.integrate import solve_ivp
+
+    from solvers.reference import field as ref_field
+
+    calls = 0
+
+    def fun(t, y):
+        nonlocal calls
+        calls += 1
+        return ref_field(model.model, model.p, y)
+
+    t0 = time.perf_counter()
+    with np.errstate(all="ignore"):
+        sol = solve_ivp(fun, (t_out[0], t_out[-1]), y0, method=SCIPY_METHODS[method],
+                        t_eval=t_out, rtol=rtol, atol=atol)
+    wall = time.perf_counter() - t0
+    Y = sol.y.T
+    good = np.all(np.isfinite(Y), axis=1)
+    n = int(np.argmin(good)) if not good.all() else len(Y)
+    status, message = "ok", ""
+    if not sol.success or n < len(t_out):
+        status = "singular"
+        t_bad = sol.t[n] if n < len(sol.t) else sol.t[-1] if len(sol.t) else t_out[0]
+        message = f"scipy {SCIPY_METHODS[method]} stopped near t = {t_bad:.6g}: {sol.message}"
+    stats = {"steps": int(sol.t.size and len(sol.t)), "rejected": None, "rhs_calls": calls,
+             "wall_s": wall, "method": method}
+    return sol.t[:n], Y[:n], status, message, stats
+
+
+def _run_compiled(model: Model, y0, t_out, method, rtol, atol, project, max_steps):
+    from solvers.integrator import integrate
+
+    res = integrate(model.model, model.p, y0, t_out, method=method, rtol=rtol, atol=atol,
+                    max_steps=max_steps,
+                    project_codes=model.integral_codes if project else ())
+    status = "ok" if res.status == 0 else ("budget" if res.budget_exhausted else "singular")
+    stats = {"steps": res.steps, "rejected": res.rejected, "rhs_calls": res.rhs_calls,
+             "wall_s": res.wall_s, "method": method}
+    n = len(res.t)
+    return res.t, res.y[:n], status, res.message, stats
+
+
+def simulate(case: str, params: dict | None, state0, t_end: float, *,
+             method: str = DEFAULT_METHOD, rtol: float = 1e-10, atol: float = 1e-12,
+             samples: int = 201, project: bool = False, max_steps: int = 50_000_000,
+             allow_any_inertia: bool = False) -> SimulationResult:
+    """Integrate `case` from `state0` over [0, t_end]; see the module docstring."""
+    model = build(case, params, allow_any_inertia=allow_any_inertia)
+    y0 = initial_state(model, state0)
+    _check_run_options(t_end, method, rtol, atol, samples)
+    if project and method in SCIPY_METHODS:
+        raise InputError("project = true needs a compiled method (projection happens inside "
+                         f"the step); {method} is a scipy reference method")
+    t_out = np.linspace(0.0, float(t_end), samples)
+    if method in SCIPY_METHODS:
+        t, Y, status, message, stats = _run_scipy(model, y0, t_out, method, rtol, atol)
+    else:
+        t, Y, status, message, stats = _run_compiled(model, y0, t_out, method, rtol, atol,
+                                                     project, max_steps)
+    inv = {}
+    for name, code in zip(model.integral_names, model.integral_codes, strict=True):
+        out = np.empty(len(t))
+        integral_series(code, model.model, np.ascontiguousarray(Y), model.p, out)
+        inv[name] = out
+    stats.update(rtol=rtol, atol=atol, projected=bool(project), samples=len(t))
+    result = SimulationResult(case, model.params, model.state_labels, np.asarray(t),
+                              np.asarray(Y), inv, stats, status, message)
+    stats["drift"] = {name: result.drift(name) for name in inv}
+    return result
