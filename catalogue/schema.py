@@ -1,0 +1,652 @@
+"""Schema of the catalogue: Tables 1 and 2 of Borisov & Mamaev (2002) and the claims of its text.
+
+One pydantic model tree, bioregistry/dysts style: the YAML files are the registry and these
+models are its contract.
+
+    Catalogue
+      plane, sphere: Table          (plane.yaml = Table 1, sphere.yaml = Table 2)
+        rows, column_groups         (row headers, merged header cells, for a front-end)
+        cases: Case                 (one column of the table, in the paper's order)
+          cells: {RowKey: Cell}     (every row of the table, printed LaTeX + plain text)
+          claims: Claim             (everything a computation could check)
+      references: Reference         (references.yaml: \\cite keys and uncited names)
+      formulas: Formula             (formulas.yaml: one entry per formula the solver implements)
+
+Every model forbids unknown keys. Cross-references (case ids of merged cells, claim ids of
+cells, reference keys of attributions, formula ids of check arguments) are checked when a
+Catalogue is built, so a dangling key fails at load time, not in the solver.
+"""
+
+from __future__ import annotations
+
+import re
+from enum import StrEnum
+from typing import Literal
+
+from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
+
+
+class Strict(BaseModel):
+    """Base of every catalogue model: unknown keys are errors, loaded data is read-only."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True, populate_by_name=True)
+
+
+# --- enumerations ---------------------------------------------------------------------
+
+
+class Support(StrEnum):
+    PLANE = "plane"
+    SPHERE = "sphere"
+
+
+class Body(StrEnum):
+    BALL = "ball"
+    ELLIPSOID = "ellipsoid"
+    BODY_OF_REVOLUTION = "body-of-revolution"
+    ROUND_DISK = "round-disk"
+    FLAT_BASE = "flat-base"
+    ARBITRARY = "arbitrary"
+
+
+class RowKey(StrEnum):
+    """Rows of Tables 1 and 2 (Table 2 has no `authors` row)."""
+
+    TENSOR_OF_INERTIA = "tensor_of_inertia"
+    SURFACE = "surface"
+    RESTRICTIONS = "restrictions"
+    MEASURE = "measure"
+    INTEGRALS = "integrals"
+    GYROSTAT = "gyrostat"
+    HAMILTONIAN_FORM = "hamiltonian_form"
+    AUTHORS = "authors"
+    GENERALIZATIONS = "generalizations"
+
+
+# Rows that describe the case rather than an invariant: the paper's gray never applies.
+DESCRIPTIVE_ROWS = frozenset(
+    {RowKey.TENSOR_OF_INERTIA, RowKey.SURFACE, RowKey.RESTRICTIONS, RowKey.AUTHORS}
+)
+
+
+class Shade(StrEnum):
+    """The paper's shading (remark under each table): gray where the invariant exists,
+    partial fill where the set of integrals is incomplete."""
+
+    FULL = "full"
+    PARTIAL = "partial"
+    NONE = "none"
+
+
+class ClaimKind(StrEnum):
+    MEASURE = "measure"
+    INTEGRAL = "integral"
+    POISSON = "poisson"
+    GYROSTAT = "gyrostat"
+    BRUN = "brun"
+    REDUCTION = "reduction"
+    HAMILTONIAN_AFTER_TIME_CHANGE = "hamiltonian-after-time-change"
+    NEGATIVE = "negative"
+    IDENTITY = "identity"  # two printed expressions are equal (alternative forms, definitions)
+    STATIONARY = "stationary"  # families of permanent rotations (eq2.29, eq2-27)
+
+
+class CheckName(StrEnum):
+    """Names of the check functions the solver side registers (one per name)."""
+
+    INTEGRAL = "integral"  # dF/dt = grad F . v = 0 at random phase points
+    MEASURE = "measure"  # div(rho v) = 0 at random phase points
+    IDENTITY = "identity"  # printed expression == `against` (or its own second form)
+    REDUCED_AGREES = "reduced_agrees"  # printed (reduced) system == full field pushed forward
+    SOLVES_ODE = "solves_ode"  # printed solution satisfies the printed ODE `against`
+    LINEAR_INTEGRALS = "linear_integrals"  # integrals from the fundamental matrix of `system`
+    SYMMETRY = "symmetry"  # the field commutes with the printed symmetry field
+    JACOBI = "jacobi"  # the printed bracket satisfies the Jacobi identity
+    CASIMIR = "casimir"  # the listed functions are Casimirs of the bracket
+    BRACKET_RANK = "bracket_rank"  # rank of the bracket (number of Casimirs)
+    HAMILTONIAN_FIELD = "hamiltonian_field"  # after d tau = N dt the field is {x, H}
+    FUNCTIONALLY_DEPENDENT = "functionally_dependent"  # dF ^ dG ^ ... = 0
+    PERMANENT_ROTATIONS = "permanent_rotations"  # dimension of the family of rotations
+    # negative statements: each expects a failure or collects evidence of absence
+    MEASURE_FAILS = "measure_fails"  # the printed density is NOT invariant here
+    INTEGRAL_FAILS = "integral_fails"  # the printed integral is NOT conserved here
+    JACOBI_FAILS = "jacobi_fails"  # the printed tensor does NOT satisfy Jacobi
+    NEGATIVE_MEASURE = "negative_measure"  # evidence of no smooth measure (attractors, ...)
+    NEGATIVE_INTEGRAL = "negative_integral"  # evidence of no further integral (3D maps)
+    # nothing to compute; recorded so the catalogue lists them
+    OPEN_PROBLEM = "open_problem"  # the paper says it is unknown
+    FORMULA_NOT_PRINTED = "formula_not_printed"  # asserted, but the paper prints no formula
+    NOT_CHECKABLE = "not_checkable"  # asserted, not decidable pointwise ("only one", ...)
+
+
+NEGATIVE_CHECKS = frozenset(
+    {
+        CheckName.MEASURE_FAILS,
+        CheckName.INTEGRAL_FAILS,
+        CheckName.JACOBI_FAILS,
+        CheckName.NEGATIVE_MEASURE,
+        CheckName.NEGATIVE_INTEGRAL,
+    }
+)
+
+# Arguments each check needs in `check_args`.
+REQUIRED_ARGS: dict[CheckName, tuple[str, ...]] = {
+    CheckName.INTEGRAL: ("formula",),
+    CheckName.MEASURE: ("formula",),
+    CheckName.IDENTITY: ("formula",),
+    CheckName.REDUCED_AGREES: ("formula",),
+    CheckName.SOLVES_ODE: ("formula", "against"),
+    CheckName.LINEAR_INTEGRALS: ("system",),
+    CheckName.SYMMETRY: ("formula",),
+    CheckName.JACOBI: ("bracket",),
+    CheckName.CASIMIR: ("bracket", "casimirs"),
+    CheckName.BRACKET_RANK: ("bracket", "rank"),
+    CheckName.HAMILTONIAN_FIELD: ("bracket", "hamiltonian"),
+    CheckName.FUNCTIONALLY_DEPENDENT: ("formula", "against"),
+    CheckName.PERMANENT_ROTATIONS: ("formula",),
+    CheckName.MEASURE_FAILS: ("formula",),
+    CheckName.INTEGRAL_FAILS: ("formula",),
+    CheckName.JACOBI_FAILS: ("bracket",),
+    CheckName.NEGATIVE_MEASURE: (),
+    CheckName.NEGATIVE_INTEGRAL: (),
+    CheckName.OPEN_PROBLEM: (),
+    CheckName.FORMULA_NOT_PRINTED: (),
+    CheckName.NOT_CHECKABLE: (),
+}
+
+
+# The role the formula named by a check argument must have (formulas.yaml `role`).
+ARG_ROLES: dict[str, str] = {
+    "system": "system",
+    "bracket": "bracket",
+    "hamiltonian": "hamiltonian",
+    "multiplier": "time-change",
+    "potential": "potential",
+}
+FORMULA_ROLE_OF_CHECK: dict[CheckName, tuple[str, ...]] = {
+    CheckName.INTEGRAL: ("integral",),
+    CheckName.INTEGRAL_FAILS: ("integral",),
+    CheckName.MEASURE: ("density",),
+    CheckName.MEASURE_FAILS: ("density",),
+    CheckName.REDUCED_AGREES: ("system",),
+    CheckName.SOLVES_ODE: ("solution",),
+    CheckName.FUNCTIONALLY_DEPENDENT: ("integral",),
+    CheckName.PERMANENT_ROTATIONS: ("condition",),
+    CheckName.SYMMETRY: ("definition",),
+}
+
+
+class StateVariables(StrEnum):
+    """Variables a claim or formula is written in (the phase space of the check)."""
+
+    M_GAMMA = "(M, gamma)"
+    OMEGA_GAMMA = "(omega, gamma)"
+    K_GAMMA = "(K, gamma)"  # K = rho M, eq2b-*3
+    M_R = "(M, r1, r2)"  # flat base on a sphere, eq3.14-eq3.15
+    OMEGA_R = "(omega, r1, r2)"
+    GAMMA3_K1_K2_K3 = "(gamma3, K1, K2, K3)"  # eq2-*1
+    GAMMA3_K1_K2 = "(gamma3, K1, K2)"  # linear systems eq2.5, eq3.3, ...
+    THETA_K1_K2 = "(theta, K1, K2)"  # eq2.8
+    THETA_OMEGA3 = "(theta, omega3)"  # eq2.9, eq3.4
+    X_OMEGA3 = "(x, omega3)"  # hypergeometric form
+    U_K1_K2 = "(u, K1, K2)"  # eq3.19
+    GAMMA = "(gamma)"  # shape of the body
+    GAMMA3 = "(gamma3)"  # meridian of a body of revolution
+    PARAMETERS = "(parameters)"  # conditions on parameters only
+
+
+class FormulaRole(StrEnum):
+    SYSTEM = "system"  # equations of motion (full, rewritten or reduced)
+    DENSITY = "density"  # density of an invariant measure
+    INTEGRAL = "integral"  # a first integral
+    BRACKET = "bracket"  # a Poisson bracket or antisymmetric tensor
+    HAMILTONIAN = "hamiltonian"  # energy written in particular variables
+    DEFINITION = "definition"  # variables, shape functions, constants
+    POTENTIAL = "potential"
+    TIME_CHANGE = "time-change"
+    SOLUTION = "solution"  # explicit solution of a printed ODE
+    CONDITION = "condition"  # a restriction on parameters or shape
+    IDENTITY = "identity"  # a printed equality between expressions
+
+
+class Potential(StrEnum):
+    NONE = "none"  # U = 0
+    GRAVITY = "gravity"  # U = m g (r, gamma)
+    BRUN = "brun"  # U = eps/2 (I gamma, gamma)
+    AXISYMMETRIC = "axisymmetric"  # arbitrary U(gamma3)
+    ANY = "any"  # arbitrary U(gamma)
+
+
+class Gyrostat(StrEnum):
+    ZERO = "zero"
+    AXIAL = "axial"  # S = (0, 0, s) along the axis of dynamical symmetry
+    ANY = "any"  # arbitrary constant S
+
+
+class InertiaRestriction(StrEnum):
+    ANY = "any"
+    NONSYMMETRIC = "I1!=I2!=I3!=I1"
+    AXIAL = "I1=I2"
+    AXIAL_I1_GT_I3 = "I1=I2, I1>I3"
+    AXIAL_I1_LT_I3 = "I1=I2, I1<I3"
+    AXIAL_I1_NE_I3 = "I1=I2!=I3"
+    AXIAL_I3_2I1 = "I1=I2, I3=2*I1"
+    SPHERICAL = "I1=I2=I3"
+    ELLIPSOID_FAMILY = "I=mu*E+lambda*m*B"  # eq2.29
+    FLAT_PLATE = "I3=I1+I2"
+    WORONETZ = "I1=I2=I3/2"
+
+
+# --- small building blocks -------------------------------------------------------------
+
+LABEL_RE = re.compile(r"^[A-Za-z0-9.\-*/]+$")
+CASE_ID_RE = re.compile(r"^(plane|sphere)/[a-z0-9][a-z0-9-]*$")
+CLAIM_ID_RE = re.compile(r"^(plane|sphere)/[a-z0-9-]+(/[A-Za-z0-9_\-]+)+$")
+FORMULA_ID_RE = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
+REF_ID_RE = re.compile(r"^[A-Za-z][A-Za-z0-9\-:]*$")
+
+
+def _check_labels(labels: list[str]) -> list[str]:
+    for label in labels:
+        if not LABEL_RE.match(label):
+            raise ValueError(f"malformed equation label {label!r}")
+    return labels
+
+
+class Attribution(Strict):
+    """Who the paper credits at this place: a reference key and the name(s)/year as printed."""
+
+    ref: str
+    authors: str | None = None
+    year: int | None = Field(default=None, ge=1800, le=2100)
+    note: str | None = None
+
+
+class Conditions(Strict):
+    """Parameter restrictions under which a claim is made (None: as in the case's model)."""
+
+    potential: Potential | None = None
+    S: Gyrostat | None = None
+    I: InertiaRestriction | None = None
+    # offset of the centre of mass from the geometric centre (eq-d*1, 2-14*); for the
+    # Borisov-Fedorov ball, "2R" is the paper's a = 2R (a: ball radius, R: fixed sphere)
+    a: Literal["0", "nonzero", "any", "2R", "not 2R"] | None = None
+    z: Literal["0", "nonzero", "any"] | None = None  # flat base: r = (r1, r2, z)
+    lambda_: Literal["0", "1", "not 0 or 1", "any"] | None = Field(default=None, alias="lambda")
+    k: Literal["0", "nonzero", "any"] | None = None  # signed curvature of the support
+    text: str | None = None
+
+
+class CheckArgs(Strict):
+    """What a check needs; every *formula id* here must exist in formulas.yaml."""
+
+    formula: str | None = None  # the integral / density / system / expression under test
+    against: str | None = None  # what it is compared with (ODE, other form, full system)
+    system: str | None = None  # equations of motion to use if not the case's model
+    bracket: str | None = None
+    hamiltonian: str | None = None
+    multiplier: str | None = None  # time change d tau = N dt
+    transform: str | None = None  # change of variables
+    potential: str | None = None  # the potential U, when the claim is made with a field
+    casimirs: list[str] = []
+    rank: int | None = Field(default=None, ge=0)
+    candidate: bool = False  # the formula is NOT printed for this claim: a plausible guess
+    expect: str | None = None  # the expected outcome, in words, for the solver
+
+    def formula_ids(self) -> list[str]:
+        ids = [
+            self.formula,
+            self.against,
+            self.system,
+            self.bracket,
+            self.hamiltonian,
+            self.multiplier,
+            self.transform,
+            self.potential,
+            *self.casimirs,
+        ]
+        return [i for i in ids if i is not None]
+
+
+class SubRow(Strict):
+    """Second line of a row cell (Table 2's restrictions row has one: `a = 2R`)."""
+
+    printed: str
+    plain: str
+
+
+class Cell(Strict):
+    printed: str  # the cell's LaTeX exactly as printed (inside its \parbox)
+    plain: str  # plain-text rendering for people
+    labels: list[str] = []  # equation labels the cell refers to
+    attribution: list[Attribution] = []
+    colspan: int = Field(default=1, ge=1)
+    # a merged cell: the ids of ALL the cases it spans (itself included), in column order;
+    # the YAML shares such a cell between its columns with an anchor
+    merged: list[str] = []
+    shade: Shade
+    shade_note: str | None = None
+    subrow: SubRow | None = None
+    claims: list[str] = []  # claim ids that make the cell checkable
+    convention_note: str | None = None
+
+    @field_validator("labels")
+    @classmethod
+    def _labels(cls, v: list[str]) -> list[str]:
+        return _check_labels(v)
+
+    @model_validator(mode="after")
+    def _span(self) -> Cell:
+        if len(self.merged) == 1:
+            raise ValueError("a merged cell spans at least two cases")
+        if self.colspan != max(1, len(self.merged)):
+            raise ValueError(f"colspan {self.colspan} but the cell spans {self.merged or 1}")
+        return self
+
+
+class Claim(Strict):
+    id: str
+    kind: ClaimKind
+    printed: str  # LaTeX (or text) exactly as printed
+    plain: str  # plain-text statement
+    label: str | None  # the paper's equation label, or null ...
+    where: str | None = None  # ... with where the statement is printed
+    attribution: list[Attribution] = []
+    conditions: Conditions = Conditions()
+    variables: StateVariables
+    check: CheckName
+    check_args: CheckArgs = CheckArgs()
+    convention_note: str | None = None
+    remarks: str | None = None
+
+    @field_validator("id")
+    @classmethod
+    def _id(cls, v: str) -> str:
+        if not CLAIM_ID_RE.match(v):
+            raise ValueError(f"malformed claim id {v!r}")
+        return v
+
+    @model_validator(mode="after")
+    def _consistent(self) -> Claim:
+        if self.label is None and not self.where:
+            raise ValueError(f"claim {self.id}: give a label or say `where` it is printed")
+        if self.label is not None:
+            _check_labels([self.label])
+        for arg in REQUIRED_ARGS[self.check]:
+            if getattr(self.check_args, arg) in (None, []):
+                raise ValueError(f"claim {self.id}: check {self.check} needs check_args.{arg}")
+        if self.check in NEGATIVE_CHECKS and self.kind is not ClaimKind.NEGATIVE:
+            raise ValueError(f"claim {self.id}: check {self.check} is only for kind negative")
+        return self
+
+
+class ModelSpec(Strict):
+    """The system a case's claims are checked on (unless a claim names another)."""
+
+    support: Support
+    body: Body
+    state: StateVariables
+    equations: list[str]  # labels of the equations of motion
+    conditions: Conditions
+
+    @field_validator("equations")
+    @classmethod
+    def _labels(cls, v: list[str]) -> list[str]:
+        return _check_labels(v)
+
+
+class Case(Strict):
+    id: str
+    column: int = Field(ge=1)  # 1-based column of the paper's table
+    title: str
+    model: ModelSpec
+    cells: dict[RowKey, Cell]
+    claims: list[Claim]
+    remarks: list[str] = []
+
+    @field_validator("id")
+    @classmethod
+    def _id(cls, v: str) -> str:
+        if not CASE_ID_RE.match(v):
+            raise ValueError(f"malformed case id {v!r}")
+        return v
+
+    @model_validator(mode="after")
+    def _claims(self) -> Case:
+        seen: set[str] = set()
+        for claim in self.claims:
+            if not claim.id.startswith(self.id + "/"):
+                raise ValueError(f"claim {claim.id} is not prefixed by its case id {self.id}")
+            if claim.id in seen:
+                raise ValueError(f"duplicate claim id {claim.id}")
+            seen.add(claim.id)
+        for row, cell in self.cells.items():
+            if row in DESCRIPTIVE_ROWS and cell.shade is not Shade.NONE:
+                raise ValueError(f"{self.id}: row {row} describes the case; shade must be none")
+        return self
+
+    def claim(self, claim_id: str) -> Claim:
+        for claim in self.claims:
+            if claim.id == claim_id:
+                return claim
+        raise KeyError(claim_id)
+
+
+class RowSpec(Strict):
+    key: RowKey
+    printed: str  # the row header as printed
+    plain: str
+    header: bool  # above the table's double rule (describes the columns)
+
+
+class ColumnGroup(Strict):
+    """A merged header cell: `printed` spans the columns of `cases` in row `row`."""
+
+    row: RowKey
+    printed: str
+    plain: str
+    cases: list[str]
+
+
+class Table(Strict):
+    id: Support
+    number: int
+    caption_printed: str
+    caption_plain: str
+    remark_printed: str  # the shading remark under the table
+    rows: list[RowSpec]
+    column_groups: list[ColumnGroup]
+    cases: list[Case]
+
+    @model_validator(mode="after")
+    def _layout(self) -> Table:
+        ids = [c.id for c in self.cases]
+        if len(set(ids)) != len(ids):
+            raise ValueError(f"table {self.id}: duplicate case ids")
+        position = {c.id: i for i, c in enumerate(self.cases)}
+        for i, case in enumerate(self.cases):
+            if not case.id.startswith(f"{self.id.value}/"):
+                raise ValueError(f"case {case.id} is not in table {self.id}")
+            if case.column != i + 1:
+                raise ValueError(f"case {case.id}: column {case.column}, listed at {i + 1}")
+            if case.model.support is not self.id:
+                raise ValueError(f"case {case.id}: model support is {case.model.support}")
+        row_keys = [r.key for r in self.rows]
+        for case in self.cases:
+            if set(case.cells) != set(row_keys):
+                missing = set(row_keys) - set(case.cells)
+                extra = set(case.cells) - set(row_keys)
+                raise ValueError(f"case {case.id}: missing rows {missing}, extra rows {extra}")
+        by_id = {c.id: c for c in self.cases}
+        # merged cells: the spanned cases exist, are adjacent, and carry the same cell
+        for case in self.cases:
+            for row, cell in case.cells.items():
+                group = cell.merged or [case.id]
+                if case.id not in group:
+                    raise ValueError(f"{case.id}/{row}: merged cell does not list its own case")
+                unknown = [c for c in group if c not in by_id]
+                if unknown:
+                    raise ValueError(f"{case.id}/{row}: merged with unknown cases {unknown}")
+                cols = [position[c] for c in group]
+                if cols != list(range(cols[0], cols[0] + len(cols))):
+                    raise ValueError(f"{case.id}/{row}: merged columns not adjacent/in order")
+                for partner in group:
+                    other = by_id[partner].cells[row]
+                    if (other.merged, other.printed, other.shade) != (
+                        cell.merged,
+                        cell.printed,
+                        cell.shade,
+                    ):
+                        raise ValueError(f"{case.id}/{row}: merged cell differs in {partner}")
+                owned = {cl.id for c in group for cl in by_id[c].claims}
+                for claim_id in cell.claims:
+                    if claim_id not in owned:
+                        raise ValueError(f"{case.id}/{row}: unknown claim {claim_id}")
+        # column groups (merged header cells) agree with the cells of their row
+        for grp in self.column_groups:
+            for cid in grp.cases:
+                if cid not in by_id:
+                    raise ValueError(f"column group {grp.plain!r}: unknown case {cid}")
+                cell = by_id[cid].cells[grp.row]
+                if cell.printed != grp.printed or (cell.merged or [cid]) != grp.cases:
+                    raise ValueError(f"column group {grp.plain!r} disagrees with {cid}/{grp.row}")
+        return self
+
+
+class Reference(Strict):
+    id: str  # the \cite key when there is one
+    cite_key: str | None  # None: a name the paper mentions without \cite
+    authors: list[str]  # as the seed prints them (empty if the seed never names them)
+    authors_source: Literal["text", "table", "key", "seed"]
+    years: list[int] = []  # every year the seed gives (more than one: the seed disagrees)
+    year_note: str | None = None
+    title: str | None = None
+    title_source: str | None = None
+    cited_for: list[str]
+    remarks: str | None = None
+
+    @model_validator(mode="after")
+    def _key(self) -> Reference:
+        if not REF_ID_RE.match(self.id):
+            raise ValueError(f"malformed reference id {self.id!r}")
+        if self.cite_key is not None and self.cite_key != self.id:
+            raise ValueError(f"reference {self.id}: id must equal the cite key {self.cite_key}")
+        return self
+
+
+class Formula(Strict):
+    id: str
+    printed: str  # LaTeX exactly as printed
+    plain: str
+    label: str | None
+    where: str | None = None
+    variables: StateVariables
+    role: FormulaRole
+    convention_note: str | None = None
+    remarks: str | None = None
+
+    @model_validator(mode="after")
+    def _consistent(self) -> Formula:
+        if not FORMULA_ID_RE.match(self.id):
+            raise ValueError(f"malformed formula id {self.id!r}")
+        if self.label is None and not self.where:
+            raise ValueError(f"formula {self.id}: give a label or say `where` it is printed")
+        if self.label is not None:
+            _check_labels([self.label])
+        return self
+
+
+def _check_roles(claim: Claim, roles: dict[str, str]) -> None:
+    """A check argument must name a formula of the matching role (an integral check an
+    integral, a bracket argument a bracket, ...): catches a formula id put in the wrong slot."""
+    args = claim.check_args
+    for arg, role in ARG_ROLES.items():
+        fid = getattr(args, arg)
+        if fid is not None and roles[fid] != role:
+            raise ValueError(f"claim {claim.id}: check_args.{arg} {fid!r} has role {roles[fid]}")
+    wanted = FORMULA_ROLE_OF_CHECK.get(claim.check)
+    if wanted and args.formula is not None and roles[args.formula] not in wanted:
+        raise ValueError(
+            f"claim {claim.id}: check {claim.check} needs a formula of role "
+            f"{'/'.join(wanted)}; {args.formula!r} has role {roles[args.formula]}"
+        )
+    if args.casimirs and any(roles[c] != "integral" for c in args.casimirs):
+        raise ValueError(f"claim {claim.id}: casimirs must be integrals")
+
+
+class Catalogue(Strict):
+    plane: Table
+    sphere: Table
+    references: list[Reference]
+    formulas: list[Formula]
+
+    @model_validator(mode="after")
+    def _resolve(self) -> Catalogue:
+        if self.plane.id is not Support.PLANE or self.sphere.id is not Support.SPHERE:
+            raise ValueError("plane.yaml must hold the plane table, sphere.yaml the sphere one")
+        refs = {r.id: r for r in self.references}
+        if len(refs) != len(self.references):
+            raise ValueError("duplicate reference ids")
+        formulas = {f.id: f.role.value for f in self.formulas}
+        if len(formulas) != len(self.formulas):
+            raise ValueError("duplicate formula ids")
+        claim_ids: set[str] = set()
+        for case in self.cases():
+            attributions = [
+                (f"{case.id}/cell:{row}", a)
+                for row, cell in case.cells.items()
+                for a in cell.attribution
+            ]
+            for claim in case.claims:
+                if claim.id in claim_ids:
+                    raise ValueError(f"duplicate claim id {claim.id}")
+                claim_ids.add(claim.id)
+                attributions += [(claim.id, a) for a in claim.attribution]
+                for fid in claim.check_args.formula_ids():
+                    if fid not in formulas:
+                        raise ValueError(f"claim {claim.id}: unknown formula id {fid!r}")
+                _check_roles(claim, formulas)
+            for where, att in attributions:
+                if att.ref not in refs:
+                    raise ValueError(f"{where}: unknown reference {att.ref!r}")
+                years = refs[att.ref].years
+                if att.year is not None and years and att.year not in years:
+                    raise ValueError(
+                        f"{where}: year {att.year} not among the years of {att.ref}: {years}"
+                    )
+        return self
+
+    # --- lookups -----------------------------------------------------------------------
+
+    def tables(self) -> tuple[Table, Table]:
+        return (self.plane, self.sphere)
+
+    def cases(self) -> list[Case]:
+        return [*self.plane.cases, *self.sphere.cases]
+
+    def case(self, case_id: str) -> Case:
+        for case in self.cases():
+            if case.id == case_id:
+                return case
+        raise KeyError(case_id)
+
+    def claims(self) -> list[Claim]:
+        return [claim for case in self.cases() for claim in case.claims]
+
+    def claim(self, claim_id: str) -> Claim:
+        for claim in self.claims():
+            if claim.id == claim_id:
+                return claim
+        raise KeyError(claim_id)
+
+    def formula(self, formula_id: str) -> Formula:
+        for formula in self.formulas:
+            if formula.id == formula_id:
+                return formula
+        raise KeyError(formula_id)
+
+    def reference(self, ref_id: str) -> Reference:
+        for ref in self.references:
+            if ref.id == ref_id:
+                return ref
+        raise KeyError(ref_id)
