@@ -1,0 +1,6 @@
+"""Verification of the catalogue's claims by exact computations (issue: the catalogue)."""
+
+
+def verify(case: str | None = None, claim: str | None = None) -> list[dict]:
+    from solvers.verify.run import verify as _verify
+    return _verify(case, claim)
