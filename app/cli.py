@@ -100,7 +100,7 @@ def _summary(res):
     con = Console()
     s = res.stats
     con.print(f"[bold]{res.case}[/bold]  " + " ".join(f"{k}={v:g}" for k, v in res.params.items()))
-    con.print(f"status: {res.status} {res.message}")
+    con.print(f"status: {res.status}" + (f"  {res.message}" if not res.ok else ""))
     con.print(f"method {s['method']}  rtol {s['rtol']:g}  atol {s['atol']:g}  steps {s['steps']}"
               f"  rhs calls {s['rhs_calls']}  wall {s['wall_s'] * 1e3:.1f} ms"
               f"{'  (projected)' if s['projected'] else ''}")
@@ -113,6 +113,66 @@ def _summary(res):
     for name, v in res.invariants.items():
         inv.add_row(name, f"{v[0]:.15g}", f"{v[-1]:.15g}", f"{res.drift(name):.2e}")
     con.print(inv)
+
+
+@cli.command()
+def verify(
+    case: Annotated[str | None, typer.Option(help="only this case id")] = None,
+    claim: Annotated[str | None, typer.Option(help="only this claim id")] = None,
+    as_json: Annotated[bool, typer.Option("--json", help="print a JSON list of records")] = False,
+    workers: Annotated[int, typer.Option(help="worker processes (0: one per core)")] = 0,
+):
+    """Check every claim of Tables 1-2 and the text; print the tables with verdict marks."""
+    from solvers.errors import InputError
+    from solvers.verify.parallel import verify_parallel
+
+    try:
+        records = verify_parallel(case=case, claim=claim, workers=workers)
+    except InputError as e:
+        _fail(str(e))
+    if as_json:
+        sys.stdout.write(json.dumps(records, allow_nan=False) + "\n")
+        return
+    _verify_tables(records, case)
+
+
+def _verify_tables(records, only_case):
+    from collections import Counter
+
+    from rich.console import Console
+    from rich.table import Table
+
+    from catalogue.load import load_catalogue
+    from solvers.verify.table import MARKS, table_marks
+
+    con = Console(width=max(Console().width, 160))
+    cat = load_catalogue()
+    for table in cat.tables():
+        cases = [c for c in table.cases if only_case in (None, c.id)]
+        if not cases:
+            continue
+        marks = table_marks(table, records)
+        tab = Table(title=f"Table {table.number}: {table.caption_plain}", show_lines=True)
+        tab.add_column("row")
+        for c in cases:
+            tab.add_column(c.id.split("/", 1)[1], overflow="fold")
+        for row in table.rows:
+            cells = []
+            for c in cases:
+                cell = c.cells[row.key]
+                mark = MARKS[marks[c.id][row.key.value]]
+                text = cell.plain if len(cell.plain) < 60 else cell.plain[:57] + "..."
+                cells.append(f"{mark} {text}" if mark else text)
+            tab.add_row(row.plain, *cells)
+        con.print(tab)
+    counts = Counter(r["verdict"] for r in records)
+    con.print("claims: " + str(len(records)) + "  " +
+              "  ".join(f"{MARKS[v]} {v}: {counts.get(v, 0)}"
+                        for v in ("verified", "fails", "evidence", "unchecked")))
+    for r in records:
+        if r["verdict"] == "fails":
+            res = "n/a" if r["residual"] is None else f"{r['residual']:.2e}"
+            con.print(f"✗ {r['claim']} ({r['label'] or ''}): residual {res} — {r['message']}")
 
 
 @cli.command()
