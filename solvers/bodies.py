@@ -11,7 +11,7 @@ import numpy as np
 
 from solvers.errors import InputError
 from solvers.kernels import layout as L
-from solvers.kernels.support import support
+from solvers.kernels.support import FLAT_DISK, support
 
 STATE_LABELS = {
     L.MODEL_FULL: ("M1", "M2", "M3", "g1", "g2", "g3"),
@@ -132,7 +132,7 @@ def check_state(model, p, state, *, shell=False):
     if abs(n - 1.0) > 1e-9:
         raise InputError(f"|gamma| = {n!r}: gamma is a unit vector, |gamma| must be 1 "
                          "(normalise g1, g2, g3)")
-    if p[L.DISK_D] != 0.0 and math.hypot(g[0], g[1]) < 1e-12:
+    if p[L.DISK_D] != 0.0 and math.hypot(g[0], g[1]) < FLAT_DISK:
         raise InputError("gamma = (0, 0, +-1): the disk lies flat and its contact point is "
                          "undefined (tilt it: g1^2 + g2^2 > 0)")
     if not shell and p[L.CURV] != 0.0:

@@ -1,0 +1,551 @@
+"""Adaptive explicit Runge-Kutta integration of `fields.rhs`, compiled; the method is data.
+
+One kernel, `rk_integrate`, runs every method of `solvers.tableaux`: the tableau comes in
+as arrays (A, c, b, error weights E, dense-output weights P), so all methods share one
+numba specialization. What it does, in order, for each step (Hairer, Norsett & Wanner,
+Solving ODEs I, Sec. II.4-II.6 and II.10):
+  1. stages k_1..k_s (k_1 = f(t_n, y_n) carried over from the previous step); a stage
+     whose rhs returns a singular status rejects the step and shrinks h by 4: a too-long
+     trial step may leave the physical domain. Only if h underflows there (the trajectory
+     itself reaches the singularity) does the run stop, with that rhs status.
+  2. y_{n+1} = y_n + h sum b_i k_i, optionally with compensated (Kahan) summation.
+  3. error: scaled RMS norm of h sum e_i k_i with sc = atol + rtol max(|y_n|, |y_{n+1}|);
+     DOP853 uses Hairer's |err5|^2 / sqrt(|err5|^2 + 0.01 |err3|^2). Step control: the PI
+     (Lund-stabilized) controller of Hairer's DOPRI5 with safety/min/max factors; after a
+     rejection the next step may not grow. Fixed-step mode skips 1-3's error test.
+  4. accepted: k_new = f(t_{n+1}, y_{n+1}) (the FSAL stage, or the extra stage `new`);
+     optional projection onto known integrals (simplified Newton, gradient by complex
+     step); outputs inside the step from the dense output; section crossings located by
+     Henon's trick.
+Output times: with dense output (every method we ship; vern9 uses Verner's 8th-order
+interpolant, 4 extra stages) the steps run free and the samples are interpolated, the
+weights in Chebyshev form on the step (`tableaux._chebyshev`); the extra dense stages are
+evaluated only for steps holding a sample, so sampling never changes the steps. Without
+dense output (a tableau without one, or dense_output=False) the steps are clipped to land
+on each t_out. Samples strictly inside a step come from the interpolant of the
+unprojected step; when projection is on they are projected too (whatever
+project_every), so that every output lies on the integral manifold.
+
+Fixed-step mode (fopt[F_H] > 0 with iopt[I_FIXED]) has no error control: it is for order
+studies and will step over a singularity it does not land on.
+
+The kernel allocates its work arrays once per call; the step loop allocates nothing (the
+model's rhs is another matter: see fields.py).
+"""
+
+import numpy as np
+
+from solvers.kernels import layout as L
+from solvers.kernels.fields import rhs
+from solvers.kernels.integrals import integral
+from solvers.kernels.jit import kernel
+
+# --- status codes added by the integrator (0..5 are the rhs codes of layout.py) --------
+MAX_STEPS = 20
+STEP_UNDERFLOW = 21
+SECTION_TANGENT = 22
+PROJECTION_FAILED = 23
+CROSSINGS_DONE = 24       # a success: the requested number of crossings was found
+STATUS_TEXT = {
+    MAX_STEPS: "the step budget (max_steps attempts) ran out before the last output time",
+    STEP_UNDERFLOW: "step size underflow: the error test cannot be met with h > 16 ulp(t)",
+    SECTION_TANGENT: "ds/dt vanished while locating a section crossing (tangency)",
+    PROJECTION_FAILED: "projection onto the integrals failed (undefined value or "
+                       "singular gradient)",
+    CROSSINGS_DONE: "stopped after the requested number of section crossings",
+}
+SUCCESS = (L.OK, CROSSINGS_DONE)
+
+# --- packed arguments (indices) ----------------------------------------------------------
+M_STAGES, M_NEW, M_ERRKIND, M_ORDER, M_ERRORDER = range(5)          # meth (int64)
+I_MAX_STEPS, I_COMPENSATED, I_PROJECT_EVERY, I_SECTION, I_DIRECTION, I_MAX_CROSS, \
+    I_FIXED = range(7)                                                 # iopt (int64)
+F_RTOL, F_H, F_HMAX, F_SAFETY, F_FACMIN, F_FACMAX, F_BETA = range(7)   # fopt (float64)
+S_ACCEPTED, S_REJECTED, S_RHS, S_SAMPLES, S_CROSSINGS = range(5)      # stats (int64)
+ERR_EMBEDDED, ERR_DOP853 = 0, 1
+
+# --- sections s(y) = 0 (codes; a nonlinear one, e.g. g = g0 in Andoyer-Deprit
+# variables, is one more branch of `section_value` with its gradient) ------------------
+SECTION_NONE = 0
+SECTION_LINEAR = 1        # s(y) = coef[:n] . y - coef[n]
+
+# --- integrals of the test problems (the body models use integrals.integral) -----------
+TEST_ENERGY = 0           # oscillator (y0^2 + y1^2)/2; Kepler |v|^2/2 - 1/|x|
+TEST_ANGMOM = 1           # Kepler x vy - y vx
+
+EPS = 2.220446049250313e-16
+CSTEP = 1e-30             # complex-step increment: the derivative is exact to round-off
+
+
+@kernel
+def model_integral(code, model, y, p):
+    """First integral `code` of `model` at y (float64 or complex128)."""
+    if model == L.MODEL_TEST_OSC:
+        if code == TEST_ENERGY:
+            return 0.5 * (y[0] * y[0] + y[1] * y[1])
+        return np.nan + 0.0 * y[0]
+    if model == L.MODEL_TEST_KEPLER:
+        if code == TEST_ENERGY:
+            return 0.5 * (y[2] * y[2] + y[3] * y[3]) - 1.0 / np.sqrt(y[0] * y[0] + y[1] * y[1])
+        if code == TEST_ANGMOM:
+            return y[0] * y[3] - y[1] * y[2]
+        return np.nan + 0.0 * y[0]
+    return integral(code, model, y, p)
+
+
+@kernel
+def section_value(code, y, coef, grad):
+    """s(y) of section `code`; its gradient is written to grad."""
+    n = y.shape[0]
+    if code == SECTION_LINEAR:
+        val = -coef[n]
+        for i in range(n):
+            val += coef[i] * y[i]
+            grad[i] = coef[i]
+        return val
+    for i in range(n):
+        grad[i] = np.nan
+    return np.nan
+
+
+@kernel
+def _stages(model, p, t, y, h, A, c, i0, i1, K, ytmp, stats):
+    """k_i = f(t + c_i h, y + h sum_j a_ij k_j) for i0 <= i < i1; returns a status."""
+    n = y.shape[0]
+    for i in range(i0, i1):
+        for m in range(n):
+            acc = 0.0
+            for j in range(i):
+                acc += A[i, j] * K[j, m]
+            ytmp[m] = y[m] + h * acc
+        stats[S_RHS] += 1
+        st = rhs(model, t + c[i] * h, ytmp, p, K[i])
+        if st != L.OK:
+            return st
+    return L.OK
+
+
+@kernel
+def _error(E, K, s, h, y, ynew, atol, rtol, errkind):
+    """Scaled RMS norm of the error estimate (Hairer's combination for DOP853)."""
+    n = y.shape[0]
+    e1 = 0.0
+    e2 = 0.0
+    for m in range(n):
+        sc = atol[m] + rtol * max(abs(y[m]), abs(ynew[m]))
+        a = 0.0
+        for i in range(s):
+            a += E[0, i] * K[i, m]
+        e1 += (a / sc) ** 2
+        if errkind == ERR_DOP853:
+            a = 0.0
+            for i in range(s):
+                a += E[1, i] * K[i, m]
+            e2 += (a / sc) ** 2
+    if errkind == ERR_DOP853:
+        if e1 == 0.0 and e2 == 0.0:
+            return 0.0
+        return abs(h) * e1 / np.sqrt((e1 + 0.01 * e2) * n)
+    return abs(h) * np.sqrt(e1 / n)
+
+
+@kernel
+def _initial_step(model, p, t, y, f0, order, rtol, atol, span, hmax, y1, f1, stats):
+    """Hairer's starting step (Solving ODEs I, Sec. II.4)."""
+    n = y.shape[0]
+    d0 = 0.0
+    d1 = 0.0
+    for m in range(n):
+        sc = atol[m] + rtol * abs(y[m])
+        d0 += (y[m] / sc) ** 2
+        d1 += (f0[m] / sc) ** 2
+    d0 = np.sqrt(d0 / n)
+    d1 = np.sqrt(d1 / n)
+    h0 = 1e-6 if (d0 < 1e-5 or d1 < 1e-5) else 0.01 * d0 / d1
+    h0 = min(h0, span)
+    for m in range(n):
+        y1[m] = y[m] + h0 * f0[m]
+    stats[S_RHS] += 1
+    if rhs(model, t + h0, y1, p, f1) != L.OK:
+        return min(h0 * 1e-3, hmax)
+    d2 = 0.0
+    for m in range(n):
+        sc = atol[m] + rtol * abs(y[m])
+        d2 += ((f1[m] - f0[m]) / sc) ** 2
+    d2 = np.sqrt(d2 / n) / h0
+    if max(d1, d2) <= 1e-15:
+        h1 = max(1e-6, h0 * 1e-3)
+    else:
+        h1 = (0.01 / max(d1, d2)) ** (1.0 / (order + 1))
+    return min(100.0 * h0, h1, span, hmax)
+
+
+@kernel
+def _solve_small(M, r, x):
+    """x = M^-1 r by Gaussian elimination with partial pivoting (M, r overwritten).
+    Returns False if M is singular."""
+    m = r.shape[0]
+    for k in range(m):
+        piv = k
+        for i in range(k + 1, m):
+            if abs(M[i, k]) > abs(M[piv, k]):
+                piv = i
+        if M[piv, k] == 0.0 or not np.isfinite(M[piv, k]):
+            return False
+        if piv != k:
+            for j in range(m):
+                M[k, j], M[piv, j] = M[piv, j], M[k, j]
+            r[k], r[piv] = r[piv], r[k]
+        for i in range(k + 1, m):
+            f = M[i, k] / M[k, k]
+            for j in range(k, m):
+                M[i, j] -= f * M[k, j]
+            r[i] -= f * r[k]
+    for k in range(m - 1, -1, -1):
+        acc = r[k]
+        for j in range(k + 1, m):
+            acc -= M[k, j] * x[j]
+        x[k] = acc / M[k, k]
+    return True
+
+
+@kernel
+def _project(model, p, y, codes, vals, G, M, r, lam, yc):
+    """Move y onto {F(y) = vals}: simplified Newton y <- y - G^T (G G^T)^-1 (F(y) - F0),
+    G = dF/dy at the unprojected y by complex step (Hairer-Lubich-Wanner GNI IV.4)."""
+    n = y.shape[0]
+    m = codes.shape[0]
+    for j in range(n):
+        for i in range(n):
+            yc[i] = y[i]
+        yc[j] = y[j] + 1j * CSTEP
+        for k in range(m):
+            G[k, j] = model_integral(codes[k], model, yc, p).imag / CSTEP
+    for it in range(4):
+        done = True
+        for k in range(m):
+            r[k] = model_integral(codes[k], model, y, p) - vals[k]
+            if not np.isfinite(r[k]):
+                return PROJECTION_FAILED
+            if abs(r[k]) > 2.0 * EPS * max(1.0, abs(vals[k])):
+                done = False
+        if done or it == 3:
+            return L.OK
+        for k in range(m):
+            for q in range(m):
+                acc = 0.0
+                for j in range(n):
+                    acc += G[k, j] * G[q, j]
+                M[k, q] = acc
+        if not _solve_small(M, r, lam):
+            return PROJECTION_FAILED
+        for j in range(n):
+            for k in range(m):
+                y[j] -= G[k, j] * lam[k]
+    return L.OK
+
+
+@kernel
+def _henon_step(model, p, z0, f0, ds, A, c, b, s, code, coef, KH, z, ztmp, yb, fb, grad,
+                stats):
+    """One RK step of length ds in the independent variable s (Henon, Physica D 5 (1982)
+    412): d(y, t)/ds = (f, 1) / (ds/dt), ds/dt = grad s . f, from z0 = (y, t) with
+    f0 = f(t, y). The end (y, t) goes to z. Returns a status."""
+    n = fb.shape[0]
+    for i in range(s):
+        if i == 0:
+            for m in range(n):
+                yb[m] = z0[m]
+                fb[m] = f0[m]
+        else:
+            for m in range(n + 1):
+                acc = 0.0
+                for j in range(i):
+                    acc += A[i, j] * KH[j, m]
+                ztmp[m] = z0[m] + ds * acc
+            for m in range(n):
+                yb[m] = ztmp[m]
+            stats[S_RHS] += 1
+            st = rhs(model, ztmp[n], yb, p, fb)
+            if st != L.OK:
+                return st
+        section_value(code, yb, coef, grad)
+        sdot = 0.0
+        for m in range(n):
+            sdot += grad[m] * fb[m]
+        if sdot == 0.0 or not np.isfinite(1.0 / sdot):
+            return SECTION_TANGENT
+        for m in range(n):
+            KH[i, m] = fb[m] / sdot
+        KH[i, n] = 1.0 / sdot
+    for m in range(n + 1):
+        acc = 0.0
+        for i in range(s):
+            acc += b[i] * KH[i, m]
+        z[m] = z0[m] + ds * acc
+    return L.OK
+
+
+@kernel
+def _locate_crossing(model, p, t0, y0, f0, s0, A, c, b, s, code, coef, KH, z0, z, ztmp, yb,
+                     fb, grad, stats):
+    """Crossing of s = 0 from (t0, y0) with s(y0) = s0: a Henon step of length -s0, then
+    up to two more from the result until s is at round-off. Result (y, t) in z."""
+    n = y0.shape[0]
+    for m in range(n):
+        z0[m] = y0[m]
+        fb[m] = f0[m]
+    z0[n] = t0
+    ds = -s0
+    for it in range(3):
+        st = _henon_step(model, p, z0, fb, ds, A, c, b, s, code, coef, KH, z, ztmp, yb, fb,
+                         grad, stats)
+        if st != L.OK:
+            return st
+        for m in range(n):
+            yb[m] = z[m]
+        val = section_value(code, yb, coef, grad)
+        scale = abs(coef[n])
+        for m in range(n):
+            scale += abs(coef[m] * yb[m])
+        if abs(val) <= 4.0 * EPS * scale or it == 2:
+            return L.OK
+        for m in range(n + 1):
+            z0[m] = z[m]
+        stats[S_RHS] += 1
+        st = rhs(model, z[n], yb, p, fb)
+        if st != L.OK:
+            return st
+        ds = -val
+    return L.OK
+
+
+@kernel
+def rk_integrate(model, p, y0, t_out, A, c, b, E, P, meth, iopt, fopt, atol, proj_codes,
+                 proj_vals, sec_coef, Y, cross_t, cross_y, y_stop, stats):
+    """Integrate from (t_out[0], y0) through the increasing output times t_out.
+
+    Fills Y[j] for the output times reached (stats[S_SAMPLES] of them), cross_t/cross_y
+    with the section crossings, y_stop with the state at the returned stop time and
+    stats; returns (status, t_stop).
+    """
+    n = y0.shape[0]
+    S = A.shape[0]
+    s = meth[M_STAGES]
+    new = meth[M_NEW]
+    errkind = meth[M_ERRKIND]
+    q = meth[M_ERRORDER]
+    has_dense = P.shape[0] > 0
+    ncheb = P.shape[1]
+    fixed = iopt[I_FIXED] != 0
+    compensated = iopt[I_COMPENSATED] != 0
+    project_every = iopt[I_PROJECT_EVERY]
+    code = iopt[I_SECTION]
+    direction = iopt[I_DIRECTION]
+    max_cross = iopt[I_MAX_CROSS]
+    rtol = fopt[F_RTOL]
+    hmax = fopt[F_HMAX]
+    safety = fopt[F_SAFETY]
+    beta = fopt[F_BETA]
+    expo = 1.0 / (q + 1) - 0.75 * beta
+    nproj = proj_codes.shape[0]
+
+    K = np.zeros((S, n))
+    y = y0.copy()
+    ynew = np.empty(n)
+    ytmp = np.empty(n)
+    fnew = np.empty(n)
+    comp = np.zeros(n)
+    comp_new = np.zeros(n)
+    w = np.empty(S)
+    G = np.empty((nproj, n))
+    Mw = np.empty((nproj, nproj))
+    rw = np.empty(nproj)
+    lam = np.empty(nproj)
+    yc = np.empty(n, dtype=np.complex128)
+    KH = np.empty((s, n + 1))
+    z0 = np.empty(n + 1)
+    z = np.empty(n + 1)
+    ztmp = np.empty(n + 1)
+    grad = np.empty(n)
+    fb = np.empty(n)
+    for i in range(stats.shape[0]):
+        stats[i] = 0
+
+    N = t_out.shape[0]
+    t = t_out[0]
+    t_end = t_out[N - 1]
+    Y[0, :] = y
+    stats[S_SAMPLES] = 1
+    stats[S_RHS] = 1
+    status = rhs(model, t, y, p, K[0])
+    if status != L.OK or N == 1:
+        y_stop[:] = y
+        return status, t
+    if fixed or fopt[F_H] > 0.0:
+        h = fopt[F_H]
+    else:
+        h = _initial_step(model, p, t, y, K[0], meth[M_ORDER], rtol, atol, t_end - t, hmax,
+                          ytmp, K[1], stats)
+    s_old = section_value(code, y, sec_coef, grad) if code != SECTION_NONE else 0.0
+    err_old = 1e-4
+    rejected_last = False
+    t_comp = 0.0
+    j = 1
+    attempts = 0
+    while j < N:
+        if attempts >= iopt[I_MAX_STEPS]:
+            status = MAX_STEPS
+            break
+        attempts += 1
+        target = t_end if has_dense else t_out[j]
+        h = min(h, hmax)
+        h_proposed = h
+        landing = t + 1.01 * h >= target
+        if landing:
+            h = target - t
+        elif not (h > 16.0 * EPS * abs(t)):
+            status = STEP_UNDERFLOW if status == L.OK else status
+            break
+        status = L.OK
+        # 1.-2. stages and the new point
+        st = _stages(model, p, t, y, h, A, c, 1, s, K, ytmp, stats)
+        err = 0.0
+        if st == L.OK:
+            for m in range(n):
+                acc = 0.0
+                for i in range(s):
+                    acc += b[i] * K[i, m]
+                d = h * acc
+                if compensated:
+                    d += comp[m]
+                    ynew[m] = y[m] + d
+                    comp_new[m] = d - (ynew[m] - y[m])
+                else:
+                    ynew[m] = y[m] + d
+            # 3. error test
+            if not fixed:
+                err = _error(E, K, s, h, y, ynew, atol, rtol, errkind)
+            if err <= 1.0:
+                t_new = target if landing else t + (h + t_comp if compensated else h)
+                if new >= s:
+                    stats[S_RHS] += 1
+                    st = rhs(model, t_new, ynew, p, K[new])
+        if st != L.OK:            # singular stage: shrink; stop only if h underflows
+            status = st
+            if fixed:
+                break
+            stats[S_REJECTED] += 1
+            rejected_last = True
+            h = 0.25 * h
+            continue
+        if not (err <= 1.0):      # error test failed (or NaN)
+            stats[S_REJECTED] += 1
+            rejected_last = True
+            fac = safety * err ** (-1.0 / (q + 1)) if np.isfinite(err) else 0.0
+            h = h * min(1.0, max(fopt[F_FACMIN], fac))
+            continue
+        # 4. accepted
+        stats[S_ACCEPTED] += 1
+        if compensated and not landing:
+            t_comp = (h + t_comp) - (t_new - t)
+        else:
+            t_comp = 0.0
+        projected = nproj > 0 and stats[S_ACCEPTED] % project_every == 0
+        if projected:
+            status = _project(model, p, ynew, proj_codes, proj_vals, G, Mw, rw, lam, yc)
+            if status != L.OK:
+                break
+            for m in range(n):
+                comp_new[m] = 0.0
+            stats[S_RHS] += 1
+            status = rhs(model, t_new, ynew, p, fnew)
+            if status != L.OK:
+                break
+        else:
+            for m in range(n):
+                fnew[m] = K[new, m]
+        # outputs inside (t, t_new]
+        extra_done = False
+        while j < N and t_out[j] <= t_new:
+            if t_out[j] == t_new:
+                Y[j, :] = ynew
+                if nproj > 0 and not projected:
+                    status = _project(model, p, Y[j], proj_codes, proj_vals, G, Mw, rw, lam,
+                                      yc)
+                    if status != L.OK:
+                        break
+            else:
+                if not extra_done:
+                    status = _stages(model, p, t, y, h, A, c, max(s, new + 1), S, K, ytmp,
+                                     stats)
+                    if status != L.OK:
+                        break
+                    extra_done = True
+                x = 2.0 * (t_out[j] - t) / h - 1.0
+                for i in range(S):      # Clenshaw: w_i = sum_k P[i, k] T_k(x)
+                    b1 = 0.0
+                    b2 = 0.0
+                    for k in range(ncheb - 1, 0, -1):
+                        b1, b2 = P[i, k] + 2.0 * x * b1 - b2, b1
+                    w[i] = P[i, 0] + x * b1 - b2
+                for m in range(n):
+                    acc = 0.0
+                    for i in range(S):
+                        acc += w[i] * K[i, m]
+                    Y[j, m] = y[m] + h * acc
+                if nproj > 0:   # interpolated samples join the projected trajectory
+                    status = _project(model, p, Y[j], proj_codes, proj_vals, G, Mw, rw, lam,
+                                      yc)
+                    if status != L.OK:
+                        break
+            j += 1
+        stats[S_SAMPLES] = j
+        if status != L.OK:
+            break
+        # section crossing between (t, y) and (t_new, ynew)
+        if code != SECTION_NONE:
+            s_new = section_value(code, ynew, sec_coef, grad)
+            if (direction >= 0 and s_old < 0.0 <= s_new) or \
+                    (direction <= 0 and s_old > 0.0 >= s_new):
+                k = stats[S_CROSSINGS]
+                if abs(s_old) <= abs(s_new):
+                    status = _locate_crossing(model, p, t, y, K[0], s_old, A, c, b, s, code,
+                                              sec_coef, KH, z0, z, ztmp, ytmp, fb, grad, stats)
+                else:
+                    status = _locate_crossing(model, p, t_new, ynew, fnew, s_new, A, c, b, s,
+                                              code, sec_coef, KH, z0, z, ztmp, ytmp, fb, grad,
+                                              stats)
+                if status != L.OK:
+                    break
+                cross_t[k] = z[n]
+                cross_y[k, :] = z[:n]
+                stats[S_CROSSINGS] = k + 1
+            s_old = s_new
+        # commit the step
+        t = t_new
+        for m in range(n):
+            y[m] = ynew[m]
+            comp[m] = comp_new[m]
+            K[0, m] = fnew[m]
+        if code != SECTION_NONE and stats[S_CROSSINGS] >= max_cross:
+            status = CROSSINGS_DONE
+            break
+        # next step size
+        if fixed:
+            h = fopt[F_H]
+        else:
+            if err == 0.0:
+                fac = fopt[F_FACMAX]
+            else:
+                fac = safety * err ** (-expo) * err_old ** beta
+                fac = min(fopt[F_FACMAX], max(fopt[F_FACMIN], fac))
+            if rejected_last:
+                fac = min(fac, 1.0)
+            err_old = max(err, 1e-4)
+            h = h * fac
+            if landing and h < h_proposed:
+                h = h_proposed    # a step clipped to an output time says little of h
+        rejected_last = False
+    y_stop[:] = y
+    return status, t
