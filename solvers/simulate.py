@@ -8,7 +8,6 @@ there, with status "singular" and a message saying where: never NaN as a result.
 """
 
 import math
-import time
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -83,47 +82,23 @@ def _check_run_options(t_end, method, rtol, atol, samples):
         raise InputError(f"method = {method!r}: unknown; choose one of {', '.join(methods())}")
 
 
-def _run_scipy(model: Model, y0, t_out, method, rtol, atol):
-    from scipy.integrate import solve_ivp
+def _integrate(model: Model, y0, t_out, method, rtol, atol, project, max_steps):
+    """Compiled kernels, or scipy's solve_ivp on the independent NumPy field."""
+    from solvers.integrator import integrate, solve_ivp_reference
 
-    from solvers.reference import field as ref_field
+    if method in SCIPY_METHODS:
+        from solvers.reference import field as ref_field
 
-    calls = 0
+        def fun(t, y):
+            return ref_field(model.model, model.p, y)
 
-    def fun(t, y):
-        nonlocal calls
-        calls += 1
-        return ref_field(model.model, model.p, y)
-
-    t0 = time.perf_counter()
-    with np.errstate(all="ignore"):
-        sol = solve_ivp(fun, (t_out[0], t_out[-1]), y0, method=SCIPY_METHODS[method],
-                        t_eval=t_out, rtol=rtol, atol=atol)
-    wall = time.perf_counter() - t0
-    Y = sol.y.T
-    good = np.all(np.isfinite(Y), axis=1)
-    n = int(np.argmin(good)) if not good.all() else len(Y)
-    status, message = "ok", ""
-    if not sol.success or n < len(t_out):
-        status = "singular"
-        t_bad = sol.t[n] if n < len(sol.t) else sol.t[-1] if len(sol.t) else t_out[0]
-        message = f"scipy {SCIPY_METHODS[method]} stopped near t = {t_bad:.6g}: {sol.message}"
-    stats = {"steps": int(sol.t.size and len(sol.t)), "rejected": None, "rhs_calls": calls,
-             "wall_s": wall, "method": method}
-    return sol.t[:n], Y[:n], status, message, stats
-
-
-def _run_compiled(model: Model, y0, t_out, method, rtol, atol, project, max_steps):
-    from solvers.integrator import integrate
-
-    res = integrate(model.model, model.p, y0, t_out, method=method, rtol=rtol, atol=atol,
-                    max_steps=max_steps,
-                    project_codes=model.integral_codes if project else ())
-    status = "ok" if res.status == 0 else ("budget" if res.budget_exhausted else "singular")
-    stats = {"steps": res.steps, "rejected": res.rejected, "rhs_calls": res.rhs_calls,
-             "wall_s": res.wall_s, "method": method}
-    n = len(res.t)
-    return res.t, res.y[:n], status, res.message, stats
+        with np.errstate(all="ignore"):
+            return solve_ivp_reference(model.model, model.p, y0, t_out,
+                                       method=SCIPY_METHODS[method], rtol=rtol, atol=atol,
+                                       fun=fun)
+    return integrate(model.model, model.p, y0, t_out, method=method, rtol=rtol, atol=atol,
+                     max_steps=max_steps,
+                     project_codes=model.integral_codes if project else ())
 
 
 def simulate(case: str, params: dict | None, state0, t_end: float, *,
@@ -138,11 +113,12 @@ def simulate(case: str, params: dict | None, state0, t_end: float, *,
         raise InputError("project = true needs a compiled method (projection happens inside "
                          f"the step); {method} is a scipy reference method")
     t_out = np.linspace(0.0, float(t_end), samples)
-    if method in SCIPY_METHODS:
-        t, Y, status, message, stats = _run_scipy(model, y0, t_out, method, rtol, atol)
-    else:
-        t, Y, status, message, stats = _run_compiled(model, y0, t_out, method, rtol, atol,
-                                                     project, max_steps)
+    res = _integrate(model, y0, t_out, method, rtol, atol, project, max_steps)
+    status = "ok" if res.success else ("budget" if res.budget_exhausted else "singular")
+    message = "" if res.success else res.message
+    stats = {"steps": res.steps, "rejected": res.rejected, "rhs_calls": res.rhs_calls,
+             "wall_s": res.wall_s, "method": method}
+    t, Y = res.t, res.y[:len(res.t)]
     inv = {}
     for name, code in zip(model.integral_names, model.integral_codes, strict=True):
         out = np.empty(len(t))
