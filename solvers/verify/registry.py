@@ -16,6 +16,10 @@ FORMULAS: dict[str, Callable] = {}
 CORRECTED: dict[str, Callable] = {}     # the project's correction of a formula that fails
 CORRECTION_NOTES: dict[str, str] = {}
 CHECKS: dict[str, Callable] = {}
+# identity check: how to compare formula `fid` with `against` (None: with its own second
+# printed form) when the two values are not directly comparable (a density that the measure
+# check needs as a scalar, a definition against a condition, ...)
+COMPARISONS: dict[tuple[str, str | None], Callable] = {}
 
 
 def formula(fid: str):
@@ -34,6 +38,18 @@ def corrected(fid: str, note: str):
     def deco(fn):
         CORRECTED[fid] = fn
         CORRECTION_NOTES[fid] = note
+        return fn
+    return deco
+
+
+def compares(fid: str, against: str | None = None):
+    """Register (P, x, corrected=False) -> (lhs, rhs), x in the variables of `fid`: the two
+    sides the `identity` check compares for the claim `fid == against` (`against` None: the
+    formula's own printed forms); corrected=True uses the project's correction."""
+    def deco(fn):
+        if (fid, against) in COMPARISONS:
+            raise ValueError(f"comparison {fid} vs {against} registered twice")
+        COMPARISONS[(fid, against)] = fn
         return fn
     return deco
 

@@ -52,7 +52,8 @@ def _run_claim(catalogue, case, claim) -> list[Record]:
                  claim.label, claim.check.value, out.message, evidence=out.evidence or None,
                  seconds=time.perf_counter() - t0)
     records = [rec]
-    fid = claim.check_args.formula
+    args = claim.check_args          # the corrected object: the first with a correction
+    fid = next((f for f in (args.formula, args.system, args.bracket) if f in CORRECTED), None)
     if out.verdict == "fails" and out.corrected_residual is not None and fid in CORRECTED:
         from solvers.verify.checks.common import TOL
         ok = out.corrected_residual <= TOL

@@ -1,3 +1,3 @@
 """Check functions, registered by name (catalogue.schema.CheckName) on import."""
 
-from solvers.verify.checks import pointwise, recorded  # noqa: F401
+from solvers.verify.checks import negative, ode, pointwise, recorded, structure  # noqa: F401

@@ -3,4 +3,13 @@
 One module per part of the paper; each function takes (P, x) with x in the formula's own
 variables (its `variables` field) and uses NumPy only (complex-safe)."""
 
-from solvers.verify.formulas import chaplygin, general  # noqa: F401
+from solvers.verify.formulas import (  # noqa: F401
+    chaplygin,
+    flat_base,
+    general,
+    plane_bodies,
+    reduced_flat,
+    reduced_plane,
+    reduced_sphere,
+    sphere_bodies,
+)
