@@ -72,13 +72,49 @@ def integral_residual(catalogue, case, claim, fid, use_corrected=False, seed=0):
     return _max_residual(_points(case, claim, seed), residual)[0]
 
 
+def relaxed(case, claim):
+    """The claim with its restrictions on the potential and the gyrostat lifted (None if it
+    has none): where a claim needs U = 0 or S = 0, show what happens without."""
+    from catalogue.schema import Gyrostat, Potential
+    from solvers.verify.params import merged_conditions
+
+    cond = merged_conditions(case, claim)
+    update = {}
+    if cond.potential in (Potential.NONE,):
+        update["potential"] = Potential.ANY
+    if cond.S is Gyrostat.ZERO:
+        update["S"] = Gyrostat.AXIAL if cond.I is not None and "I1=I2" in cond.I.value \
+            else Gyrostat.ANY
+    if not update:
+        return None, {}
+    new = claim.model_copy(update={"conditions": claim.conditions.model_copy(update=update)})
+    return new, update
+
+
+def _without_condition(out, case, claim, residual_fn):
+    """Append to a verified outcome the residual with the claim's conditions lifted."""
+    if out.verdict != "verified":
+        return out
+    loose, update = relaxed(case, claim)
+    if loose is None:
+        return out
+    res = residual_fn(loose)
+    what = ", ".join(f"{k} {v.value}" for k, v in update.items())
+    out.evidence["residual without its condition (" + what + ")"] = res
+    out.message += (f"; without its condition ({what}) it fails: {res:.2e}" if res > TOL
+                    else f"; it also holds with {what} ({res:.2e})")
+    return out
+
+
 def _integral(catalogue, case, claim, negative):
     fid = claim.check_args.formula
     res = integral_residual(catalogue, case, claim, fid)
     corr = None
     if res > TOL and fid in CORRECTED and not negative:
         corr = integral_residual(catalogue, case, claim, fid, use_corrected=True)
-    return _verdict(res, corr, negative, f"d/dt {fid} = grad F . v = 0")
+    out = _verdict(res, corr, negative, f"d/dt {fid} = grad F . v = 0")
+    return _without_condition(out, case, claim,
+                              lambda c: integral_residual(catalogue, case, c, fid))
 
 
 @check("integral")
@@ -155,6 +191,9 @@ def _measure(catalogue, case, claim, negative):
         if alt_res is not None:
             out.message += f"; read in {alt} it fails too ({alt_res:.2e})"
     out.evidence = {"residual_" + V: res, **({"residual_" + alt: alt_res} if alt_res else {})}
+    if not negative and res <= TOL:
+        _without_condition(out, case, claim,
+                           lambda c: measure_residual(catalogue, case, c, fid))
     return out
 
 
