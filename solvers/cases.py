@@ -32,7 +32,8 @@ class CaseSpec(BaseModel):
     id: str
     title: str
     surface: Literal["plane", "sphere"]
-    body: Literal["ball", "routh", "disk", "ellipsoid", "revolution", "general", "flat"]
+    body: Literal["ball", "routh", "disk", "ellipsoid", "revolution", "general", "flat",
+                  "rattleback"]
     symmetry: Literal["none", "axial", "spherical"]
     fixed_k: Literal["2/R"] | None = None
     required: list[str]
@@ -40,6 +41,9 @@ class CaseSpec(BaseModel):
     example: dict[str, float]
     state: list[float]
     integrals: list[IntegralSpec]
+    # a column of the paper's Tables 1-2 (with claims in catalogue/); False for a case the
+    # text only mentions, such as the rattleback (Celtic stone)
+    in_tables: bool = True
 
     @property
     def param_names(self) -> list[str]:
@@ -54,6 +58,11 @@ def registry() -> dict[str, CaseSpec]:
 
 def case_ids() -> list[str]:
     return list(registry())
+
+
+def table_case_ids() -> list[str]:
+    """The cases that are columns of Tables 1-2 (each has claims in the catalogue)."""
+    return [cid for cid, c in registry().items() if c.in_tables]
 
 
 def get_case(case_id: str) -> CaseSpec:
@@ -124,7 +133,7 @@ def build(case_id: str, params: dict | None = None, *, allow_any_inertia: bool =
     if case.fixed_k == "2/R":
         p[L.CURV] = 2.0 / prm["R"]
     if case.body == "flat" and not p[L.CURV] < 0:
-        raise InputError(f"k = {p[L.CURV]!r}: a flat base rolls on the outside of a fixed "
+        raise InputError(f"k = {float(p[L.CURV])!r}: a flat base rolls on the outside of a fixed "
                          "ball, so k = -1/R0 < 0 (CONVENTIONS.md; the paper's eq3.15 writes "
                          "k = +1/R with gamma pointing out of the support)")
     names, codes = ["energy"], [Q.ENERGY]

@@ -108,11 +108,17 @@ def simulate(case: str, params: dict | None, state0, t_end: float, *,
     """Integrate `case` from `state0` over [0, t_end]; see the module docstring."""
     model = build(case, params, allow_any_inertia=allow_any_inertia)
     y0 = initial_state(model, state0)
+    if method == "auto":   # the case's default, from the measured work-precision front
+        from solvers.workprecision import default_method
+
+        method = default_method(case, DEFAULT_METHOD)
     _check_run_options(t_end, method, rtol, atol, samples)
     if project and method in SCIPY_METHODS:
         raise InputError("project = true needs a compiled method (projection happens inside "
                          f"the step); {method} is a scipy reference method")
     t_out = np.linspace(0.0, float(t_end), samples)
+    if not np.all(np.diff(t_out) > 0):
+        raise InputError(f"t_end = {t_end!r} is too small for {samples} distinct sample times")
     res = _integrate(model, y0, t_out, method, rtol, atol, project, max_steps)
     status = "ok" if res.success else ("budget" if res.budget_exhausted else "singular")
     message = "" if res.success else res.message

@@ -47,6 +47,7 @@ BAD = [
     ("plane/chaplygin-ball", BALL, G0, 1.0, {"atol": -1.0}, ["atol"]),
     ("plane/chaplygin-ball", BALL, G0, 1.0, {"samples": 1}, ["samples"]),
     ("plane/chaplygin-ball", BALL, G0, 1.0, {"method": "euler"}, ["method", "unknown"]),
+    ("plane/chaplygin-ball", BALL, G0, 5e-324, {}, ["t_end", "too small"]),
 ]
 
 

@@ -8,10 +8,9 @@ under which conditions is decided by the Python layer (solvers/cases.yaml).
 import numpy as np
 
 from solvers.kernels import layout as L
-from solvers.kernels.fields import contact_inertia, flat_kinematics
+from solvers.kernels.fields import flat_kinematics_s, omega_s
 from solvers.kernels.jit import kernel
-from solvers.kernels.linalg import solve3
-from solvers.kernels.support import support
+from solvers.kernels.support import support_s
 
 ENERGY = 0      # H = (M, omega)/2 + U                                     eq1.7
 GEOM = 1        # gamma^2                                                  eq1.7
@@ -30,34 +29,54 @@ NAMES = ("energy", "gamma2", "M2", "area", "unbalanced_F", "jellett", "routh",
 
 
 @kernel
-def _omega_r(model, y, p, w, r):
-    """omega and r of the state; returns a status code."""
-    if model == L.MODEL_FLAT:
-        return flat_kinematics(p, y, r, w)
-    J = np.empty((3, 3), dtype=y.dtype)
-    if support(p, y[3:6], r, J) == 0.0:
-        return L.SING_EDGE
-    IQ = np.empty((3, 3), dtype=y.dtype)
-    contact_inertia(p, r, IQ)
-    if solve3(IQ, y[0:3], w) == 0:
-        return L.SING_INERTIA
-    return L.OK
+def omega_r_s(model, y, p):
+    """(status, w0, w1, w2, r0, r1, r2): omega and r of the state, allocation-free."""
+    if model == L.MODEL_FLAT or model == L.MODEL_FLAT_SCENE:
+        st, r0, r1, r2, w0, w1, w2 = flat_kinematics_s(p, y)
+        return st, w0, w1, w2, r0, r1, r2
+    s, r0, r1, r2 = support_s(p, y[3], y[4], y[5])[0:4]
+    z = 0.0 * (r0 + y[0])
+    if s == 0.0:
+        return L.SING_EDGE, z, z, z, r0, r1, r2
+    det, w0, w1, w2 = omega_s(p, y[0], y[1], y[2], r0, r1, r2)
+    if det == 0:
+        return L.SING_INERTIA, z, z, z, r0, r1, r2
+    return L.OK, w0, w1, w2, r0, r1, r2
 
 
 @kernel
 def integral(code, model, y, p):
     """Value of integral `code` at state y (NaN if undefined there)."""
-    w = np.empty(3, dtype=y.dtype)
-    r = np.empty(3, dtype=y.dtype)
-    if _omega_r(model, y, p, w, r) != L.OK:
+    st, w0, w1, w2, r0, r1, r2 = omega_r_s(model, y, p)
+    if st != L.OK:
         return np.nan + 0.0 * y[0]
+    return integral_at(code, model, y, p, w0, w1, w2, r0, r1, r2)
+
+
+@kernel
+def integrals_into(codes, model, y, p, out):
+    """out[i] = integral(codes[i]) at y, sharing one evaluation of omega and r (the
+    projection inside the integrator evaluates all integrals n + 1 times per step)."""
+    st, w0, w1, w2, r0, r1, r2 = omega_r_s(model, y, p)
+    for i in range(codes.shape[0]):
+        if st != L.OK:
+            out[i] = np.nan + 0.0 * y[0]
+        else:
+            out[i] = integral_at(codes[i], model, y, p, w0, w1, w2, r0, r1, r2)
+
+
+@kernel
+def integral_at(code, model, y, p, w0, w1, w2, r0, r1, r2):
+    """Value of integral `code` at y, given omega and r there."""
+    w = (w0, w1, w2)
+    r = (r0, r1, r2)
     M0, M1, M2_ = y[0], y[1], y[2]
     m = p[L.MASS]
     Mw = M0 * w[0] + M1 * w[1] + M2_ * w[2]
     MM = M0 * M0 + M1 * M1 + M2_ * M2_
     if code == ENERGY:
         H = 0.5 * Mw
-        if model == L.MODEL_FULL:
+        if model == L.MODEL_FULL or model == L.MODEL_FULL_SCENE:
             g = y[3:6]
             H += m * p[L.GRAV] * (r[0] * g[0] + r[1] * g[1] + r[2] * g[2])
             H += 0.5 * p[L.BRUN] * (p[L.I1] * g[0] * g[0] + p[L.I2] * g[1] * g[1]

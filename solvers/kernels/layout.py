@@ -28,8 +28,13 @@ MODEL_TEST_KEPLER = 1         # planar Kepler problem in R^4 (integrator tests)
 MODEL_FULL = 2                # state (M, gamma) in R^6, eq1.1-eq1.3 (plane and sphere)
 MODEL_FLAT = 3                # state (M, r1, r2) in R^5, eq3.14-eq3.15 (flat base on a sphere)
 MODEL_REV_REDUCED = 4         # state (gamma3, K1, K2, K3), eq2-*1 (body of revolution, plane)
+# The animation's models: the state above plus the orientation Q (body axes -> space, 9
+# entries row by row) and the centre of mass x_G, integrated along (solvers/kinematics.py:
+# dQ/dt = Q [omega]x, dx_G/dt = Q (r x omega)). Only scenes that animate need them.
+MODEL_FULL_SCENE = 5          # (M, gamma, Q, x_G) in R^18
+MODEL_FLAT_SCENE = 6          # (M, r1, r2, Q, x_G) in R^17
 
-STATE_DIM = (2, 4, 6, 5, 4)
+STATE_DIM = (2, 4, 6, 5, 4, 18, 17)
 
 # --- status codes returned by the right-hand side -------------------------------------
 OK = 0

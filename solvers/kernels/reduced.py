@@ -28,8 +28,8 @@ from solvers.kernels.jit import kernel
 
 
 @kernel
-def rev_profile(p, u, out):
-    """out = (phi, phi', f1, f2, f1', f2') at u = gamma3 for the support family
+def rev_profile_s(p, u):
+    """(phi, phi', f1, f2, f1', f2') at u = gamma3 for the support family
     sqrt(b1 (1-u^2) + b3 u^2) + c + d sqrt(1-u^2) + a u (solvers.revolution)."""
     b1 = p[L.B11]
     b3 = p[L.B33]
@@ -51,12 +51,14 @@ def rev_profile(p, u, out):
         ph += d * s
         d1 -= d * u / s
         d2 -= d / (s * s * s)
-    out[0] = ph
-    out[1] = d1
-    out[2] = ph - u * d1
-    out[3] = u * ph + (1.0 - u * u) * d1
-    out[4] = -u * d2
-    out[5] = out[2] + (1.0 - u * u) * d2
+    f1 = ph - u * d1
+    return ph, d1, f1, u * ph + (1.0 - u * u) * d1, -u * d2, f1 + (1.0 - u * u) * d2
+
+
+@kernel
+def rev_profile(p, u, out):
+    """rev_profile_s written into out (6,)."""
+    out[0], out[1], out[2], out[3], out[4], out[5] = rev_profile_s(p, u)
 
 
 @kernel
@@ -73,12 +75,7 @@ def rev_reduced_plane(p, y, dydt):
     K1 = y[1]
     K2 = y[2]
     K3 = y[3]
-    f = np.empty(6, dtype=y.dtype)
-    rev_profile(p, u, f)
-    f1 = f[2]
-    f2 = f[3]
-    f1p = f[4]
-    f2p = f[5]
+    _, dphi, f1, f2, f1p, f2p = rev_profile_s(p, u)
     I1 = p[L.I1]
     I3 = p[L.I3]
     m = p[L.MASS]
@@ -89,7 +86,7 @@ def rev_reduced_plane(p, y, dydt):
     rho = 1.0 / np.sqrt(I1 * I3 + m * I1 * f1 * f1 * s2 + m * I3 * f2 * f2)
     kap = np.sqrt(s2 / (I1 + m * r2))
     qp = (f2p * f1 - f2 * f1p) / (f1 * f1)          # (f2/f1)'
-    dU = _dU(p, u, f[1])
+    dU = _dU(p, u, dphi)
     g3d = kap * K3
     dydt[0] = g3d
     dydt[1] = g3d * (-rho * I3 * (1.0 - qp) * K2 - s)
@@ -115,12 +112,7 @@ def rev_reduced_general(p, y, dydt):
     K1 = y[1]
     K2 = y[2]
     K3 = y[3]
-    f = np.empty(6, dtype=y.dtype)
-    rev_profile(p, u, f)
-    f1 = f[2]
-    f2 = f[3]
-    f1p = f[4]
-    f2p = f[5]
+    _, dphi, f1, f2, f1p, f2p = rev_profile_s(p, u)
     I1 = p[L.I1]
     I3 = p[L.I3]
     m = p[L.MASS]
@@ -162,7 +154,7 @@ def rev_reduced_general(p, y, dydt):
     c0 = w2 * rr2 - w3 * 0.0
     c1 = w3 * r0 - w1 * rr2
     c2 = w1 * 0.0 - w2 * r0
-    MQ2 = -sig * _dU(p, u, f[1]) / a2
+    MQ2 = -sig * _dU(p, u, dphi) / a2
     Md1 = (M2 * w3 - M3 * w2 - s * w2) + m * (rd1 * c2 - rd2 * c1)
     Md2 = (M3 * w1 - M1 * w3 + s * w1) + m * (rd2 * c0 - rd0 * c2) + MQ2
     Md3 = (M1 * w2 - M2 * w1) + m * (rd0 * c1 - rd1 * c0)

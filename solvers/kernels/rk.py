@@ -37,8 +37,14 @@ import numpy as np
 
 from solvers.kernels import layout as L
 from solvers.kernels.fields import rhs
-from solvers.kernels.integrals import integral
+from solvers.kernels.integrals import integral, integrals_into
 from solvers.kernels.jit import kernel
+from solvers.kernels.sections import (
+    SECTION_ANDOYER_G,
+    andoyer_g_value,
+    section_accept,
+    section_step_error,
+)
 
 # --- status codes added by the integrator (0..5 are the rhs codes of layout.py) --------
 MAX_STEPS = 20
@@ -68,12 +74,14 @@ ERR_EMBEDDED, ERR_DOP853 = 0, 1
 # variables, is one more branch of `section_value` with its gradient) ------------------
 SECTION_NONE = 0
 SECTION_LINEAR = 1        # s(y) = coef[:n] . y - coef[n]
+# SECTION_ANDOYER_G = 2: sin(g - g0) in Andoyer-Deprit variables (solvers.kernels.sections)
 
 # --- integrals of the test problems (the body models use integrals.integral) -----------
 TEST_ENERGY = 0           # oscillator (y0^2 + y1^2)/2; Kepler |v|^2/2 - 1/|x|
 TEST_ANGMOM = 1           # Kepler x vy - y vx
 
 EPS = 2.220446049250313e-16
+GRAZE_H = 1e-9            # grazing section crossings are resolved down to h = GRAZE_H |t|
 CSTEP = 1e-30             # complex-step increment: the derivative is exact to round-off
 
 
@@ -94,6 +102,16 @@ def model_integral(code, model, y, p):
 
 
 @kernel
+def model_integrals(codes, model, y, p, out):
+    """out[i] = model_integral(codes[i], model, y, p), the body models' kinematics shared."""
+    if model == L.MODEL_TEST_OSC or model == L.MODEL_TEST_KEPLER:
+        for i in range(codes.shape[0]):
+            out[i] = model_integral(codes[i], model, y, p)
+    else:
+        integrals_into(codes, model, y, p, out)
+
+
+@kernel
 def section_value(code, y, coef, grad):
     """s(y) of section `code`; its gradient is written to grad."""
     n = y.shape[0]
@@ -103,6 +121,8 @@ def section_value(code, y, coef, grad):
             val += coef[i] * y[i]
             grad[i] = coef[i]
         return val
+    if code == SECTION_ANDOYER_G:
+        return andoyer_g_value(y, coef, grad)
     for i in range(n):
         grad[i] = np.nan
     return np.nan
@@ -215,16 +235,19 @@ def _project(model, p, y, codes, vals, G, M, r, lam, yc):
     G = dF/dy at the unprojected y by complex step (Hairer-Lubich-Wanner GNI IV.4)."""
     n = y.shape[0]
     m = codes.shape[0]
+    vc = np.empty(m, dtype=np.complex128)
     for j in range(n):
         for i in range(n):
             yc[i] = y[i]
         yc[j] = y[j] + 1j * CSTEP
+        model_integrals(codes, model, yc, p, vc)
         for k in range(m):
-            G[k, j] = model_integral(codes[k], model, yc, p).imag / CSTEP
+            G[k, j] = vc[k].imag / CSTEP
     for it in range(4):
         done = True
+        model_integrals(codes, model, y, p, r)
         for k in range(m):
-            r[k] = model_integral(codes[k], model, y, p) - vals[k]
+            r[k] -= vals[k]
             if not np.isfinite(r[k]):
                 return PROJECTION_FAILED
             if abs(r[k]) > 2.0 * EPS * max(1.0, abs(vals[k])):
@@ -243,6 +266,70 @@ def _project(model, p, y, codes, vals, G, M, r, lam, yc):
             for k in range(m):
                 y[j] -= G[k, j] * lam[k]
     return L.OK
+
+
+@kernel
+def _crossing_start(code, coef, y, f0, ynew, f1, h, grad, direction):
+    """Where to locate the section crossing of the step (y, f0) -> (ynew, f1) of length
+    h from: +1 its start, -1 its end, 0 no crossing in `direction`, 2 unresolved (halve
+    the step). Henon's step from an end reaches the right crossing only if s runs
+    monotonically from that end to it; the Hermite cubic of s through the ends (values and
+    slopes ds/dt = grad s . f) shows a step whose ends alone mislead: s of one sign at
+    both ends but crossing over inside, or coming nearer to the section than it swings in
+    the step (a grazing pair), or a sign change with ds/dt of the wrong sign at both
+    ends."""
+    n = y.shape[0]
+    s0 = section_value(code, y, coef, grad)
+    d0 = 0.0
+    for m in range(n):
+        d0 += grad[m] * f0[m]
+    s1 = section_value(code, ynew, coef, grad)
+    d1 = 0.0
+    for m in range(n):
+        d1 += grad[m] * f1[m]
+    if not (np.isfinite(s0) and np.isfinite(s1) and np.isfinite(d0) and np.isfinite(d1)):
+        return 0
+    up = s0 < 0.0 <= s1
+    down = s0 > 0.0 >= s1
+    if up or down:
+        if (up and direction < 0) or (down and direction > 0):
+            return 0
+        sg = 1.0 if up else -1.0
+        ok0 = sg * d0 > 0.0
+        ok1 = sg * d1 > 0.0
+        if ok0 and ok1:
+            return 1 if abs(s0) <= abs(s1) else -1
+        if ok0:
+            return 1
+        if ok1:
+            return -1
+        return 2
+    if s0 * s1 <= 0.0:
+        return 0
+    # same sign at both ends: does the cubic a3 t^3 + a2 t^2 + a1 t + s0 cross over?
+    a1 = h * d0
+    a2 = -3.0 * s0 - 2.0 * h * d0 + 3.0 * s1 - h * d1
+    a3 = 2.0 * s0 + h * d0 - 2.0 * s1 + h * d1
+    qa = 3.0 * a3
+    qb = 2.0 * a2
+    for root in range(2):
+        if qa == 0.0:
+            if root == 1 or qb == 0.0:
+                break
+            th = -a1 / qb
+        else:
+            disc = qb * qb - 4.0 * qa * a1
+            if disc < 0.0:
+                break
+            sq = np.sqrt(disc)
+            th = (-qb + sq) / (2.0 * qa) if root == 0 else (-qb - sq) / (2.0 * qa)
+        if 0.0 < th < 1.0:
+            v = ((a3 * th + a2) * th + a1) * th + s0
+            # across, or nearer to the section than its swing in the step (the cubic's own
+            # error is below the swing): unresolved until the pieces are small enough
+            if (s0 < 0.0 < v) or (s0 > 0.0 > v) or abs(v) <= max(abs(s0 - v), abs(s1 - v)):
+                return 2
+    return 0
 
 
 @kernel
@@ -308,6 +395,8 @@ def _locate_crossing(model, p, t0, y0, f0, s0, A, c, b, s, code, coef, KH, z0, z
         scale = abs(coef[n])
         for m in range(n):
             scale += abs(coef[m] * yb[m])
+        if code == SECTION_ANDOYER_G:
+            scale = 1.0       # s = sin(g - g0) is O(1)
         if abs(val) <= 4.0 * EPS * scale or it == 2:
             return L.OK
         for m in range(n + 1):
@@ -318,6 +407,53 @@ def _locate_crossing(model, p, t0, y0, f0, s0, A, c, b, s, code, coef, KH, z0, z
             return st
         ds = -val
     return L.OK
+
+
+@kernel
+def _refine_crossing(model, p, t, y, t_new, A, c, b, s, code, coef, K, ytmp, KH, z0, z, ztmp,
+                     grad, stats):
+    """Newton on the crossing time with full RK steps from (t, y): Henon's step (one RK
+    step in s, no error control) is only as accurate as 1/(ds/dt) is smooth over it, so
+    its time z[n] is corrected by tc <- tc - s(y(tc)) / (ds/dt), y(tc) a step of length
+    tc - t from the start of the accepted step (a shorter step than an accepted one: within
+    the tolerance), and the converged point is put on s = 0 by a Henon step of length -s
+    (round-off). K[1:] is overwritten; z is left as it is unless this converges inside
+    the step. Runs once per crossing (two small work vectors)."""
+    n = y.shape[0]
+    yc = np.empty(n)
+    fb = np.empty(n)
+    tc = z[n]
+    for it in range(5):
+        hc = tc - t
+        st = _stages(model, p, t, y, hc, A, c, 1, s, K, ytmp, stats)
+        if st != L.OK:
+            return
+        for m in range(n):
+            acc = 0.0
+            for i in range(s):
+                acc += b[i] * K[i, m]
+            yc[m] = y[m] + hc * acc
+        sv = section_value(code, yc, coef, grad)
+        stats[S_RHS] += 1
+        if rhs(model, tc, yc, p, fb) != L.OK:
+            return
+        sdot = 0.0
+        for m in range(n):
+            sdot += grad[m] * fb[m]
+        if sdot == 0.0 or not np.isfinite(sv / sdot):
+            return
+        dt = -sv / sdot
+        # converged to round-off (near tangency s's round-off over a small ds/dt keeps
+        # |dt| above 4 eps |t|: the fifth iterate is taken if it moved by < 1e-6 h)
+        if abs(dt) <= 4.0 * EPS * max(1.0, abs(tc)) or \
+                (it == 4 and abs(dt) <= 1e-6 * abs(t_new - t)):
+            if t <= tc <= t_new:
+                _locate_crossing(model, p, tc, yc, fb, sv, A, c, b, s, code, coef, KH, z0,
+                                 z, ztmp, ytmp, fb, grad, stats)
+            return
+        tc += dt
+        if not (t <= tc <= t_new):
+            return
 
 
 @kernel
@@ -426,6 +562,8 @@ def rk_integrate(model, p, y0, t_out, A, c, b, E, P, meth, iopt, fopt, atol, pro
             # 3. error test
             if not fixed:
                 err = _error(E, K, s, h, y, ynew, atol, rtol, errkind)
+                if code == SECTION_ANDOYER_G:   # step control near the section (sections.py)
+                    err = max(err, section_step_error(y, ynew, sec_coef, q))
             if err <= 1.0:
                 t_new = target if landing else t + (h + t_comp if compensated else h)
                 if new >= s:
@@ -445,6 +583,18 @@ def rk_integrate(model, p, y0, t_out, A, c, b, E, P, meth, iopt, fopt, atol, pro
             fac = safety * err ** (-1.0 / (q + 1)) if np.isfinite(err) else 0.0
             h = h * min(1.0, max(fopt[F_FACMIN], fac))
             continue
+        # a step whose ends misread the section (a grazing pair of crossings inside, or s
+        # not monotone towards its crossing) is halved until they do; below GRAZE_H the
+        # pair is at round-off distance and left unresolved
+        from_start = 0
+        if code != SECTION_NONE:
+            from_start = _crossing_start(code, sec_coef, y, K[0], ynew, K[new], h, grad,
+                                         direction)
+            if from_start == 2 and not fixed and abs(h) > GRAZE_H * max(1.0, abs(t)):
+                stats[S_REJECTED] += 1
+                rejected_last = True
+                h = 0.5 * h
+                continue
         # 4. accepted
         stats[S_ACCEPTED] += 1
         if compensated and not landing:
@@ -509,7 +659,7 @@ def rk_integrate(model, p, y0, t_out, A, c, b, E, P, meth, iopt, fopt, atol, pro
             if (direction >= 0 and s_old < 0.0 <= s_new) or \
                     (direction <= 0 and s_old > 0.0 >= s_new):
                 k = stats[S_CROSSINGS]
-                if abs(s_old) <= abs(s_new):
+                if from_start != -1:    # the end s runs monotonically from (see above)
                     status = _locate_crossing(model, p, t, y, K[0], s_old, A, c, b, s, code,
                                               sec_coef, KH, z0, z, ztmp, ytmp, fb, grad, stats)
                 else:
@@ -518,9 +668,12 @@ def rk_integrate(model, p, y0, t_out, A, c, b, E, P, meth, iopt, fopt, atol, pro
                                               stats)
                 if status != L.OK:
                     break
-                cross_t[k] = z[n]
-                cross_y[k, :] = z[:n]
-                stats[S_CROSSINGS] = k + 1
+                _refine_crossing(model, p, t, y, t_new, A, c, b, s, code, sec_coef, K, ytmp,
+                                 KH, z0, z, ztmp, grad, stats)
+                if section_accept(code, z, sec_coef):   # refuses g = g0 + pi (sections.py)
+                    cross_t[k] = z[n]
+                    cross_y[k, :] = z[:n]
+                    stats[S_CROSSINGS] = k + 1
             s_old = s_new
         # commit the step
         t = t_new

@@ -1,0 +1,256 @@
+"""Work-precision: every method the project offers against scipy and heyoka, one process.
+
+For six representative cases (Chaplygin ball, unbalanced ball with gravity, disk,
+ellipsoid, a ball on a sphere, a flat base on a sphere) and tolerances 1e-4 ... 1e-16
+(rtol = atol; scipy from 1e-4 to 1e-14):
+
+  ours      dop853, vern9 (compiled kernels, compensated summation), each also with
+            projection onto the case's integrals after every step ("+proj")
+  scipy     solve_ivp DOP853 on the independent NumPy field (solvers/reference.py, what
+            `--method scipy-dop853` runs) and on our compiled field (scipy's own overhead
+            only); LSODA and Radau on the compiled field
+  heyoka    adaptive Taylor in float64 on the expression system of solvers/taylor.py
+            (compiled once per tolerance, compilation excluded and reported)
+
+Error: max over 101 output times of |y - y_ref|_inf / max(1, max|y_ref|_inf); the
+reference is heyoka in 80-bit long double at tol 1e-19, checked against heyoka in real128
+(quadruple) at tol 1e-24 (the difference is printed as the reference's own error bound).
+Cost: wall time (ours and heyoka: best of REPEATS, in this process, same load) and
+right-hand-side calls (heyoka: Taylor steps and order instead). scipy (which clips
+rtol to 2.2e-14 for its Runge-Kutta methods) runs are bounded: once a run of a method
+takes more than BUDGET_S / 3, its tighter tolerances are skipped and marked so. No
+absolute time is asserted anywhere: the ratios are read side by side.
+
+    .venv/bin/python bench/work_precision.py [--quick]       (or: rolling bench work-precision)
+
+Writes bench/results/work_precision.json (every run) and work_precision.txt (the table);
+solvers/workprecision.py summarises them for the explorer (GET /api/work-precision).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import platform
+import sys
+import time
+import warnings
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from solvers import workprecision as wp
+from solvers.cases import build, initial_state, registry
+from solvers.integrator import integrate, solve_ivp_reference
+from solvers.kernels.fields import rhs
+from solvers.reference import field as ref_field
+from solvers.taylor import Taylor
+
+OUT = Path(__file__).with_name("results")
+TOLS = (1e-4, 1e-6, 1e-8, 1e-10, 1e-12, 1e-14, 1e-15, 1e-16)
+SCIPY_MIN_TOL = 1e-14    # scipy clips rtol to 2.2e-14: tighter runs would repeat that one
+SAMPLES = 101
+REPEATS = 5
+BUDGET_S = 60.0
+
+
+@dataclass(frozen=True)
+class WPCase:
+    id: str
+    overrides: dict = field(default_factory=dict)
+    t_end: float = 1000.0
+    note: str = ""
+
+
+CASES = (
+    WPCase("plane/chaplygin-ball", note="integrable (Chaplygin)"),
+    WPCase("plane/unbalanced-ball", {"g": 1.0}, 100.0,
+           note="with gravity, sensitive to initial data: errors grow ~1e4 per 1000 time "
+                "units, so T = 100"),
+    WPCase("plane/round-disk", note="integrable (Chaplygin disk), gravity on"),
+    WPCase("plane/ellipsoid"),
+    WPCase("sphere/chaplygin-ball", note="k = 0.3"),
+    WPCase("sphere/flat-base", note="k = -0.5, z = 0.3"),
+)
+
+
+def _record(case, method, tol, Y, Yref, wall, rhs_calls, steps, ok, msg="", **extra):
+    err = None
+    if ok and Y is not None and len(Y) == len(Yref):
+        err = float(np.max(np.abs(Y - Yref)) / max(1.0, float(np.max(np.abs(Yref)))))
+        if not np.isfinite(err):       # a "successful" run that returned garbage
+            err, ok, msg = None, False, f"non-finite output ({msg})"
+    return {"case": case.id, "method": method, "tol": tol, "error": err, "wall_s": wall,
+            "rhs_calls": rhs_calls, "steps": steps, "ok": bool(ok), "message": msg, **extra}
+
+
+def run_ours(model, y0, t, method, tol, project):
+    best = None
+    for _ in range(REPEATS):
+        r = integrate(model.model, model.p, y0, t, method=method, rtol=tol, atol=tol,
+                      compensated=True, project_codes=model.integral_codes if project else ())
+        if best is None or r.wall_s < best.wall_s:
+            best = r
+    return best
+
+
+def scipy_fun(model, compiled):
+    if compiled:
+        d = np.empty(model.dim)
+
+        def f(t, y):
+            rhs(model.model, t, y, model.p, d)
+            return d.copy()
+        return f
+    return lambda t, y: ref_field(model.model, model.p, y)
+
+
+def run_case(case: WPCase, tols, quick: bool, say) -> list[dict]:
+    spec = registry()[case.id]
+    model = build(case.id, {**spec.example, **case.overrides})
+    y0 = initial_state(model, spec.state)
+    t = np.linspace(0.0, case.t_end, SAMPLES)
+    say(f"\n== {case.id}  T = {case.t_end:g}  {case.note}")
+
+    t0 = time.perf_counter()
+    ref = Taylor(model.model, model.p, y0, tol=1e-19, fp="longdouble", compact_mode=True)
+    Yref, _, ref_wall, ref_steps, ok = ref.run(y0, t)
+    assert ok, "reference failed"
+    info = {"reference": "heyoka long double, tol 1e-19", "reference_wall_s": ref_wall,
+            "reference_steps": ref_steps, "reference_order": ref.order}
+    if not quick:
+        q = Taylor(model.model, model.p, y0, tol=1e-24, fp="real128", compact_mode=True)
+        Yq, _, q_wall, _, _ = q.run(y0, t)
+        info["reference_check"] = ("heyoka real128, tol 1e-24: max difference "
+                                   f"{np.max(np.abs(Yq - Yref)):.1e} ({q_wall:.1f} s)")
+        info["reference_error_bound"] = float(np.max(np.abs(Yq - Yref)))
+    say(f"reference: {info['reference']} ({time.perf_counter() - t0:.1f} s); "
+        + info.get("reference_check", "real128 check skipped (--quick)"))
+
+    runs = []
+    # warm every path once (numba specializations, heyoka's JIT, scipy's first calls)
+    integrate(model.model, model.p, y0, t[:3], method="vern9", compensated=True,
+              project_codes=model.integral_codes)
+    integrate(model.model, model.p, y0, t[:3], method="dop853", compensated=True)
+    for compiled in (True, False):
+        scipy_fun(model, compiled)(0.0, y0)
+    # ours
+    for method in ("dop853", "vern9"):
+        for project in (False, True):
+            name = method + ("+proj" if project else "")
+            for tol in tols:
+                r = run_ours(model, y0, t, method, tol, project)
+                runs.append(_record(case, name, tol, r.y, Yref, r.wall_s, r.rhs_calls, r.steps,
+                                    r.success, r.message))
+    # heyoka, float64
+    compile_s = 0.0
+    for tol in tols:
+        h = Taylor(model.model, model.p, y0, tol=tol)
+        compile_s += h.compile_s
+        best = min((h.run(y0, t) for _ in range(REPEATS)), key=lambda x: x[2])
+        Y, _, wall, steps, ok = best
+        runs.append(_record(case, wp.HEYOKA, tol, Y, Yref, wall, None, steps, ok,
+                            order=h.order))
+    info["heyoka_compile_s"] = compile_s
+    # scipy
+    for name, method, compiled in ((wp.SCIPY_NUMPY, "DOP853", False),
+                                   (wp.SCIPY_COMPILED, "DOP853", True),
+                                   ("scipy-LSODA/numba", "LSODA", True),
+                                   ("scipy-Radau/numba", "Radau", True)):
+        if quick and not compiled:
+            continue
+        skip = False
+        for tol in (x for x in tols if x >= SCIPY_MIN_TOL):
+            if skip:
+                runs.append(_record(case, name, tol, None, Yref, None, None, None, False,
+                                    "skipped: the previous tolerance took > BUDGET_S/3"))
+                continue
+            with np.errstate(all="ignore"), warnings.catch_warnings():
+                warnings.simplefilter("ignore")   # scipy clips rtol < 2.2e-14 (said above)
+                r = solve_ivp_reference(model.model, model.p, y0, t, method=method, rtol=tol,
+                                        atol=tol, fun=scipy_fun(model, compiled))
+            runs.append(_record(case, name, tol, r.y, Yref, r.wall_s, r.rhs_calls, None,
+                                r.success and len(r.t) == len(t), r.message))
+            skip = r.wall_s > BUDGET_S / 3
+    return runs, info
+
+
+def table(data) -> list[str]:
+    summ = wp.summarise(data)
+    lines = []
+    refs = [wp.SCIPY_NUMPY, wp.SCIPY_COMPILED, "scipy-LSODA/numba", "scipy-Radau/numba",
+            wp.HEYOKA]
+    for case in data["cases"]:
+        s = summ[case["id"]]
+        lines.append(f"\n{case['id']}  (T = {case['t_end']:g}; default method from the "
+                     f"front: {s['default_method']})")
+        lines.append(f"{'error <=':>9s} {'ours: method':>18s} {'tol':>6s} {'wall ms':>8s} | "
+                     + " ".join(f"{r.split('/')[0] + ('/np' if 'numpy' in r else ''):>13s}"
+                                for r in refs))
+        for row in s["table"]:
+            o = row["ours"]
+            head = (f"{row['level']:9.0e} {o['method']:>18s} {o['tol']:6.0e} "
+                    f"{o['wall_s'] * 1e3:8.2f} | ") if o else f"{row['level']:9.0e} {'-':>18s} " \
+                f"{'':6s} {'':8s} | "
+            cells = []
+            for r in refs:
+                ratio = row.get(f"ratio_{r}")
+                ref = row.get(r)
+                if r not in row:
+                    cells.append(f"{'not run':>13s}")
+                else:
+                    cells.append(f"{ratio:12.1f}x" if ratio else
+                                 (f"{'(no ours)':>13s}" if ref else f"{'not reached':>13s}"))
+            lines.append(head + " ".join(cells))
+    lines.append("\nratio = (reference's least wall time reaching the error) / (ours'); "
+                 "'not reached': no run of that reference reached the error level")
+    return lines
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--quick", action="store_true",
+                    help="three tolerances, no NumPy-field scipy, no real128 check")
+    ap.add_argument("--case", action="append", help="only these case ids")
+    args = ap.parse_args(argv)
+    tols = (1e-6, 1e-10, 1e-14) if args.quick else TOLS
+    cases = [c for c in CASES if not args.case or c.id in args.case]
+    lines = []
+
+    def say(s=""):
+        print(s, flush=True)
+        lines.append(s)
+
+    t0 = time.perf_counter()
+    warm = build("plane/chaplygin-ball", registry()["plane/chaplygin-ball"].example)
+    integrate(warm.model, warm.p, np.array(registry()["plane/chaplygin-ball"].state), [0, 1])
+    say(f"first call (numba cache load or compile): {time.perf_counter() - t0:.2f} s; "
+        f"python {platform.python_version()}, {platform.machine()}")
+    data = {"tolerances": list(tols), "samples": SAMPLES, "repeats": REPEATS, "cases": [],
+            "runs": [], "quick": args.quick,
+            "error": "max over the output grid of |y - y_ref|_inf / max(1, max|y_ref|_inf)"}
+    for case in cases:
+        runs, info = run_case(case, tols, args.quick, say)
+        data["cases"].append({"id": case.id, "overrides": case.overrides, "t_end": case.t_end,
+                              "note": case.note, **info})
+        data["runs"].extend(runs)
+        for r in runs:
+            e = f"{r['error']:.1e}" if r["error"] is not None else "-"
+            w = f"{r['wall_s'] * 1e3:.2f}" if r["wall_s"] is not None else "-"
+            say(f"  {r['method']:20s} tol {r['tol']:.0e}  error {e:>8s}  wall {w:>9s} ms  "
+                f"rhs {r['rhs_calls'] or '-'}  steps {r['steps'] or '-'}"
+                + ("" if r["ok"] else f"  [{r['message'][:70]}]"))
+    lines_table = table(data)
+    for s in lines_table:
+        say(s)
+    say(f"\ntotal {time.perf_counter() - t0:.0f} s")
+    OUT.mkdir(exist_ok=True)
+    suffix = "_quick" if args.quick else ""
+    (OUT / f"work_precision{suffix}.json").write_text(json.dumps(data, indent=1) + "\n")
+    (OUT / f"work_precision{suffix}.txt").write_text("\n".join(lines) + "\n")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

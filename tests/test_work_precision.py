@@ -1,0 +1,94 @@
+"""The committed work-precision results (bench/work_precision.py), their summary, the
+explorer's GET /api/work-precision and page, `rolling bench`, and the batch runner."""
+
+import math
+
+import numpy as np
+import pytest
+from fastapi.testclient import TestClient
+
+from solvers import workprecision as wp
+from solvers.batch import integrate_batch
+from solvers.cases import build, registry
+from solvers.integrator import Section, integrate
+
+pytestmark = pytest.mark.filterwarnings("ignore::DeprecationWarning")
+
+
+def test_committed_results_cover_the_cases_and_methods():
+    data = wp.load_results()
+    ids = {c["id"] for c in data["cases"]}
+    assert {"plane/chaplygin-ball", "plane/unbalanced-ball", "plane/round-disk",
+            "plane/ellipsoid", "sphere/chaplygin-ball", "sphere/flat-base"} <= ids
+    methods = {r["method"] for r in data["runs"]}
+    assert set(wp.OURS) | {wp.HEYOKA, wp.SCIPY_COMPILED} <= methods
+    for r in data["runs"]:
+        if r["ok"]:
+            assert r["error"] is not None and math.isfinite(r["error"]) and r["wall_s"] > 0
+
+
+def test_summary_is_consistent_with_the_runs():
+    data = wp.load_results()
+    for cid, s in data["summary"].items():
+        assert s["default_method"] in wp.PLAIN
+        assert s["tolerance_buys"]
+        for row in s["table"]:
+            best = row["ours"]
+            if best is not None:
+                assert best["error"] <= row["level"]
+                runs = [r for r in data["runs"] if r["case"] == cid
+                        and r["method"] in wp.OURS and r["ok"] and r["error"] <= row["level"]]
+                assert best["wall_s"] == min(r["wall_s"] for r in runs)
+
+
+def test_pareto_front_is_monotone():
+    runs = [{"ok": True, "error": e, "wall_s": w, "method": "x", "tol": 0, "rhs_calls": 0}
+            for e, w in ((1e-3, 1.0), (1e-5, 2.0), (1e-4, 3.0), (1e-8, 4.0))]
+    front = wp.pareto(runs)
+    assert [r["error"] for r in front] == [1e-8, 1e-5, 1e-3]
+
+
+def test_api_and_page():
+    from app.main import create_app
+    from app.testing import settings_for_tests
+
+    with TestClient(create_app(settings_for_tests(warm_workers=False))) as client:
+        r = client.get("/api/work-precision")
+        assert r.status_code == 200
+        body = r.json()
+        assert body["summary"] and body["runs"] and body["cases"]
+        page = client.get("/work-precision")
+        assert page.status_code == 200 and 'id="wp-cases"' in page.text
+        js = client.get("/static/js/work_precision.js")
+        assert js.status_code == 200 and "/api/work-precision" in js.text
+
+
+def test_default_method_falls_back():
+    assert wp.default_method("no/such-case") == "dop853"
+    assert wp.default_method("plane/chaplygin-ball") in wp.PLAIN
+
+
+def test_simulate_auto_uses_the_case_default():
+    from solvers.simulate import simulate
+
+    c = registry()["plane/ellipsoid"]
+    r = simulate("plane/ellipsoid", c.example, c.state, 10.0, method="auto", samples=11)
+    assert r.ok and r.stats["method"] == wp.default_method("plane/ellipsoid")
+
+
+def test_batch_equals_one_by_one_on_two_threads():
+    c = registry()["sphere/chaplygin-ball"]
+    m = build("sphere/chaplygin-ball", c.example)
+    rng = np.random.default_rng(0)
+    Y0 = []
+    for _ in range(6):
+        y = np.array(c.state)
+        y[:3] += 0.1 * rng.standard_normal(3)
+        Y0.append(y)
+    sec = Section(coef=(0, 0, 0, 0, 0, 1.0))
+    batch = integrate_batch(m.model, m.p, Y0, [0.0, 300.0], workers=2, section=sec,
+                            max_crossings=20)
+    for y0, r in zip(Y0, batch, strict=True):
+        one = integrate(m.model, m.p, y0, [0.0, 300.0], section=sec, max_crossings=20)
+        assert np.array_equal(one.crossings_y, r.crossings_y)
+        assert np.array_equal(one.y, r.y)
