@@ -29,6 +29,15 @@ def _set_inertia(p, I1, I2, I3):
     p[L.I1], p[L.I2], p[L.I3] = I1, I2, I3
 
 
+def rattleback_B(b1, b2, b3, delta):
+    """(B11, B22, B33, B12, B13, B23) of B = R diag(b1, b2, b3) R^T, R the turn by delta
+    about the body axis e3: the geometric axes of the ellipsoid (r, B^-1 r) = 1 turned
+    against the principal axes of inertia (the rattleback, the paper's Celtic stone)."""
+    c, s = math.cos(delta), math.sin(delta)
+    return [b1 * c * c + b2 * s * s, b1 * s * s + b2 * c * c, b3, (b1 - b2) * c * s,
+            0.0, 0.0]
+
+
 def fill_body(kind, prm, p):
     """Write body `kind` with named parameters `prm` into p; return the model code."""
     if kind == "ball":                    # r = R gamma + a (eq-d*1); a = 0: Chaplygin ball
@@ -61,6 +70,10 @@ def fill_body(kind, prm, p):
         p[L.B11], p[L.B22], p[L.B33] = prm["b1"], prm["b2"], prm["b3"]
         p[L.BALL_C] = prm["c"]
         p[L.A1:L.A3 + 1] = [prm["a1"], prm["a2"], prm["a3"]]
+    elif kind == "rattleback":            # Celtic stone: ellipsoid turned against the inertia
+        _positive(prm, "b1", "b2", "b3")  # axes by delta about e3, centre at a e3 from G
+        p[L.B11:L.B23 + 1] = rattleback_B(prm["b1"], prm["b2"], prm["b3"], prm["delta"])
+        p[L.A3] = prm["a"]
     elif kind == "flat":                  # r = (r1, r2, z), gamma = e3 (eq3.14-eq3.15)
         p[L.FLAT_Z] = prm.get("z", 0.0)
         return L.MODEL_FLAT

@@ -1,0 +1,219 @@
+"""The paper's 3D point maps (Figs ris-*1 .. ris-*4) recomputed and quantified.
+
+    python bench/paper_figures.py     (about two minutes on one core)
+
+Writes bench/results/paper_figures.txt (the numbers) and static/data/paper_figures.json
+(the points, which the explorer's /poincare page draws as 3D scatter plots). The paper
+gives the inertia of Fig ris-*1 only (I = (1, 2, 3)); every other parameter below is our
+choice, stated with the figure. All runs: E0 = 1, section g = 0 crossed with g
+increasing, DOP853 at rtol 1e-12, atol 1e-14, no projection onto the integrals.
+"""
+
+from __future__ import annotations
+
+import json
+import time
+from pathlib import Path
+
+import numpy as np
+
+from solvers.map_analysis import correlation_dimension, jacobian, log_det_series
+from solvers.poincare import MapSpec, map_model, poincare
+
+ROOT = Path(__file__).resolve().parents[1]
+TOL = {"rtol": 1e-12, "atol": 1e-14}
+CHAPLYGIN = {"I1": 1.0, "I2": 2.0, "I3": 3.0, "m": 1.0, "R": 1.0}
+UNBALANCED = {**CHAPLYGIN, "a1": -0.24, "a2": -0.09, "a3": -0.57}
+ELLIPSOID = {"m": 1.0, "b1": 1.0, "b2": 2.0, "b3": 3.0, "mu": 1.0, "lambda": 0.0}
+# starts (L/G, H/G, l) on the section; the unbalanced ball's were drawn with seed 6 and
+# kept for what they show (see the text of each figure)
+UB_ATTRACTED = (-0.7163524877143389, -0.851714459230827, 5.341909778560195)
+UB_OTHERS = [(0.07251226779669206, -0.297785347354657, 2.318917858443646),
+             (0.3312154679585378, -0.3230694347676293, 4.272048658717694)]
+ELL_REGULAR = [(-0.407, -0.848, 2.409), (0.948, 0.29, 1.473), (0.336, -0.834, 3.491),
+               (0.34, 0.703, 1.428), (-0.12, -0.564, 2.042), (0.013, 0.012, 1.484)]
+ELL_LAYER = (-0.174, -0.864, 0.306)
+
+
+def near_return(P, k):
+    d = P[k:] - P[:-k]
+    d[:, 2] = (d[:, 2] + np.pi) % (2 * np.pi) - np.pi
+    return np.linalg.norm(d, axis=1)
+
+
+def run(case, params, points, **kw):
+    spec = MapSpec(energy=1.0, points=points, **TOL)
+    t0 = time.perf_counter()
+    res = poincare(case, params, spec, **kw)
+    return res, spec, time.perf_counter() - t0
+
+
+def describe(res, extra=None):
+    rows = []
+    for i, (tr, sp) in enumerate(zip(res.trajectories, res.integral_spread(), strict=True)):
+        d = {"n": len(tr.points), "status": tr.status, "missed": tr.check.get("missed"),
+             "extra": tr.check.get("extra"), **sp}
+        if len(tr.points) > 50:
+            d["D2"] = correlation_dimension(tr.points, 0.01, 0.1)
+        if extra:
+            d.update(extra[i])
+        rows.append(d)
+    return rows
+
+
+def fmt(rows):
+    keys = []
+    for r in rows:
+        keys += [k for k in r if k not in keys]
+    out = ["  " + " ".join(f"{k:>13s}" for k in keys)]
+    for r in rows:
+        cells = []
+        for k in keys:
+            v = r.get(k, "")
+            cells.append(f"{v:13.3e}" if isinstance(v, float) else f"{v!s:>13s}")
+        out.append("  " + " ".join(cells))
+    return "\n".join(out)
+
+
+def mean_log_det(model, spec, P, n):
+    ld = log_det_series(model, spec, P[:n])
+    return float(np.nanmean(ld))
+
+
+def fig1(text, data):
+    res, spec, wall = run("plane/chaplygin-ball", CHAPLYGIN, 1000, trajectories=8, seed=1)
+    model = map_model("plane/chaplygin-ball", CHAPLYGIN)
+    extra = [{"mean_logdet": mean_log_det(model, spec, t.points, 100)} if i < 3 else {}
+             for i, t in enumerate(res.trajectories)]
+    rows = describe(res, extra)
+    worst = max(r["H/G"] for r in rows)
+    lines = [
+        "Fig ris-*1  Chaplygin ball, I = (1, 2, 3), m = 1, R = 1 (D = m R^2 = 1), U = 0; "
+        f"8 trajectories (seed 1) x 1000 points, {wall:.1f} s",
+        "  claim: every trajectory lies on a joint level of H = (M, gamma) and M^2, so H/G "
+        "is constant along it and the points lie on curves",
+        fmt(rows),
+        f"  largest spread of H/G on one trajectory: {worst:.2e} (absolute; the map "
+        "coordinates span [-1, 1]); D2 ~ 1: curves.",
+        "  mean log|det DP| over the first 100 returns (a measure exists: -> 0 like 1/n) "
+        "is the control for Fig ris-*2/3.", ""]
+    text += lines
+    data["ris-1"] = pack(res, "Chaplygin ball, I = (1, 2, 3): joint levels of (M, γ) and M²",
+                         lines)
+
+
+def fig23(text, data):
+    res, spec, wall = run("plane/unbalanced-ball", UNBALANCED, 3000,
+                          initial=[*UB_OTHERS, UB_ATTRACTED])
+    model = map_model("plane/unbalanced-ball", UNBALANCED)
+    extra = []
+    for t in res.trajectories:
+        d3 = near_return(t.points, 3)
+        extra.append({"mean_logdet": mean_log_det(model, spec, t.points, 200),
+                      "d3_first100": float(np.median(d3[:100])),
+                      "d3_last100": float(np.median(d3[-100:]))})
+    rows = describe(res, extra)
+    att = res.trajectories[-1].points
+    d3 = near_return(att, 3)
+    n = np.arange(len(d3))
+    fit = slice(200, len(d3))
+    rate = float(np.polyfit(n[fit], np.log(np.maximum(d3[fit], 1e-300)), 1)[0])
+    # multipliers of P^3 at the end of the attracted orbit (on the 3-cycle to ~1e-7)
+    J = np.eye(3)
+    for x in att[-3:]:
+        Jx = jacobian(model, spec, x)
+        J = Jx @ J
+    mult = np.linalg.eigvals(J)
+    lines = [
+        "Figs ris-*2, ris-*3  unbalanced ball, I = (1, 2, 3), m = 1, R = 1, a = (-0.24, "
+        f"-0.09, -0.57) (our choice), U = 0; 3 trajectories x 3000 points, {wall:.1f} s",
+        "  claim: the points lie on surfaces F = M^2 - m r^2 (M, omega) = const (eq-d*2) "
+        "and condense towards periodic solutions (no invariant measure)",
+        fmt(rows),
+        "  d3 = |x_{n+3} - x_n| (map coordinates): median over the first and the last 100 "
+        "returns.",
+        f"  Fig ris-*2 is the last trajectory: it approaches a 3-cycle (three points at "
+        f"H/G ~ {att[-1, 1]:.3f}); d3 falls as exp({rate:.5f} n) after n = 200, from "
+        f"{d3[0]:.2e} to {d3[-1]:.2e} at n = {len(d3)}.",
+        "  multipliers of P^3 at the cycle: " + ", ".join(f"{m:.6f}" for m in mult)
+        + f"  (|.| = {', '.join(f'{abs(m):.6f}' for m in mult)}; det = "
+        f"{np.prod(mult).real:.6f}: volume contracts by that factor every 3 returns; the "
+        "multiplier 1 is the direction across the levels of F).",
+        f"  contraction per return on the cycle: log(det)/3 = "
+        f"{np.log(abs(np.prod(mult))) / 3:.5f}; the approach rate predicted by the "
+        f"multipliers, log|mu|/3 = {np.log(abs(mult[0])) / 3:.5f}, agrees with the fitted "
+        f"rate {rate:.5f}. (A 3D map with an invariant measure has det DP^3 = 1 on a "
+        "3-cycle.)",
+        "  mean_logdet over the first 200 returns of the other two trajectories is not "
+        "distinguishable from the Chaplygin-ball control (|.| <~ 5e-3 there): their "
+        "contraction, if any, is not resolved by 200 returns.", ""]
+    text += lines
+    data["ris-2"] = pack(res, "Unbalanced ball: one trajectory attracted to a 3-cycle",
+                         lines, only=[len(res.trajectories) - 1])
+    data["ris-3"] = pack(res, "Unbalanced ball: three trajectories on levels of the "
+                         "integral eq-d*2", lines)
+
+
+def fig4(text, data):
+    res, spec, wall = run("plane/ellipsoid", ELLIPSOID, 3000,
+                          initial=[*ELL_REGULAR, ELL_LAYER])
+    model = map_model("plane/ellipsoid", ELLIPSOID)
+    extra = [{"mean_logdet": mean_log_det(model, spec, t.points, 100)}
+             if i in (0, len(res.trajectories) - 1) else {}
+             for i, t in enumerate(res.trajectories)]
+    rows = describe(res, extra)
+    layer = res.trajectories[-1].points
+    d_small = correlation_dimension(layer, 0.003, 0.03)
+    lines = [
+        "Fig ris-*4  ellipsoid with spherical inertia I = mu E (lambda = 0 in eq2.29), mu "
+        "= 1, m = 1, b = (1, 2, 3) (our choice), U = 0; 6 regular + 1 layer trajectory x "
+        f"3000 points, {wall:.1f} s",
+        "  claim: regular trajectories fill curves around stable permanent rotations; a "
+        "chaotic layer (one trajectory) is not situated on any surface",
+        fmt(rows),
+        f"  regular: D2 ~ 1 (curves). Layer (last row): D2 = {rows[-1]['D2']:.2f} at "
+        f"scales 0.01-0.1 and {d_small:.2f} at 0.003-0.03, spread of H/G "
+        f"{rows[-1]['H/G']:.3f}: at this resolution the layer fills a two-dimensional "
+        "set; the paper's 'not situated on any surface' is NOT confirmed by this number.",
+        "  mean log|det DP| stays ~ 0 (the measure eq2.19/eq2.30 exists).", ""]
+    text += lines
+    data["ris-4"] = pack(res, "Ellipsoid with spherical inertia (λ = 0): invariant curves "
+                         "and a chaotic layer", lines)
+
+
+def pack(res, title, lines, only=None):
+    """The figure for the explorer: its trajectories (at most 2000 points each) and, as
+    notes, the claim and the numbers of the text report (the table rows left out)."""
+    trs = res.trajectories if only is None else [res.trajectories[i] for i in only]
+    notes = [ln.strip() for ln in lines[1:] if not ln.startswith("    ") and ln.strip()]
+    return {"title": title, "notes": notes, "case": res.case, "params": res.params,
+            "energy": res.spec.energy, "section": {"g0": res.spec.g0,
+                                                   "direction": res.spec.direction},
+            "trajectories": [{"initial": [round(v, 6) for v in t.initial],
+                              "points": np.round(t.points[:2000], 5).tolist()}
+                             for t in trs]}
+
+
+def main():
+    t0 = time.perf_counter()
+    text = ["3D point maps of Borisov & Mamaev (2002), Figs ris-*1..ris-*4 (section 'Three-"
+            "dimensional point maps', eq an-dp)",
+            "map coordinates (L/G, H/G, l); spreads: (max - min)/|mean| over the points of "
+            "one trajectory for the integrals, absolute for H/G; D2: correlation dimension "
+            "(scales 0.01-0.1 of (L/G, H/G, l/pi)); missed/extra: the crossing check of "
+            "solvers/poincare.py", ""]
+    data = {}
+    fig1(text, data)
+    fig23(text, data)
+    fig4(text, data)
+    text.append(f"total {time.perf_counter() - t0:.0f} s")
+    out = "\n".join(text)
+    print(out)
+    (ROOT / "bench" / "results" / "paper_figures.txt").write_text(out + "\n")
+    path = ROOT / "static" / "data" / "paper_figures.json"
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(json.dumps(data, separators=(",", ":")))
+
+
+if __name__ == "__main__":
+    main()

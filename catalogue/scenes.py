@@ -1,0 +1,134 @@
+"""Teaching scenes (catalogue/scenes.yaml): presets for a class, validated once.
+
+Each preset is a short explanation for a class, the claim it demonstrates, the paper's
+labels, the run itself as the scene planner's declaration (`scene`: a
+`solvers.scenes.Scene` with the case, all its parameters, the initial state, t_end, what
+is shown and how many samples / frames), and the checks that show the claim on that run
+(`checks`, run by solvers.scene_checks and tests/test_scenes_catalogue.py). The schema is
+strict (extra="forbid"); `load_scenes()` also builds every model and validates every state.
+
+    from catalogue.scenes import load_scenes
+    load_scenes()["rattleback-spin-reversal"].scene.t_end
+"""
+
+from __future__ import annotations
+
+from functools import cache
+from pathlib import Path
+from typing import Annotated, Literal
+
+import yaml
+from pydantic import BaseModel, ConfigDict, Field, model_validator
+
+from solvers.scenes import Scene as SceneDeclaration
+
+PATH = Path(__file__).resolve().parent / "scenes.yaml"
+
+
+class _Strict(BaseModel):
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+
+class IntegralsCheck(_Strict):
+    """The named integrals (solvers/kernels/integrals.py NAMES) stay constant along the
+    scene's run: max |F(t) - F(0)| / max(|F(0)|, 1) <= tol."""
+
+    kind: Literal["integrals"]
+    names: list[str] = Field(min_length=1)
+    tol: float = Field(1e-8, gt=0)
+
+
+class StaysUpCheck(_Strict):
+    """A disk that does not fall: sin(theta) = sqrt(g1^2 + g2^2) stays >= min_tilt over
+    [0, t_end] (the run reaches t_end; theta is the angle of the axis to the vertical)."""
+
+    kind: Literal["stays_up"]
+    min_tilt: float = Field(gt=0, lt=1)
+
+
+class SpinReversalCheck(_Strict):
+    """The spin about the vertical, averaged over `window` (to remove the rocking),
+    changes sign before time `before`."""
+
+    kind: Literal["spin_reversal"]
+    window: float = Field(gt=0)
+    before: float = Field(gt=0)
+
+
+class MapCheck(_Strict):
+    """On the 3D point map (section g = g0, the scene's own energy) of the scene's state:
+    expect "curve": correlation dimension of the points within dim_tol of 1 (two extra
+    integrals); "condenses": |x_{n+period} - x_n| falls by at least `factor` from the
+    first 100 returns to the last 100 (asymptotic behaviour, no invariant measure)."""
+
+    kind: Literal["map"]
+    expect: Literal["curve", "condenses"]
+    g0: float = 0.0
+    points: int = Field(ge=100, le=20_000)
+    dim_tol: float = 0.2
+    period: int = Field(1, ge=1)
+    factor: float = Field(100.0, gt=1)
+
+
+Check = Annotated[IntegralsCheck | StaysUpCheck | SpinReversalCheck | MapCheck,
+                  Field(discriminator="kind")]
+
+
+class Scene(_Strict):
+    id: str = Field(pattern=r"^[a-z0-9]+(-[a-z0-9]+)*$")
+    title: str
+    explanation: str = Field(min_length=40, description="for a class: what to look at")
+    claim: str = Field(min_length=20, description="what the scene demonstrates")
+    paper: list[str] = Field(default_factory=list, description="equation / figure labels "
+                             "of the paper, or other sources")
+    scene: SceneDeclaration = Field(description="the run, as the scene planner declares "
+                                    "it (solvers/scenes.py); params and state in full")
+    checks: list[Check] = Field(min_length=1)
+
+    @model_validator(mode="after")
+    def _runnable(self):
+        from solvers.cases import build, get_case, initial_state
+        from solvers.errors import InputError
+        from solvers.kernels.integrals import NAMES
+
+        sc = self.scene
+        try:
+            case = get_case(sc.case)
+            missing = [k for k in case.required if k not in sc.params]
+            if missing or sc.state is None:
+                raise InputError(f"give every required parameter ({missing} missing) and "
+                                 "the state: a preset does not lean on the case's example")
+            initial_state(build(sc.case, sc.params), sc.state)
+        except InputError as exc:
+            raise ValueError(f"scene {self.id}: {exc}") from None
+        if "animation" not in sc.shows:
+            raise ValueError(f"scene {self.id}: a teaching scene plays: shows must "
+                             "include animation")
+        for c in self.checks:
+            if isinstance(c, IntegralsCheck):
+                bad = [n for n in c.names if n not in NAMES]
+                if bad:
+                    raise ValueError(f"scene {self.id}: unknown integrals {bad}")
+        return self
+
+
+class ScenesFile(_Strict):
+    scenes: list[Scene] = Field(min_length=6)
+
+    @model_validator(mode="after")
+    def _unique(self):
+        ids = [s.id for s in self.scenes]
+        dup = {i for i in ids if ids.count(i) > 1}
+        if dup:
+            raise ValueError(f"duplicate scene ids: {sorted(dup)}")
+        return self
+
+
+def parse(raw: dict) -> dict[str, Scene]:
+    return {s.id: s for s in ScenesFile(**raw).scenes}
+
+
+@cache
+def load_scenes() -> dict[str, Scene]:
+    """id -> Scene, in the file's order (parsed and validated once)."""
+    return parse(yaml.safe_load(PATH.read_text()))

@@ -1,0 +1,44 @@
+"""Quantities read off a trajectory (M, gamma) of the full model, for scenes and figures:
+the angular velocity, the spin about the vertical, and the times the spin reverses."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from solvers.cases import Model
+from solvers.kernels import layout as L
+from solvers.kernels.fields import full_kinematics
+
+
+def omega(model: Model, Y) -> np.ndarray:
+    """omega = I_Q^-1 M (body axes) at every row of Y = (M, gamma); NaN where singular."""
+    Y = np.atleast_2d(np.asarray(Y, dtype=float))
+    out = np.full((len(Y), 3), np.nan)
+    r, J, w, gd = np.empty(3), np.empty((3, 3)), np.empty(3), np.empty(3)
+    for i, y in enumerate(Y):
+        y = np.ascontiguousarray(y)
+        if full_kinematics(model.p, y[0:3], y[3:6], r, J, w, gd) == L.OK:
+            out[i] = w
+    return out
+
+
+def vertical_spin(model: Model, Y) -> np.ndarray:
+    """The spin about the upward vertical, -(omega, gamma) (gamma points down into the
+    support): positive is counterclockwise seen from above."""
+    Y = np.atleast_2d(np.asarray(Y, dtype=float))
+    return -np.sum(omega(model, Y) * Y[:, 3:6], axis=1)
+
+
+def spin_reversals(t, spin, window: float) -> list[float]:
+    """Times where the spin, averaged over a sliding `window` (to remove the rocking
+    oscillation on top of it), changes sign."""
+    t = np.asarray(t, dtype=float)
+    spin = np.asarray(spin, dtype=float)
+    dt = float(t[1] - t[0])
+    k = max(1, round(window / dt))
+    if len(spin) < k:
+        return []
+    avg = np.convolve(spin, np.ones(k) / k, mode="valid")
+    ta = t[k // 2: k // 2 + len(avg)]
+    idx = np.flatnonzero(np.sign(avg[1:]) * np.sign(avg[:-1]) < 0)
+    return [float(0.5 * (ta[i] + ta[i + 1])) for i in idx]

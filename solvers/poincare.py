@@ -1,0 +1,345 @@
+"""Three-dimensional point maps of the paper (section "Three-dimensional point maps in
+nonholonomic mechanics", eq an-dp): at a fixed energy E0, the successive crossings of a
+trajectory with the section g = g0 in Andoyer-Deprit variables, drawn as (L/G, H/G, l).
+
+How (the parts are separate, diffrax style):
+  * initial conditions on the level: (L/G, H/G, l) sampled (or given) on the section
+    g = g0, |M| from the energy (solvers.andoyer.on_energy_level);
+  * crossings: the compiled integrator with the nonlinear section s = sin(g - g0)
+    (solvers/kernels/sections.py), located by Henon's trick to round-off, the branch
+    g = g0 + pi refused, in the direction asked (+1: g increasing);
+  * no crossing missed, by step control: the kernel keeps the change of g in every step
+    below 0.5 rad (sections.py), so a step cannot pass g = g0 twice unseen, nor locate a
+    crossing by a long Henon step where g turns fast (near M along e3, gamma along M);
+  * and by a check: the same run samples its dense output (samples never change the
+    steps) at `samples_per_crossing` points per mean return time; g is unwrapped along
+    the samples and, in every sample interval where g turns by less than pi/2, the
+    crossings seen there must be those the kernel found. A mismatch runs the trajectory
+    again with steps no longer than half the sample spacing; the counts are reported
+    (`check`: missed, extra, unresolved_intervals).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from solvers.andoyer import TWO_PI, g_angle, map_point, on_energy_level
+from solvers.cases import Model, build, initial_state
+from solvers.errors import InputError
+from solvers.kernels import layout as L
+from solvers.kernels.integrals import NAMES, integral_series
+from solvers.kernels.sections import SECTION_ANDOYER_G
+
+MAX_POINTS = 100_000
+MAX_TRAJECTORIES = 1_000
+PILOT_TAUS = 2000.0       # a trajectory that does not return within 2000 rotation times
+
+
+@dataclass(frozen=True)
+class MapSpec:
+    """The map: energy level E0, section g = g0 crossed with g increasing (direction +1),
+    decreasing (-1) or both (0), and how many points per trajectory."""
+
+    energy: float
+    g0: float = 0.0
+    direction: int = 1
+    points: int = 200
+    method: str = "dop853"
+    rtol: float = 1e-10
+    atol: float = 1e-12
+    max_steps: int = 20_000_000
+    samples_per_crossing: int = 32
+    check: bool = True
+
+    def validate(self) -> None:
+        if not math.isfinite(self.energy):
+            raise InputError(f"energy = {self.energy!r}: must be a finite number")
+        if not math.isfinite(self.g0):
+            raise InputError(f"g0 = {self.g0!r}: must be a finite angle")
+        if self.direction not in (-1, 0, 1):
+            raise InputError(f"direction = {self.direction!r}: must be +1, -1 or 0")
+        if not 1 <= self.points <= MAX_POINTS:
+            raise InputError(f"points = {self.points!r}: must lie in [1, {MAX_POINTS}]")
+        if not 1e-14 <= self.rtol <= 1e-3:
+            raise InputError(f"rtol = {self.rtol!r}: must lie in [1e-14, 1e-3]")
+        if self.samples_per_crossing < 8:
+            raise InputError("samples_per_crossing must be at least 8")
+
+    def section(self):
+        from solvers.integrator import Section
+
+        return Section(coef=(math.cos(self.g0), math.sin(self.g0), 0.0, 0.0, 0.0, 0.0),
+                       direction=self.direction, code=SECTION_ANDOYER_G)
+
+
+@dataclass
+class MapTrajectory:
+    initial: tuple[float, float, float]        # (L/G, H/G, l) of the start, on the section
+    state0: np.ndarray
+    t: np.ndarray                              # crossing times
+    states: np.ndarray                         # (k, 6) states at the crossings
+    status: str = "ok"                         # ok | singular | budget | no-return
+    message: str = ""
+    check: dict = field(default_factory=dict)  # the missed-crossing check
+    steps: int = 0
+    rhs_calls: int = 0
+
+    @property
+    def points(self) -> np.ndarray:
+        return map_point(self.states) if len(self.states) else np.empty((0, 3))
+
+    def to_json(self) -> dict:
+        return {"initial": list(self.initial), "state0": self.state0.tolist(),
+                "points": self.points.tolist(), "t": self.t.tolist(),
+                "status": self.status, "message": self.message, "check": self.check,
+                "steps": self.steps, "rhs_calls": self.rhs_calls}
+
+
+def _omega_norm(model: Model, y) -> float:
+    from solvers.kernels.fields import contact_inertia
+    from solvers.kernels.support import support
+
+    r, J, IQ = np.empty(3), np.empty((3, 3)), np.empty((3, 3))
+    support(model.p, np.ascontiguousarray(y[3:6]), r, J)
+    contact_inertia(model.p, r, IQ)
+    return float(np.linalg.norm(np.linalg.solve(IQ, y[:3])))
+
+
+def dense_check(t: np.ndarray, Y: np.ndarray, ct: np.ndarray, g0: float,
+                direction: int) -> np.ndarray:
+    """Compare, between consecutive samples (t, Y), the crossings of g = g0 in
+    `direction` seen on the samples (g unwrapped along them) with the kernel's crossing
+    times ct. Returns per-interval counts [kernel, dense, resolved] summed into
+    (kernel, dense, kernel in resolved intervals, dense in resolved, unresolved
+    intervals); an interval is resolved when g changes by less than pi/2 across it."""
+    g = g_angle(Y)
+    d = np.angle(np.exp(1j * np.diff(g)))          # wrapped increments in (-pi, pi]
+    resolved = np.isfinite(d) & (np.abs(d) < 0.5 * np.pi)
+    d = np.where(np.isfinite(d), d, 0.0)
+    a = (np.nan_to_num(g[0]) + np.concatenate([[0.0], np.cumsum(d)]) - g0) / TWO_PI
+    jumps = np.diff(np.floor(a))
+    up = np.where(jumps > 0, jumps, 0.0)
+    down = np.where(jumps < 0, -jumps, 0.0)
+    dense = up if direction > 0 else down if direction < 0 else up + down
+    # kernel crossings per interval (t_i, t_i+1]
+    idx = np.searchsorted(t, ct, side="left") - 1
+    inside = (idx >= 0) & (idx < len(t) - 1)
+    kern = np.bincount(idx[inside], minlength=len(t) - 1)[:len(t) - 1].astype(float)
+    return np.array([kern.sum(), dense.sum(), kern[resolved].sum(), dense[resolved].sum(),
+                     np.count_nonzero(~resolved)])
+
+
+def _run(model, y0, t0, t_out, spec, max_cross, control):
+    from solvers.integrator import integrate
+
+    return integrate(model.model, model.p, y0, t0 + t_out, method=spec.method,
+                     rtol=spec.rtol, atol=spec.atol, max_steps=spec.max_steps,
+                     section=spec.section(), max_crossings=max_cross, control=control)
+
+
+def _status(res) -> str:
+    if res.success:
+        return "ok"
+    return "budget" if res.budget_exhausted else "singular"
+
+
+def trace(model: Model, y0, spec: MapSpec, *, h_max: float = math.inf) -> MapTrajectory:
+    """spec.points crossings of the section from y0 (see the module docstring)."""
+    from solvers.integrator import StepControl
+
+    y0 = np.array(y0, dtype=float)
+    x0 = tuple(float(v) for v in map_point(y0))
+    tau = TWO_PI / max(_omega_norm(model, y0), 1e-300)
+    control = StepControl(h_max=h_max)
+    traj = MapTrajectory(x0, y0, np.empty(0), np.empty((0, 6)))
+    # the start lies on the section: a crossing at t ~ 0 is the start itself
+    t_start = 1e-9 * tau
+    pilot = _run(model, y0, 0.0, np.array([0.0, PILOT_TAUS * tau]), spec, 3, control)
+    traj.steps, traj.rhs_calls = pilot.steps, pilot.rhs_calls
+    tc = pilot.crossings_t[pilot.crossings_t > t_start]
+    if not pilot.success or tc.size == 0:
+        traj.status = "no-return" if pilot.success else _status(pilot)
+        traj.message = (pilot.message if not pilot.success else
+                        f"no crossing of g = g0 in direction {spec.direction} within "
+                        f"t = {PILOT_TAUS * tau:.4g} ({PILOT_TAUS:g} rotation times)")
+        return traj
+    period = float(tc[-1] / tc.size)
+    # samples fine enough to follow g: g turns at about the body's rate |omega|, also when
+    # the crossings in the asked direction are rare
+    dt = min(period, tau) / spec.samples_per_crossing
+    times, states = [], []
+    counts = np.zeros(5)
+    t, y = 0.0, y0
+    steps_left = spec.max_steps
+    while len(times) < spec.points:
+        want = min(spec.points - len(times), 500)
+        n_s = math.ceil((1.5 * want + 2) * spec.samples_per_crossing) + 1
+        res = _run(model, y, t, dt * np.arange(n_s), replace_steps(spec, steps_left),
+                   want, control)
+        traj.steps += res.steps
+        traj.rhs_calls += res.rhs_calls
+        steps_left -= res.steps + res.rejected
+        first = t == 0.0
+        keep = res.crossings_t > (t_start if first else -math.inf)
+        ct, cy = res.crossings_t[keep], res.crossings_y[keep]
+        times.extend(ct.tolist())
+        states.extend(cy)
+        # the check: from the second sample on in the first chunk (the start itself lies
+        # on the section, where the sign of g - g0 is round-off)
+        i0 = 1 if first else 0
+        if spec.check and len(res.t) > i0 + 1:
+            counts += dense_check(res.t[i0:], res.y[i0:], ct, spec.g0, spec.direction)
+        if len(times) >= spec.points:
+            break
+        if not res.success:
+            traj.status, traj.message = _status(res), res.message
+            break
+        t, y = res.t_stop, res.y_stop
+        if steps_left <= 0:
+            traj.status, traj.message = "budget", "the step budget ran out"
+            break
+    traj.t = np.asarray(times[:spec.points])
+    traj.states = np.asarray(states[:spec.points]).reshape(-1, 6)
+    k_all, d_all, k_res, d_res, unresolved = (int(v) for v in counts)
+    traj.check = {"kernel": k_all, "dense": d_all, "missed": max(d_res - k_res, 0),
+                  "extra": max(k_res - d_res, 0), "unresolved_intervals": unresolved,
+                  "sample_dt": dt, "h_max": None if math.isinf(h_max) else h_max}
+    return traj
+
+
+def replace_steps(spec: MapSpec, steps: int) -> MapSpec:
+    from dataclasses import replace
+
+    return replace(spec, max_steps=max(int(steps), 1))
+
+
+def trace_checked(model: Model, y0, spec: MapSpec) -> MapTrajectory:
+    """trace(), and once more with h_max = the sample spacing if the check found a
+    crossing the kernel missed (or the samples were too coarse to tell)."""
+    traj = trace(model, y0, spec)
+    c = traj.check
+    if spec.check and c and (c["missed"] or c["extra"]):
+        again = trace(model, y0, spec, h_max=0.5 * c["sample_dt"])
+        again.check["first_pass"] = {k: c[k] for k in ("kernel", "dense", "missed", "extra")}
+        return again
+    return traj
+
+
+def sample_initial(model: Model, spec: MapSpec, n: int, rng: np.random.Generator,
+                   bound: float = 0.95, tries: int = 200) -> list[np.ndarray]:
+    """n states on the level E0 and the section g = g0: (L/G, H/G) uniform in
+    [-bound, bound]^2 (away from the poles where g is undefined), l uniform."""
+    out = []
+    for _ in range(n * tries):
+        lam, h = rng.uniform(-bound, bound, 2)
+        l = rng.uniform(0.0, TWO_PI)
+        y = on_energy_level(model, lam, h, l, spec.g0, spec.energy)
+        if y is not None:
+            out.append(y)
+            if len(out) == n:
+                return out
+    raise InputError(f"energy = {spec.energy!r}: found {len(out)} of {n} points of the "
+                     "level on the section (E0 must exceed the potential energy)")
+
+
+def given_initial(model: Model, spec: MapSpec, points) -> list[np.ndarray]:
+    """States on the level E0 and the section for given (L/G, H/G, l)."""
+    out = []
+    for x in points:
+        if len(x) != 3 or not all(math.isfinite(float(v)) for v in x):
+            raise InputError(f"initial point {x!r}: expected three numbers L/G, H/G, l")
+        lam, h, l = (float(v) for v in x)
+        if not (abs(lam) < 1 and abs(h) < 1):
+            raise InputError(f"initial point {x!r}: |L/G| < 1 and |H/G| < 1 are needed "
+                             "(the angle g is undefined at +-1)")
+        y = on_energy_level(model, lam, h, l, spec.g0, spec.energy)
+        if y is None:
+            raise InputError(f"initial point {x!r}: the energy {spec.energy!r} does not "
+                             "exceed the potential energy there")
+        out.append(y)
+    return out
+
+
+def map_model(case: str, params: dict | None, *, allow_any_inertia=False) -> Model:
+    model = build(case, params, allow_any_inertia=allow_any_inertia)
+    if model.model != L.MODEL_FULL:
+        raise InputError(f"case {case}: the Andoyer-Deprit map needs the state (M, gamma); "
+                         "the flat-base cases have (M, r1, r2)")
+    return model
+
+
+@dataclass
+class PoincareResult:
+    case: str
+    params: dict
+    spec: MapSpec
+    trajectories: list[MapTrajectory]
+    integral_names: tuple[str, ...]
+
+    def integral_spread(self) -> list[dict[str, float]]:
+        model = map_model(self.case, self.params, allow_any_inertia=True)
+        return [integral_spread(model, tr) for tr in self.trajectories]
+
+    def header(self) -> dict:
+        return {"case": self.case, "params": self.params, "energy": self.spec.energy,
+                "section": {"g0": self.spec.g0, "direction": self.spec.direction},
+                "coordinates": ["L/G", "H/G", "l"], "points": self.spec.points,
+                "method": self.spec.method, "rtol": self.spec.rtol, "atol": self.spec.atol}
+
+    def to_json(self) -> dict:
+        trs = []
+        for tr, sp in zip(self.trajectories, self.integral_spread(), strict=True):
+            trs.append({**tr.to_json(), "spread": sp})
+        return {**self.header(), "trajectories": trs}
+
+
+def integral_spread(model: Model, tr: MapTrajectory) -> dict[str, float]:
+    """(max - min) / max(|mean|, 1e-300) over the crossings of one trajectory of every
+    integral the case carries, and the absolute spread of H/G."""
+    d = {}
+    if len(tr.states):
+        Y = np.ascontiguousarray(tr.states)
+        for name in model.integral_names:
+            v = np.empty(len(Y))
+            integral_series(NAMES.index(name), model.model, Y, model.p, v)
+            d[name] = float(np.ptp(v) / max(abs(float(np.mean(v))), 1e-300))
+        d["H/G"] = float(np.ptp(tr.points[:, 1]))
+    return d
+
+
+def starts_for(model: Model, spec: MapSpec, *, trajectories: int = 8, initial=None,
+               states=None, seed: int = 0) -> list[np.ndarray]:
+    """The initial states: given full `states`, or given map points `initial`, or
+    `trajectories` sampled with `seed` (see `poincare`)."""
+    if states is not None:
+        return [initial_state(model, s) for s in states]
+    if initial is not None:
+        return given_initial(model, spec, initial)
+    if not 1 <= trajectories <= MAX_TRAJECTORIES:
+        raise InputError(f"trajectories = {trajectories!r}: must lie in "
+                         f"[1, {MAX_TRAJECTORIES}]")
+    return sample_initial(model, spec, trajectories, np.random.default_rng(seed))
+
+
+def poincare(case: str, params: dict | None, spec: MapSpec, *, trajectories: int = 8,
+             initial=None, states=None, seed: int = 0,
+             progress: Callable[[int, int], None] | None = None,
+             allow_any_inertia: bool = False) -> PoincareResult:
+    """The map of `case` on the level spec.energy: `trajectories` sampled starts (seeded),
+    or the given `initial` map points (L/G, H/G, l), or full `states` (M, gamma) taken
+    as they are (their own energy is reported). progress(done, total) after each."""
+    spec.validate()
+    model = map_model(case, params, allow_any_inertia=allow_any_inertia)
+    starts = starts_for(model, spec, trajectories=trajectories, initial=initial,
+                        states=states, seed=seed)
+    out = []
+    for i, y0 in enumerate(starts):
+        out.append(trace_checked(model, y0, spec))
+        if progress is not None:
+            progress(i + 1, len(starts))
+    names = tuple(n for n in model.integral_names)
+    return PoincareResult(case, model.params, spec, out, names)
