@@ -1,0 +1,29 @@
+"""GET /api/cases and GET /api/cases/{id}: the sixteen cases of Tables 1 and 2."""
+
+from fastapi import APIRouter, HTTPException
+
+from app.api.deps import VerdictsDep
+from app.schemas.cases import CasePublic, CaseSummary
+from app.schemas.common import NOT_FOUND
+from app.services import views
+from catalogue.load import load_catalogue
+
+router = APIRouter(tags=["cases"])
+
+
+@router.get("/cases", response_model=list[CaseSummary])
+async def list_cases() -> list[dict]:
+    """Every case (a column of Table 1 or 2), in the paper's order."""
+    return [views.case_summary(c) for c in load_catalogue().cases()]
+
+
+@router.get("/cases/{case_id:path}", response_model=CasePublic, responses=NOT_FOUND)
+async def get_case(case_id: str, verdicts: VerdictsDep) -> dict:
+    """One case: its cells in the table, every claim with its source and its verdict, and
+    what POST /api/simulate accepts for it. Ids contain a slash: /api/cases/plane/routh-ball."""
+    try:
+        load_catalogue().case(case_id)
+    except KeyError:
+        raise HTTPException(404, f"unknown case {case_id!r}; GET /api/cases lists them") from None
+    return views.case_detail(case_id, verdicts.by_claim(), verdicts.corrections(),
+                             verdicts.case_state(case_id))

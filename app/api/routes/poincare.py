@@ -1,0 +1,113 @@
+"""POST /api/poincare: the 3D point map of a case (as `rolling poincare`), and the page
+/poincare that draws it and the paper's Figs ris-*1..ris-*4 (static/data/paper_figures.json,
+written by bench/paper_figures.py).
+
+The starts are resolved (validated, sampled with the seed) in a thread; then every
+trajectory is one job of the worker pool, `workers` at a time. With ?stream=true the answer
+is NDJSON: {"event": "progress", "done": k, "total": n} after each batch, then
+{"event": "result", "result": {...}} (or {"event": "error", "detail": ...}); without it,
+one JSON object {"trajectories": [...], ...} when all are done.
+"""
+
+from __future__ import annotations
+
+import json
+
+import anyio
+from fastapi import APIRouter, Query, Request
+from fastapi.responses import FileResponse, Response, StreamingResponse
+
+from app.api.deps import PoolDep, SettingsDep
+from app.core.disconnect import cancel_on_disconnect
+from app.schemas.common import BUSY_RESPONSES, PROBLEM_RESPONSES
+from app.schemas.poincare import PoincarePublic, PoincareRequest
+from app.services import poincare_jobs
+from app.services.jobs import dumps
+
+router = APIRouter(tags=["poincare"])
+pages = APIRouter(include_in_schema=False)
+_threads = anyio.CapacityLimiter(2)
+
+
+def resolve(req: PoincareRequest, max_steps: int) -> tuple[dict, dict, list[list[float]]]:
+    """(header of the answer, the job every trajectory shares, the starts)."""
+    from dataclasses import asdict
+
+    from solvers.cases import get_case
+    from solvers.poincare import MapSpec, map_model, starts_for
+
+    spec_case = get_case(req.case)
+    params = {**(spec_case.example if req.example else {}), **req.params}
+    spec = MapSpec(energy=req.energy, g0=req.g0, direction=req.direction, points=req.points,
+                   method=req.method, rtol=req.rtol, atol=req.atol, max_steps=max_steps)
+    spec.validate()
+    model = map_model(req.case, params, allow_any_inertia=req.allow_any_inertia)
+    starts = starts_for(model, spec, trajectories=req.trajectories, initial=req.initial,
+                        seed=req.seed)
+    header = {"case": req.case, "params": model.params, "energy": spec.energy,
+              "section": {"g0": spec.g0, "direction": spec.direction},
+              "coordinates": ["L/G", "H/G", "l"], "points": spec.points,
+              "method": spec.method, "rtol": spec.rtol, "atol": spec.atol}
+    job = {"case": req.case, "params": params, "allow_any_inertia": req.allow_any_inertia,
+           "spec": asdict(spec)}
+    return header, job, [s.tolist() for s in starts]
+
+
+async def _batch(pool, settings, job, starts, results, lo, hi):
+    async def one(i):
+        results[i] = await pool.run(poincare_jobs.trajectory, job, starts[i],
+                                    deadline=settings.deadline_s)
+
+    try:
+        async with anyio.create_task_group() as tg:
+            for i in range(lo, hi):
+                tg.start_soon(one, i)
+    except BaseExceptionGroup as group:   # the first failure, as the pool raised it
+        raise group.exceptions[0] from None
+
+
+@router.post("/poincare", response_model=PoincarePublic,
+             responses={**PROBLEM_RESPONSES, **BUSY_RESPONSES,
+                        200: {"content": {"application/x-ndjson": {}},
+                              "description": "the map (JSON), or with stream=true NDJSON "
+                              "progress events and the result"}})
+async def poincare(req: PoincareRequest, request: Request, pool: PoolDep,
+                   settings: SettingsDep,
+                   stream: bool = Query(False, description="NDJSON progress events")):
+    """The 3D point map of eq an-dp: `trajectories` starts on the level E = energy and the
+    section g = g0, `points` crossings each, as (L/G, H/G, l)."""
+    header, job, starts = await anyio.to_thread.run_sync(resolve, req, settings.max_steps,
+                                                         limiter=_threads)
+    n = len(starts)
+    width = max(1, settings.workers)
+    results: list[dict | None] = [None] * n
+
+    if not stream:
+        async def work():
+            for lo in range(0, n, width):
+                await _batch(pool, settings, job, starts, results, lo, min(n, lo + width))
+
+        await cancel_on_disconnect(request, work)
+        return Response(dumps({**header, "trajectories": results}),
+                        media_type="application/json")
+
+    async def events():
+        yield json.dumps({"event": "progress", "done": 0, "total": n}) + "\n"
+        for lo in range(0, n, width):
+            hi = min(n, lo + width)
+            try:
+                await _batch(pool, settings, job, starts, results, lo, hi)
+            except Exception as exc:   # a Problem for the page, then stop
+                detail = str(exc)
+                yield json.dumps({"event": "error", "detail": detail}) + "\n"
+                return
+            yield json.dumps({"event": "progress", "done": hi, "total": n}) + "\n"
+        yield (b'{"event":"result","result":' + dumps({**header, "trajectories": results})
+               + b"}\n").decode()
+
+    return StreamingResponse(events(), media_type="application/x-ndjson")
+
+
+@pages.get("/poincare")
+async def poincare_page(settings: SettingsDep) -> FileResponse:
+    return FileResponse(settings.static_dir / "poincare.html", media_type="text/html")

@@ -1,0 +1,58 @@
+"""GET /api/scenes: the teaching scenes of catalogue/scenes.yaml (presets for a class), and
+the page /scenes that lists them and plays each one (POST /api/scene with the case,
+parameters, initial state and t_end of its `scene` declaration, frames = its samples).
+/scenes#ID opens and plays scene ID."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from fastapi import APIRouter, HTTPException
+from fastapi.responses import FileResponse
+from pydantic import BaseModel, Field
+
+from app.api.deps import SettingsDep
+
+router = APIRouter(tags=["scenes"])
+pages = APIRouter(include_in_schema=False)
+
+
+class ScenePreset(BaseModel):
+    id: str
+    title: str
+    explanation: str
+    claim: str
+    paper: list[str]
+    scene: dict[str, Any] = Field(description="the run as the scene planner declares it "
+                                  "(solvers/scenes.py): case, params, state, t_end, shows, "
+                                  "samples (the frames of the animation)")
+    checks: list[dict[str, Any]]
+
+
+def _public(s) -> dict:
+    return s.model_dump(mode="json")
+
+
+@router.get("/scenes", response_model=list[ScenePreset])
+async def scenes() -> list[dict]:
+    """Every teaching scene, in the catalogue's order."""
+    from catalogue.scenes import load_scenes
+
+    return [_public(s) for s in load_scenes().values()]
+
+
+@router.get("/scenes/{scene_id}", response_model=ScenePreset,
+            responses={404: {"description": "no such scene"}})
+async def scene_preset(scene_id: str) -> dict:
+    from catalogue.scenes import load_scenes
+
+    s = load_scenes().get(scene_id)
+    if s is None:
+        raise HTTPException(404, f"unknown scene {scene_id!r}; known scenes: "
+                            + ", ".join(load_scenes()))
+    return _public(s)
+
+
+@pages.get("/scenes")
+async def scenes_page(settings: SettingsDep) -> FileResponse:
+    return FileResponse(settings.static_dir / "scenes.html", media_type="text/html")

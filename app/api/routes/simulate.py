@@ -1,0 +1,127 @@
+"""POST /api/simulate, /api/scene and /api/validate; GET /api/methods.
+
+A run is validated first (in a thread: building the model is cheap and a bad input is a
+422 even when every worker is busy), then queued for a worker process with the step
+budget and the deadline of the settings, and cancelled if the client goes away.
+"""
+
+import re
+from typing import Literal
+
+import anyio
+import numpy as np
+from fastapi import APIRouter, Query, Request
+from fastapi.responses import Response
+
+from app.api.deps import PoolDep, SettingsDep
+from app.core.disconnect import cancel_on_disconnect
+from app.schemas.common import BUSY_RESPONSES, PROBLEM_RESPONSES
+from app.schemas.simulate import (
+    MethodPublic,
+    ScenePublic,
+    SceneRequest,
+    SimulateRequest,
+    SimulateResponse,
+    ValidatePublic,
+)
+from app.services import jobs
+from solvers.errors import InputError
+
+router = APIRouter(tags=["simulate"])
+_validation_threads = anyio.CapacityLimiter(2)
+
+
+def resolve(req: SimulateRequest) -> dict:
+    """The run a request asks for, checked by the solvers' own validation (InputError)."""
+    from solvers.cases import build, get_case, initial_state
+
+    # the output times are linspace(0, t_end, samples); they must be distinct
+    if not np.all(np.diff(np.linspace(0.0, req.t_end, req.samples)) > 0):
+        raise InputError(f"t_end = {req.t_end!r}: too small to hold {req.samples} distinct "
+                         "sample times")
+    spec = get_case(req.case)
+    params = {**(spec.example if req.example else {}), **req.params}
+    state = req.state if req.state is not None else (spec.state if req.example else None)
+    if state is None:
+        raise InputError("state is required (or example = true for the case's demo state)")
+    model = build(req.case, params, allow_any_inertia=req.allow_any_inertia)
+    initial_state(model, state)
+    if req.project and req.method.startswith("scipy-"):
+        raise InputError(f"project = true needs a compiled method (projection happens inside "
+                         f"the step); {req.method} is a scipy reference method")
+    return {"case": req.case, "params": params, "state": list(state), "t_end": req.t_end,
+            "method": req.method, "rtol": req.rtol, "atol": req.atol,
+            "samples": req.samples, "project": req.project,
+            "allow_any_inertia": req.allow_any_inertia,
+            "_model": model}
+
+
+async def _resolved(req: SimulateRequest, settings=None) -> dict:
+    if settings is not None and req.samples > settings.max_samples:
+        raise InputError(f"samples = {req.samples}: this server returns at most "
+                         f"{settings.max_samples} samples per run")
+    frames = getattr(req, "frames", None)
+    if settings is not None and frames is not None and frames > settings.max_frames:
+        raise InputError(f"frames = {frames}: this server renders at most "
+                         f"{settings.max_frames} frames per scene")
+    return await anyio.to_thread.run_sync(resolve, req, limiter=_validation_threads)
+
+
+def _job(resolved: dict) -> dict:
+    return {k: v for k, v in resolved.items() if not k.startswith("_")}
+
+
+def _filename(case: str, ext: str) -> str:
+    return re.sub(r"[^A-Za-z0-9-]+", "_", case) + f".{ext}"
+
+
+@router.post("/simulate", response_model=SimulateResponse,
+             responses={**PROBLEM_RESPONSES, **BUSY_RESPONSES,
+                        200: {"content": {"text/csv": {}},
+                              "description": "the run: JSON (default) or CSV (format=csv)"}})
+async def simulate(req: SimulateRequest, request: Request, pool: PoolDep,
+                   settings: SettingsDep,
+                   format: Literal["json", "csv"] = Query("json", description="json: the "
+                   "object below; csv: one row per sample (t, state, invariants)")) -> Response:
+    """Integrate one case from an initial state over [0, t_end]: the state and every
+    invariant the case carries at `samples` times, and the cost of the run."""
+    job = _job(await _resolved(req, settings))
+    fn = jobs.simulate_csv if format == "csv" else jobs.simulate_json
+    body = await cancel_on_disconnect(request, lambda: pool.run(
+        fn, job, settings.max_steps, deadline=settings.deadline_s))
+    if format == "csv":
+        return Response(body, media_type="text/csv; charset=utf-8", headers={
+            "Content-Disposition": f'attachment; filename="{_filename(req.case, "csv")}"'})
+    return Response(body, media_type="application/json")
+
+
+@router.post("/validate", response_model=ValidatePublic, responses=PROBLEM_RESPONSES)
+async def validate(req: SimulateRequest, settings: SettingsDep) -> dict:
+    """Check a run without running it (the explorer calls this as you type): 200 with the
+    parameters it would use, or 422 naming the field, the value and why."""
+    resolved = await _resolved(req, settings)
+    model = resolved["_model"]
+    return {"ok": True, "params": model.params, "state_labels": list(model.state_labels),
+            "invariants": list(model.integral_names)}
+
+
+@router.post("/scene", response_model=ScenePublic,
+             responses={**PROBLEM_RESPONSES, **BUSY_RESPONSES})
+async def scene(req: SceneRequest, request: Request, pool: PoolDep,
+                settings: SettingsDep) -> Response:
+    """The 3D animation of a run: the body's rotation, its centre of mass and its contact
+    point at `frames` times, a mesh of the body, and checks (solvers.kinematics)."""
+    job = _job(await _resolved(req, settings))
+    body = await cancel_on_disconnect(request, lambda: pool.run(
+        jobs.scene_json, job, req.frames, min(settings.max_steps, 200_000),
+        deadline=settings.deadline_s))
+    return Response(body, media_type="application/json")
+
+
+@router.get("/methods", response_model=list[MethodPublic])
+async def methods() -> list[dict]:
+    """Integration methods: compiled Runge-Kutta pairs and scipy reference methods."""
+    from app.schemas.simulate import METHODS
+
+    return [{"name": m, "kind": "scipy reference" if m.startswith("scipy-") else "compiled"}
+            for m in METHODS]

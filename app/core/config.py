@@ -1,0 +1,49 @@
+"""Every setting of the explorer in one place (environment variables ROLLING_*).
+
+    ROLLING_PORT=8080 ROLLING_WORKERS=1 rolling serve
+
+The defaults are what `rolling serve` / `./dev serve` run with on a 2-core machine.
+"""
+
+from functools import cache
+from pathlib import Path
+
+from pydantic import Field
+from pydantic_settings import BaseSettings, SettingsConfigDict
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+class Settings(BaseSettings):
+    model_config = SettingsConfigDict(env_prefix="ROLLING_", extra="ignore", frozen=True)
+
+    host: str = "127.0.0.1"
+    port: int = Field(8000, ge=0, le=65535)
+    # CPU work (simulations, scenes, verification) runs in this many worker processes;
+    # the event loop only parses requests and ships bytes.
+    workers: int = Field(2, ge=1, le=64)
+    # requests that may wait for a free worker; one more gets 503 + Retry-After
+    queue_size: int = Field(8, ge=0, le=1000)
+    retry_after_s: int = Field(2, ge=1)
+    # hard wall-clock limit of one run in a worker (queueing time not counted): the
+    # worker is killed when it is reached
+    deadline_s: float = Field(20.0, gt=0)
+    # step budget of one run (compiled integrators): a run that needs more stops there
+    # with status "budget" and returns what it computed
+    max_steps: int = Field(2_000_000, ge=100)
+    max_samples: int = Field(20_000, ge=2)
+    max_frames: int = Field(600, ge=2)
+    # verification of the catalogue's claims
+    verify_on_start: bool = True      # compute every verdict in the background at start
+    verify_deadline_s: float = Field(300.0, gt=0)
+    # verdicts are cached here, keyed by a hash of everything they depend on
+    cache_dir: Path = Path.home() / ".cache" / "rolling-hierarchy"
+    use_verdict_cache: bool = True
+    warm_workers: bool = True         # start the worker processes (numba caches) at start
+    static_dir: Path = ROOT / "static"
+    log_level: str = "info"
+
+
+@cache
+def get_settings() -> Settings:
+    return Settings()

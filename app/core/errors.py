@@ -1,0 +1,163 @@
+"""Error answers: every failure the service designs for is a Problem with a message a
+person understands, never a 500.
+
+FastAPI's default 422 handler echoes the offending input, and a body with NaN or 1e999
+(which json.loads turns into inf) then fails to serialise and becomes a 500; the handler
+here renders non-finite numbers as text first.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+
+from fastapi import FastAPI, Request
+from fastapi.exceptions import RequestValidationError
+from fastapi.responses import JSONResponse, Response
+from starlette.exceptions import HTTPException as StarletteHTTPException
+
+from app.core.disconnect import ClientDisconnected
+from app.core.pool import DeadlineExceeded, QueueFull, WorkerCrashed
+from app.schemas.common import FieldError, Problem
+from solvers.errors import InputError
+
+# pydantic error types -> the reason in words (otherwise pydantic's own message)
+_REASONS = {
+    "finite_number": "must be a finite number (NaN and infinities are not accepted)",
+    "missing": "is required",
+    "extra_forbidden": "is not a field of this request",
+    "float_type": "must be a number",
+    "float_parsing": "must be a number",
+    "int_type": "must be an integer",
+    "int_parsing": "must be an integer",
+    "int_from_float": "must be an integer",
+    "bool_type": "must be true or false",
+    "bool_parsing": "must be true or false",
+    "list_type": "must be a list of numbers",
+    "dict_type": "must be an object of NAME: number",
+    "string_type": "must be a string",
+}
+
+
+def _safe(value, depth: int = 0):
+    """The input as JSON can carry it: non-finite floats as text, big inputs cut short."""
+    if isinstance(value, float) and not math.isfinite(value):
+        return "NaN" if math.isnan(value) else ("Infinity" if value > 0 else "-Infinity")
+    if depth > 3:
+        return "..."
+    if isinstance(value, dict):
+        return {str(k): _safe(v, depth + 1) for k, v in list(value.items())[:20]}
+    if isinstance(value, list | tuple):
+        return [_safe(v, depth + 1) for v in list(value)[:20]]
+    if isinstance(value, str) and len(value) > 200:
+        return value[:200] + "..."
+    if isinstance(value, int) and abs(value) > 10**30:
+        return f"{str(value)[:20]}... ({len(str(value))} digits)"
+    return value
+
+
+def _field(loc) -> str:
+    parts = [str(p) for p in loc if p not in ("body", "path", "query")]
+    out = ""
+    for p in parts:
+        out += f"[{p}]" if p.isdigit() else (f".{p}" if out else p)
+    return out or "body"
+
+
+def _short(value) -> str:
+    if isinstance(value, float) and not math.isfinite(value):
+        return str(_safe(value))
+    text = repr(_safe(value))
+    return text if len(text) <= 60 else text[:57] + "..."
+
+
+def _sentence(err: dict) -> str:
+    kind = err.get("type", "")
+    if kind == "json_invalid":
+        return f"the body is not valid JSON ({err.get('ctx', {}).get('error', 'parse error')})"
+    reason = _REASONS.get(kind) or err.get("msg", "is invalid").replace(
+        "Input should be", "must be").replace("Value error, ", "")
+    field = _field(err.get("loc", ()))
+    if kind == "missing" or "input" not in err or isinstance(err["input"], dict):
+        return f"{field} {reason}" if kind in _REASONS else f"{field}: {reason}"
+    return f"{field} = {_short(err['input'])}: {reason}"
+
+
+def problem(status: int, detail: str, errors: list[FieldError] | None = None,
+            headers: dict | None = None) -> JSONResponse:
+    body = Problem(detail=detail, errors=errors or [])
+    return JSONResponse(body.model_dump(), status_code=status, headers=headers)
+
+
+async def _validation(request: Request, exc: RequestValidationError) -> JSONResponse:
+    errs = list(exc.errors())
+    sentences = [_sentence(e) for e in errs]
+    detail = "; ".join(sentences[:3]) + (f" (and {len(errs) - 3} more)" if len(errs) > 3 else "")
+    items = [FieldError(loc=[str(p) if not isinstance(p, int) else p for p in e.get("loc", ())],
+                        msg=s, type=str(e.get("type", "invalid")))
+             for e, s in zip(errs, sentences, strict=True)]
+    return problem(422, detail or "invalid request", items)
+
+
+_NAMED = re.compile(r"^\|?([A-Za-z_][A-Za-z0-9_]*)\|? = ")
+_RUN_FIELDS = {"t_end", "rtol", "atol", "samples", "method", "project", "frames", "state"}
+_STATE = {"M1", "M2", "M3", "g1", "g2", "g3", "r1", "r2", "gamma"}
+
+
+def _input_loc(msg: str) -> list[str | int]:
+    """Where an InputError points, from its 'name = value: why' form."""
+    m = _NAMED.match(msg)
+    if not m:
+        return ["body"]
+    name = m.group(1)
+    if name in _RUN_FIELDS:
+        return ["body", name]
+    if name in _STATE:
+        return ["body", "state"]
+    return ["body", "params", name]
+
+
+_NUMPY_REPR = re.compile(r"np\.(?:float|int)\d*\(([^()]*)\)")
+
+
+async def _input(request: Request, exc: InputError) -> JSONResponse:
+    msg = _NUMPY_REPR.sub(r"\1", str(exc))  # np.float64(0.5) -> 0.5 for people
+    loc = _input_loc(msg)
+    return problem(422, msg, [FieldError(loc=loc, msg=msg, type="input_error")])
+
+
+async def _deadline(request: Request, exc: DeadlineExceeded) -> JSONResponse:
+    return problem(422, str(exc), [FieldError(loc=["body"], msg=str(exc), type="deadline")])
+
+
+async def _busy(request: Request, exc: QueueFull) -> JSONResponse:
+    return problem(503, f"busy: {exc}", headers={"Retry-After": str(exc.retry_after)})
+
+
+async def _crashed(request: Request, exc: WorkerCrashed) -> JSONResponse:
+    return problem(503, str(exc), headers={"Retry-After": "1"})
+
+
+async def _gone(request: Request, exc: ClientDisconnected) -> Response:
+    return Response(status_code=499)  # nginx's "client closed request"; nobody reads it
+
+
+async def _http(request: Request, exc: StarletteHTTPException) -> Response:
+    if exc.status_code in (204, 304):
+        return Response(status_code=exc.status_code, headers=exc.headers)
+    detail = exc.detail if isinstance(exc.detail, str) else str(exc.detail)
+    if exc.status_code == 400 and "parsing the body" in detail:
+        # FastAPI's answer to a body that is not even text: bad input like any other
+        msg = "the body is not valid JSON (it is not UTF-8 text)"
+        return problem(422, msg, [FieldError(loc=["body"], msg=msg, type="json_invalid")])
+    return problem(exc.status_code, detail, headers=exc.headers)
+
+
+def install(app: FastAPI) -> None:
+    app.add_exception_handler(RequestValidationError, _validation)
+    app.add_exception_handler(InputError, _input)
+    app.add_exception_handler(DeadlineExceeded, _deadline)
+    app.add_exception_handler(QueueFull, _busy)
+    app.add_exception_handler(WorkerCrashed, _crashed)
+    app.add_exception_handler(ClientDisconnected, _gone)
+    app.add_exception_handler(StarletteHTTPException, _http)

@@ -1,0 +1,151 @@
+"""CPU work in worker processes, behind a bounded queue.
+
+`WorkerPool.run(fn, *args, deadline=...)` ships `fn(*args)` (a module-level function of
+app.services.jobs, pickled by reference) to one of `workers` processes of anyio's process
+pool. At most `workers` run at once and at most `queue_size` more wait; beyond that the
+call raises `QueueFull` at once (the route answers 503 with Retry-After). The deadline
+counts from the moment a worker takes the job: when it passes, or when the caller is
+cancelled (the client went away), anyio kills that worker process (SIGKILL) and starts a
+fresh one for the next job. The event loop never runs the work itself.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import anyio
+import anyio.abc
+from anyio import to_process
+
+
+class QueueFull(Exception):
+    """Every worker is busy and the waiting room is full."""
+
+    def __init__(self, retry_after: int, capacity: int):
+        super().__init__(f"all {capacity} places (running and waiting) are taken; "
+                         f"retry in {retry_after} s")
+        self.retry_after = retry_after
+
+
+class DeadlineExceeded(Exception):
+    """The job ran longer than its deadline; its worker was killed."""
+
+    def __init__(self, deadline: float):
+        super().__init__(f"the computation needed more than the {deadline:g} s one request "
+                         "may take and was stopped; shorten t_end, loosen rtol or use fewer "
+                         "samples")
+        self.deadline = deadline
+
+
+class WorkerCrashed(Exception):
+    """The worker process died without an answer (killed from outside, out of memory)."""
+
+
+@dataclass
+class PoolStats:
+    workers: int
+    queue_size: int
+    running: int
+    waiting: int
+    warming: int
+    completed: int
+    rejected: int
+    cancelled: int
+    timed_out: int
+
+
+class WorkerPool:
+    def __init__(self, workers: int, queue_size: int, retry_after: int = 2,
+                 warm: Callable | None = None):
+        self.workers = workers
+        # run in a fresh worker after one was killed, so that the next job does not spend
+        # its deadline starting a process and loading the compiled kernels
+        self.warm = warm
+        self._tg: anyio.abc.TaskGroup | None = None
+        self.queue_size = queue_size
+        self.retry_after = retry_after
+        # the queue: jobs wait here for a worker (their deadline has not started)
+        self._slots = anyio.CapacityLimiter(workers)
+        # handed to anyio's pool so it never starts more than `workers` processes; a job
+        # holds a slot first, so this one is always free when it is asked
+        self._procs = anyio.CapacityLimiter(workers)
+        self._admitted = 0
+        self._running = 0
+        self._completed = self._rejected = self._cancelled = self._timed_out = 0
+        self._warming = 0
+
+    def attach(self, tg: anyio.abc.TaskGroup) -> None:
+        """Background tasks (re-warming) run in this task group (the app's lifespan)."""
+        self._tg = tg
+
+    def _replace_killed_worker(self) -> None:
+        if self.warm is not None and self._tg is not None:
+            self._tg.start_soon(self._rewarm)
+
+    async def _rewarm(self) -> None:
+        try:
+            await self.prewarm()
+        except Exception:  # the next job will start its own worker
+            pass
+
+    async def prewarm(self) -> None:
+        """Start one worker process and load the kernels in it (no deadline, not counted
+        against the queue)."""
+        if self.warm is None:
+            return
+        self._warming += 1
+        try:
+            async with self._slots:
+                await to_process.run_sync(self.warm, cancellable=True, limiter=self._procs)
+        finally:
+            self._warming -= 1
+
+    @property
+    def capacity(self) -> int:
+        return self.workers + self.queue_size
+
+    def stats(self) -> PoolStats:
+        return PoolStats(self.workers, self.queue_size, self._running,
+                         self._admitted - self._running, self._warming, self._completed,
+                         self._rejected,
+                         self._cancelled, self._timed_out)
+
+    async def run(self, fn: Callable, *args, deadline: float | None = None):
+        """fn(*args) in a worker process; see the module docstring."""
+        if self._admitted >= self.capacity:
+            self._rejected += 1
+            raise QueueFull(self.retry_after, self.capacity)
+        self._admitted += 1
+        try:
+            try:
+                await self._slots.acquire()
+            except anyio.get_cancelled_exc_class():
+                self._cancelled += 1          # the client left while waiting in the queue
+                raise
+            try:
+                self._running += 1
+                try:
+                    with anyio.move_on_after(math.inf if deadline is None else deadline) as sc:
+                        result = await to_process.run_sync(fn, *args, cancellable=True,
+                                                           limiter=self._procs)
+                    if sc.cancelled_caught:
+                        self._timed_out += 1
+                        self._replace_killed_worker()
+                        raise DeadlineExceeded(deadline)
+                except anyio.BrokenWorkerProcess as exc:
+                    raise WorkerCrashed("the worker process died while computing; "
+                                        "the request can be retried") from exc
+                except anyio.get_cancelled_exc_class():
+                    self._cancelled += 1
+                    self._replace_killed_worker()
+                    raise
+                finally:
+                    self._running -= 1
+            finally:
+                self._slots.release()
+            self._completed += 1
+            return result
+        finally:
+            self._admitted -= 1

@@ -1,0 +1,118 @@
+"""The explorer: FastAPI app `app.main:app` (uvicorn app.main:app, or `rolling serve`).
+
+    /                 Tables 1 and 2 as in the paper, verdict marks, links to the cases
+    /case/{id}        a case: claims with sources and verdicts, simulate panel, plots
+    /api/...          JSON API (OpenAPI at /docs and /openapi.json)
+
+CPU work runs in worker processes (app.core.pool); the lifespan below creates the pool,
+starts the workers and, in the background, the verification of every claim.
+"""
+
+from __future__ import annotations
+
+import logging
+from contextlib import asynccontextmanager
+from pathlib import Path
+
+import anyio
+from fastapi import FastAPI
+from fastapi.openapi.docs import get_swagger_ui_html
+from fastapi.responses import HTMLResponse
+from fastapi.staticfiles import StaticFiles
+
+from app import __version__
+from app.api.main import api_router
+from app.api.routes import pages, poincare, scenes, work_precision
+from app.core import errors
+from app.core.config import Settings, get_settings
+from app.core.pool import WorkerPool
+from app.services import jobs
+from app.services.verdicts import VerdictStore
+
+log = logging.getLogger("rolling")
+
+DESCRIPTION = """
+Knowledge base and explorer of a rigid body rolling without sliding on a plane and a
+sphere, after A. V. Borisov & I. S. Mamaev, *The rolling motion of a rigid body on a plane
+and a sphere. Hierarchy of dynamics*, Regular and Chaotic Dynamics 7(2), 2002.
+
+Case ids contain a slash (`plane/chaplygin-ball`): `GET /api/cases/plane/chaplygin-ball`.
+Bad input is a 422 whose `detail` names the field, the value and why. When every worker
+is busy and the queue is full the answer is 503 with `Retry-After`.
+"""
+
+
+def _prepare() -> None:
+    """Load the catalogue and the registry and validate every case's demo run, off the
+    event loop: validation calls compiled functions (the support function, the fit on a
+    sphere) whose first call loads them from numba's cache while holding the GIL."""
+    from catalogue.load import load_catalogue
+    from solvers.cases import build, initial_state, registry
+
+    load_catalogue()
+    for cid, spec in registry().items():
+        initial_state(build(cid, spec.example), spec.state)
+
+
+async def _warm(pool: WorkerPool) -> None:
+    try:
+        await pool.prewarm()
+    except Exception as exc:  # serve anyway: the first run will say what is wrong
+        log.warning("warming a worker failed: %r", exc)
+
+
+@asynccontextmanager
+async def lifespan(app: FastAPI):
+    settings: Settings = app.state.settings
+    pool = WorkerPool(settings.workers, settings.queue_size, settings.retry_after_s,
+                      warm=jobs.warm)
+    from solvers.cases import table_case_ids
+
+    store = VerdictStore(table_case_ids(), settings.cache_dir)
+    app.state.pool, app.state.verdicts = pool, store
+    await anyio.to_thread.run_sync(_prepare)
+    if settings.use_verdict_cache:
+        await anyio.to_thread.run_sync(store.load_cache)
+
+    async def background() -> None:
+        if settings.warm_workers:
+            async with anyio.create_task_group() as tg:
+                for _ in range(settings.workers):
+                    tg.start_soon(_warm, pool)
+        if settings.verify_on_start:
+            await store.verify_all(pool, settings.verify_deadline_s)
+
+    async with anyio.create_task_group() as tg:
+        pool.attach(tg)
+        tg.start_soon(background)
+        yield
+        tg.cancel_scope.cancel()
+
+
+def create_app(settings: Settings | None = None) -> FastAPI:
+    settings = settings or get_settings()
+    # docs_url=None: /docs is served below with Swagger UI from static/vendor (no CDN)
+    app = FastAPI(title="rolling-hierarchy explorer", version=__version__,
+                  description=DESCRIPTION, lifespan=lifespan, docs_url=None, redoc_url=None)
+    app.state.settings = settings
+    errors.install(app)
+    app.include_router(api_router)
+    app.include_router(pages.router)
+    app.include_router(poincare.pages)
+    app.include_router(scenes.pages)
+    app.include_router(work_precision.pages)
+    app.mount("/static", StaticFiles(directory=Path(settings.static_dir)), name="static")
+
+    @app.get("/docs", include_in_schema=False)
+    async def docs() -> HTMLResponse:
+        return get_swagger_ui_html(
+            openapi_url=app.openapi_url, title=f"{app.title} — API",
+            swagger_js_url="/static/vendor/swagger-ui/swagger-ui-bundle.js",
+            swagger_css_url="/static/vendor/swagger-ui/swagger-ui.css",
+            swagger_favicon_url="/static/favicon.svg",
+            swagger_ui_parameters={"validatorUrl": None, "defaultModelsExpandDepth": 0})
+
+    return app
+
+
+app = create_app()

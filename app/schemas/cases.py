@@ -1,0 +1,100 @@
+from typing import Any
+
+from pydantic import BaseModel, Field
+
+from app.schemas.verify import VerdictPublic, VerdictSummary
+
+
+class AttributionPublic(BaseModel):
+    ref: str
+    authors: str | None = None
+    year: int | None = None
+    note: str | None = None
+    reference_authors: list[str] = Field(default_factory=list)
+    reference_title: str | None = None
+
+
+class ParamPublic(BaseModel):
+    name: str
+    required: bool
+    default: float | None = Field(None, description="default of an optional parameter "
+                                  "(null for I2: equal to I1)")
+    example: float | None = None
+
+
+class RunnablePublic(BaseModel):
+    """What POST /api/simulate accepts for this case."""
+
+    params: list[ParamPublic]
+    example: dict[str, float]
+    state: list[float]
+    state_labels: list[str]
+    fixed_k: str | None = None
+    invariants_when: list[dict[str, Any]] = Field(default_factory=list)
+
+
+class CaseSummary(BaseModel):
+    id: str
+    title: str
+    table: int
+    column: int
+    surface: str
+    body: str
+    model_title: str
+    href: str
+    claims: int
+
+
+class CellPublic(BaseModel):
+    row: str
+    row_label: str
+    printed: str
+    plain: str
+    shade: str
+    shade_note: str | None = None
+    labels: list[str] = Field(default_factory=list)
+    attribution: list[AttributionPublic] = Field(default_factory=list)
+    merged: list[str] = Field(default_factory=list)
+    colspan: int = 1
+    subrow: dict[str, str] | None = Field(None, description="a second line of the cell "
+                                          "(Table 2, restrictions: a = 2R)")
+    subrow_case: str | None = Field(None, description="the column the second line is under")
+    claims: list[str] = Field(default_factory=list)
+    convention_note: str | None = None
+    verdict: VerdictSummary | None = None
+
+
+class ClaimPublic(BaseModel):
+    id: str
+    kind: str
+    printed: str
+    plain: str
+    label: str | None
+    where: str | None = None
+    attribution: list[AttributionPublic] = Field(default_factory=list)
+    conditions: dict[str, str] = Field(default_factory=dict)
+    variables: str
+    check: str
+    check_args: dict[str, Any] = Field(default_factory=dict)
+    convention_note: str | None = None
+    remarks: str | None = None
+    verdict: VerdictPublic
+    corrections: list[VerdictPublic] = Field(default_factory=list)
+
+
+class CasePublic(BaseModel):
+    id: str
+    title: str
+    table: int
+    column: int
+    surface: str
+    body: str
+    model_title: str
+    href: str
+    model: dict[str, Any]
+    remarks: list[str] = Field(default_factory=list)
+    cells: list[CellPublic]
+    claims: list[ClaimPublic]
+    runnable: RunnablePublic
+    verdicts: dict[str, int] = Field(description="number of claims per verdict")
+    verification: str = Field(description="done | running | idle | unavailable | failed")

@@ -1,0 +1,36 @@
+from pydantic import BaseModel, Field
+
+
+class PoolPublic(BaseModel):
+    workers: int
+    queue_size: int
+    running: int
+    waiting: int
+    warming: int = Field(description="worker processes starting (loading the kernels)")
+    completed: int
+    rejected: int
+    cancelled: int
+    timed_out: int
+
+
+class VerificationStatus(BaseModel):
+    state: str = Field(description="idle | running | done | unavailable | failed")
+    cases_done: int
+    cases_total: int
+    message: str = ""
+    updated: float | None = Field(None, description="unix time of the last verdict")
+
+
+class LimitsPublic(BaseModel):
+    deadline_s: float = Field(description="wall-clock limit of one run in a worker")
+    max_steps: int = Field(description="step budget of one run")
+    max_samples: int
+    max_frames: int
+
+
+class HealthPublic(BaseModel):
+    status: str = Field(description="always 'ok' when the service answers")
+    version: str
+    pool: PoolPublic
+    limits: LimitsPublic
+    verification: VerificationStatus

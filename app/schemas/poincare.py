@@ -1,0 +1,76 @@
+"""Request and response of POST /api/poincare (the 3D point map, as `rolling poincare`)."""
+
+from typing import Annotated, Any, Literal
+
+from pydantic import BaseModel, ConfigDict, Field
+
+from app.schemas.common import FiniteFloat
+from app.schemas.simulate import CaseId
+
+MAX_TRAJECTORIES = 32
+MAX_POINTS = 5000
+
+EXAMPLE = {"case": "plane/chaplygin-ball", "params": {"I1": 1, "I2": 2, "I3": 3, "m": 1, "R": 1},
+           "energy": 1.0, "section": "g=0", "trajectories": 4, "points": 200}
+
+
+class PoincareRequest(BaseModel):
+    """The map of `rolling poincare CASE --set ... --energy E0 --section g=G0
+    --trajectories N --points P`: at energy E0, the crossings of the section g = g0 in
+    Andoyer-Deprit variables, as points (L/G, H/G, l)."""
+
+    model_config = ConfigDict(extra="forbid", strict=True,
+                              json_schema_extra={"examples": [EXAMPLE]})
+
+    case: CaseId = Field(description="a case with state (M, gamma) (not the flat-base ones)")
+    params: Annotated[dict[Annotated[str, Field(max_length=16)], FiniteFloat],
+                      Field(max_length=32)] = Field(default_factory=dict)
+    example: bool = Field(False, description="start from the case's demo parameters")
+    energy: FiniteFloat = Field(1.0, description="energy level E0")
+    section: str = Field("g=0", max_length=40, pattern=r"^\s*g\s*=\s*[-+0-9.eE]+\s*$",
+                         description="the section g=g0 (radians)")
+    # an int in [-1, 1] rather than Literal[-1, 0, 1]: a Literal accepts false for 0
+    direction: int = Field(1, ge=-1, le=1, description="+1: g increasing, -1: "
+                           "decreasing, 0: both")
+    trajectories: int = Field(8, ge=1, le=MAX_TRAJECTORIES, description="sampled starts")
+    points: int = Field(200, ge=1, le=MAX_POINTS, description="crossings per trajectory")
+    initial: Annotated[list[Annotated[list[FiniteFloat], Field(min_length=3, max_length=3)]],
+                       Field(min_length=1, max_length=MAX_TRAJECTORIES)] | None = Field(
+        None, description="starts (L/G, H/G, l) on the section; replace sampling")
+    seed: int = Field(0, ge=0, le=2**32 - 1, description="seed of the sampled starts")
+    method: Literal["dop853", "vern9", "rk45"] = "dop853"
+    rtol: FiniteFloat = Field(1e-10, ge=1e-14, le=1e-3)
+    atol: FiniteFloat = Field(1e-12, gt=0, le=1.0)
+    allow_any_inertia: bool = False
+
+    @property
+    def g0(self) -> float:
+        return float(self.section.split("=", 1)[1])
+
+
+class TrajectoryPublic(BaseModel):
+    initial: list[float] = Field(description="(L/G, H/G, l) of the start, on the section")
+    state0: list[float] = Field(description="the start (M, gamma)")
+    points: list[list[float]] = Field(description="one row (L/G, H/G, l) per crossing")
+    t: list[float] = Field(description="crossing times")
+    status: str = Field(description="ok | singular | budget | no-return")
+    message: str
+    check: dict[str, Any] = Field(description="missed-crossing check: kernel and dense "
+                                  "counts, missed, extra, unresolved_intervals")
+    spread: dict[str, float] = Field(description="(max-min)/|mean| of each integral over "
+                                     "the crossings; absolute spread of H/G")
+    steps: int
+    rhs_calls: int
+
+
+class PoincarePublic(BaseModel):
+    case: str
+    params: dict[str, float]
+    energy: float
+    section: dict[str, float]
+    coordinates: list[str]
+    points: int
+    method: str
+    rtol: float
+    atol: float
+    trajectories: list[TrajectoryPublic]

@@ -1,0 +1,123 @@
+"""Request and response of POST /api/simulate (and /api/scene, /api/validate)."""
+
+from typing import Annotated, Any, Literal
+
+from pydantic import BaseModel, ConfigDict, Field
+
+from app.schemas.common import FiniteFloat
+
+MAX_SAMPLES = 20_000
+MAX_FRAMES = 600
+
+
+def _case_ids() -> tuple[str, ...]:
+    from solvers.cases import case_ids
+
+    return tuple(case_ids())
+
+
+def _methods() -> tuple[str, ...]:
+    try:
+        from solvers.simulate import methods
+
+        return tuple(methods())
+    except ImportError:  # the compiled integrator is missing: list what the API promises
+        return ("dop853", "vern9", "rk45", "scipy-dop853", "scipy-rk45", "scipy-lsoda",
+                "scipy-radau")
+
+
+CASE_IDS = _case_ids()
+METHODS = _methods()
+CaseId = Literal[CASE_IDS]  # type: ignore[valid-type]
+Method = Literal[METHODS]  # type: ignore[valid-type]
+
+EXAMPLE = {"case": "plane/chaplygin-ball",
+           "params": {"I1": 1, "I2": 2, "I3": 3, "m": 1, "R": 1},
+           "state": [0.5, -0.3, 0.8, 0.3, 0.4, 0.8660254037844386],
+           "t_end": 100, "method": "dop853", "rtol": 1e-10, "atol": 1e-12, "samples": 201}
+
+
+class SimulateRequest(BaseModel):
+    """A run, as `rolling simulate`: the case, its named parameters, the initial state
+    (M, gamma) or (M, r1, r2) and the final time."""
+
+    # strict: a string "1.5" or 0 for false is a mistake to report, not to guess around
+    model_config = ConfigDict(extra="forbid", strict=True,
+                              json_schema_extra={"examples": [EXAMPLE]})
+
+    case: CaseId = Field(description="case id, e.g. plane/chaplygin-ball (GET /api/cases)")
+    params: Annotated[dict[Annotated[str, Field(max_length=16)], FiniteFloat],
+                      Field(max_length=32)] = Field(
+        default_factory=dict, description="named parameters (GET /api/cases/{id}: "
+        "runnable.params); with example = true, the case's demo values fill the rest")
+    state: Annotated[list[FiniteFloat], Field(min_length=5, max_length=6)] | None = Field(
+        None, description="initial state: M1 M2 M3 g1 g2 g3 (|g| = 1), or M1 M2 M3 r1 r2 "
+        "for the flat-base cases; null with example = true: the case's demo state")
+    t_end: FiniteFloat = Field(gt=0, le=1e7, description="final time")
+    method: Method = Field("dop853", description="integrator (GET /api/methods)")
+    rtol: FiniteFloat = Field(1e-10, ge=1e-16, le=0.1)
+    atol: FiniteFloat = Field(1e-12, gt=0, le=1.0)
+    samples: int = Field(201, ge=2, le=MAX_SAMPLES, description="output times, evenly "
+                         "spaced on [0, t_end]")
+    project: bool = Field(False, description="project onto the known integrals after "
+                          "every step (compiled methods only)")
+    allow_any_inertia: bool = Field(False, description="accept moments that violate the "
+                                    "triangle inequality")
+    example: bool = Field(False, description="start from the case's demo parameters and "
+                          "state; given params / state override them")
+
+
+class SceneRequest(SimulateRequest):
+    """A run for the 3D animation: the body's orientation and contact path at `frames`
+    evenly spaced times (solvers.kinematics)."""
+
+    model_config = ConfigDict(extra="forbid", strict=True)
+    frames: int = Field(200, ge=2, le=MAX_FRAMES)
+
+
+class SimulateResponse(BaseModel):
+    case: str
+    params: dict[str, float]
+    status: Literal["ok", "singular", "budget"] = Field(
+        description="ok; singular: stopped at a singularity (message says where); budget: "
+        "the step budget was used up (the samples before it are returned)")
+    message: str
+    state_labels: list[str]
+    t: list[float]
+    state: list[list[float]] = Field(description="one row per sample, columns state_labels")
+    invariants: dict[str, list[float | None]] = Field(
+        description="name -> values aligned with t ('energy' always)")
+    stats: dict[str, Any] = Field(description="steps, rejected, rhs_calls, wall_s, method, "
+                                  "rtol, atol, projected, samples, drift (max relative "
+                                  "drift of every invariant), max_steps")
+
+
+class ValidatePublic(BaseModel):
+    ok: bool
+    params: dict[str, float] = Field(description="the parameters the run would use, "
+                                     "defaults filled in")
+    state_labels: list[str]
+    invariants: list[str] = Field(description="integrals the run will report")
+
+
+class ScenePublic(BaseModel):
+    case: str
+    surface: str
+    body: str
+    k: float
+    support_radius: float | None
+    support_inside_body: bool
+    t: list[float]
+    Q: list[list[float]] = Field(description="rotation body -> space per frame, row-major")
+    x_G: list[list[float]]
+    contact: list[list[float]]
+    mesh: dict[str, Any]
+    status: str
+    message: str
+    stats: dict[str, Any]
+    checks: dict[str, float]
+
+
+class MethodPublic(BaseModel):
+    name: str
+    kind: str

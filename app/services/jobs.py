@@ -1,0 +1,111 @@
+"""The functions that run inside worker processes (app.core.pool).
+
+Each takes plain data (a dict made from a request schema) and returns bytes ready to send
+or plain data, so the event loop only copies bytes: encoding a 20,000-sample run as JSON
+takes tens of milliseconds, which would stall every other request if done in the loop.
+Domain errors (solvers.errors.InputError) travel back pickled and become 422 answers.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import math
+import os
+
+# Worker processes run at a lower CPU priority than the server's event loop, so that on a
+# busy machine (2 cores, 2 workers) the loop still answers /api/health and parses requests
+# at once; the runs themselves lose little, as they have the cores to themselves otherwise.
+WORKER_NICE = 5
+_niced = False
+
+
+def _lower_priority() -> None:
+    global _niced
+    if not _niced:
+        _niced = True
+        try:
+            os.nice(WORKER_NICE)
+        except OSError:
+            pass
+
+
+def warm() -> int:
+    """Import the solvers and load the compiled kernels from numba's cache: one short run
+    of every case, so that no request pays for a first call (about a second on a sphere)."""
+    _lower_priority()
+    from solvers.cases import registry
+    from solvers.simulate import simulate
+
+    for cid, case in registry().items():
+        simulate(cid, case.example, case.state, 0.01, samples=3)
+    import solvers.kinematics  # noqa: F401
+    return os.getpid()
+
+
+def _finite(x):
+    if isinstance(x, float) and not math.isfinite(x):
+        return None
+    if isinstance(x, dict):
+        return {k: _finite(v) for k, v in x.items()}
+    if isinstance(x, list):
+        return [_finite(v) for v in x]
+    return x
+
+
+def dumps(obj) -> bytes:
+    """Strict JSON (no NaN tokens): a non-finite number, which the solvers never return
+    on purpose, is sent as null."""
+    try:
+        text = json.dumps(obj, allow_nan=False, separators=(",", ":"))
+    except ValueError:
+        text = json.dumps(_finite(obj), allow_nan=False, separators=(",", ":"))
+    return text.encode()
+
+
+def _run(req: dict, max_steps: int):
+    _lower_priority()
+    from solvers.simulate import simulate
+
+    return simulate(req["case"], req["params"], req["state"], req["t_end"],
+                    method=req["method"], rtol=req["rtol"], atol=req["atol"],
+                    samples=req["samples"], project=req["project"], max_steps=max_steps,
+                    allow_any_inertia=req["allow_any_inertia"])
+
+
+def simulate_json(req: dict, max_steps: int) -> bytes:
+    res = _run(req, max_steps)
+    out = res.to_json()
+    out["stats"]["max_steps"] = max_steps
+    return dumps(out)
+
+
+def simulate_csv(req: dict, max_steps: int) -> bytes:
+    """One row per sample: t, the state, then every invariant the case carries."""
+    res = _run(req, max_steps)
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    names = list(res.invariants)
+    w.writerow(["t", *res.state_labels, *names])
+    for i, t in enumerate(res.t):
+        w.writerow([repr(float(t)), *(repr(float(v)) for v in res.state[i]),
+                    *(repr(float(res.invariants[n][i])) for n in names)])
+    return buf.getvalue().encode()
+
+
+def scene_json(req: dict, frames: int, max_steps: int) -> bytes:
+    _lower_priority()
+    from solvers.kinematics import scene
+
+    return dumps(scene(req["case"], req["params"], req["state"], req["t_end"],
+                       frames=frames, rtol=min(req["rtol"], 1e-8),
+                       atol=min(req["atol"], 1e-10), max_steps=max_steps,
+                       allow_any_inertia=req["allow_any_inertia"]))
+
+
+def verify_case(case_id: str | None) -> list[dict]:
+    _lower_priority()
+    from solvers.verify import verify
+
+    return [_finite(dict(r)) for r in verify(case_id)]

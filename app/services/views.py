@@ -1,0 +1,141 @@
+"""The catalogue and the case registry as the API shows them (plain dicts that the
+response schemas validate): tables laid out like the paper, cases with their claims and
+verdicts. Pure functions of (catalogue, registry, verdicts); cheap enough for the loop."""
+
+from __future__ import annotations
+
+from functools import cache
+
+from app.services.verdicts import VERDICTS, summary
+from catalogue.load import load_catalogue
+from catalogue.schema import Attribution, Case, Cell, Claim, Table
+from solvers.bodies import STATE_LABELS
+from solvers.cases import CaseSpec, registry
+
+UNCHECKED_MSG = "no verdict yet: the check has not run (see /api/health, verification)"
+
+
+def case_href(case_id: str) -> str:
+    return f"/case/{case_id}"
+
+
+@cache
+def _references() -> dict:
+    return {r.id: r for r in load_catalogue().references}
+
+
+def attribution(a: Attribution) -> dict:
+    ref = _references().get(a.ref)
+    return {"ref": a.ref, "authors": a.authors, "year": a.year, "note": a.note,
+            "reference_authors": list(ref.authors) if ref else [],
+            "reference_title": ref.title if ref else None}
+
+
+def table_of(case_id: str) -> Table:
+    cat = load_catalogue()
+    return cat.plane if case_id.startswith("plane/") else cat.sphere
+
+
+def cell(row_label: str, row: str, c: Cell, by_claim: dict[str, dict]) -> dict:
+    return {"row": row, "row_label": row_label, "printed": c.printed, "plain": c.plain,
+            "shade": c.shade.value, "shade_note": c.shade_note, "labels": list(c.labels),
+            "attribution": [attribution(a) for a in c.attribution],
+            "merged": list(c.merged), "colspan": c.colspan,
+            "subrow": c.subrow.model_dump() if c.subrow else None, "subrow_case": None,
+            "claims": list(c.claims), "convention_note": c.convention_note,
+            "verdict": summary(list(c.claims), by_claim)}
+
+
+def table(table_id: str, by_claim: dict[str, dict]) -> dict:
+    t: Table = getattr(load_catalogue(), table_id)
+    labels = {r.key: r.plain for r in t.rows}
+    grid = []
+    for row in t.rows:
+        cells, skip = [], set()
+        for case in t.cases:
+            if case.id in skip:
+                continue
+            c = case.cells[row.key]
+            skip.update(c.merged)
+            d = cell(labels[row.key], row.key.value, c, by_claim)
+            d["merged"] = list(c.merged) or [case.id]
+            # a second line under one column of a merged cell (Table 2: a = 2R)
+            for cid in d["merged"]:
+                sub = next(x for x in t.cases if x.id == cid).cells[row.key].subrow
+                if sub is not None:
+                    d["subrow"], d["subrow_case"] = sub.model_dump(), cid
+            cells.append(d)
+        grid.append({"key": row.key.value, "cells": cells})
+    return {"id": t.id.value, "number": t.number, "caption_printed": t.caption_printed,
+            "caption_plain": t.caption_plain, "remark_printed": t.remark_printed,
+            "rows": [r.model_dump(mode="json") for r in t.rows],
+            "columns": [{"id": c.id, "column": c.column, "title": c.title,
+                         "href": case_href(c.id)} for c in t.cases],
+            "grid": grid}
+
+
+def _verdict(claim: Claim, rec: dict | None) -> dict:
+    if rec is None:
+        return {"claim": claim.id, "verdict": "unchecked", "residual": None,
+                "message": UNCHECKED_MSG, "check": claim.check.value}
+    return record(rec)
+
+
+def record(rec: dict) -> dict:
+    keys = ("claim", "verdict", "residual", "message", "check", "origin", "corrects",
+            "evidence", "seconds", "printed")
+    out = {k: rec.get(k) for k in keys if rec.get(k) is not None}
+    if out.get("verdict") not in VERDICTS:
+        out["verdict"] = "unchecked"
+    return out
+
+
+def claim(c: Claim, by_claim: dict[str, dict], corrections: dict[str, list[dict]]) -> dict:
+    return {"id": c.id, "kind": c.kind.value, "printed": c.printed, "plain": c.plain,
+            "label": c.label, "where": c.where,
+            "attribution": [attribution(a) for a in c.attribution],
+            "conditions": {k: str(v) for k, v in c.conditions.model_dump(
+                mode="json", by_alias=True).items() if v is not None},
+            "variables": c.variables.value, "check": c.check.value,
+            "check_args": c.check_args.model_dump(mode="json", exclude_defaults=True),
+            "convention_note": c.convention_note, "remarks": c.remarks,
+            "verdict": _verdict(c, by_claim.get(c.id)),
+            "corrections": [record(r) for r in corrections.get(c.id, [])]}
+
+
+def runnable(spec: CaseSpec) -> dict:
+    from solvers.cases import build
+
+    model = build(spec.id, spec.example)
+    params = [{"name": n, "required": True, "default": None,
+               "example": spec.example.get(n)} for n in spec.required]
+    params += [{"name": n, "required": False, "default": d, "example": spec.example.get(n)}
+               for n, d in spec.optional.items()]
+    return {"params": params, "example": dict(spec.example), "state": list(spec.state),
+            "state_labels": list(STATE_LABELS[model.model]), "fixed_k": spec.fixed_k,
+            "invariants_when": [i.model_dump() for i in spec.integrals]}
+
+
+def case_summary(case: Case) -> dict:
+    spec = registry()[case.id]
+    return {"id": case.id, "title": case.title, "table": table_of(case.id).number,
+            "column": case.column, "surface": spec.surface, "body": spec.body,
+            "model_title": spec.title, "href": case_href(case.id), "claims": len(case.claims)}
+
+
+def case_detail(case_id: str, by_claim: dict[str, dict], corrections: dict[str, list[dict]],
+                verification: str) -> dict:
+    case = load_catalogue().case(case_id)
+    t = table_of(case_id)
+    labels = {r.key: r.plain for r in t.rows}
+    claims = [claim(c, by_claim, corrections) for c in case.claims]
+    verdicts = [c["verdict"]["verdict"] for c in claims]
+    return {**case_summary(case),
+            "model": case.model.model_dump(mode="json", by_alias=True),
+            "remarks": list(case.remarks),
+            "cells": [cell(labels[r.key], r.key.value, case.cells[r.key], by_claim)
+                      for r in t.rows],
+            "claims": claims,
+            "runnable": runnable(registry()[case_id]),
+            "verdicts": {v: verdicts.count(v) for v in VERDICTS},
+            "verification": verification}

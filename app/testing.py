@@ -1,0 +1,88 @@
+"""Helpers for tests, benches and demos: an app with test settings, and a real uvicorn
+server in a subprocess on a free loopback port (safe under pytest-xdist: every server
+gets its own port from the kernel)."""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import socket
+import subprocess
+import sys
+import tempfile
+import time
+from collections.abc import Iterator
+from pathlib import Path
+
+import httpx
+
+from app.core.config import Settings
+
+# quiet, quick defaults for tests: no background verification, no disk cache
+TEST_SETTINGS = {"verify_on_start": False, "use_verdict_cache": False, "workers": 2,
+                 "deadline_s": 20.0, "log_level": "warning"}
+
+
+def settings_for_tests(**overrides) -> Settings:
+    cache = Path(tempfile.gettempdir()) / "rolling-hierarchy-test-cache"
+    return Settings(**{**TEST_SETTINGS, "cache_dir": cache, **overrides})
+
+
+def free_port() -> int:
+    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+@contextlib.contextmanager
+def live_server(timeout: float = 60.0, **settings) -> Iterator[str]:
+    """Start `uvicorn app.main:app` on 127.0.0.1 and a free port with ROLLING_* settings;
+    yield its base URL once /api/health answers; stop it (SIGTERM, then SIGKILL)."""
+    port = free_port()
+    env = {**os.environ, **{f"ROLLING_{k.upper()}": str(v)
+                           for k, v in {**TEST_SETTINGS, **settings}.items()}}
+    env.setdefault("ROLLING_CACHE_DIR",
+                   str(Path(tempfile.gettempdir()) / "rolling-hierarchy-test-cache"))
+    log = tempfile.TemporaryFile()  # a file, not a pipe: a chatty server never blocks
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "uvicorn", "app.main:app", "--host", "127.0.0.1",
+         "--port", str(port), "--log-level", "warning"],
+        env=env, stdout=subprocess.DEVNULL, stderr=log)
+    url = f"http://127.0.0.1:{port}"
+    try:
+        deadline = time.monotonic() + timeout
+        while True:
+            if proc.poll() is not None:
+                log.seek(0)
+                raise RuntimeError(f"uvicorn exited with {proc.returncode}: "
+                                   f"{log.read().decode()[-2000:]}")
+            try:
+                if httpx.get(f"{url}/api/health", timeout=1.0).status_code == 200:
+                    break
+            except httpx.TransportError:
+                pass
+            if time.monotonic() > deadline:
+                raise RuntimeError("uvicorn did not answer /api/health in time")
+            time.sleep(0.1)
+        yield url
+    finally:
+        proc.terminate()
+        try:
+            proc.wait(10)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            proc.wait(5)
+        log.close()
+
+
+def wait_idle(url: str, timeout: float = 30.0) -> dict:
+    """Wait until the server's worker pool is idle (warm-up done); return /api/health."""
+    deadline = time.monotonic() + timeout
+    while True:
+        h = httpx.get(f"{url}/api/health", timeout=2.0).json()
+        p = h["pool"]
+        if p["running"] == 0 and p["waiting"] == 0 and p["warming"] == 0:
+            return h
+        if time.monotonic() > deadline:
+            return h
+        time.sleep(0.1)

@@ -1,0 +1,482 @@
+// A case's page (/case/<id>, a permalink): the case in the table, every claim with its
+// printed formula, source and verdict, and a simulate panel with plots and a 3D scene.
+"use strict";
+
+import { api, ApiError, download, escapeHtml, fmt, VERDICT_ICON } from "./api.js";
+import { printedHtml, textHtml } from "./latex.js";
+import { badgeHtml, markHtml } from "./marks.js";
+import { plotDrift, plotGamma, plotState } from "./plots.js";
+import { Scene } from "./scene.js";
+
+const caseId = decodeURIComponent(location.pathname.replace(/^\/case\//, "").replace(/\/$/, ""));
+const $ = (id) => document.getElementById(id);
+const anchor = (claimId) => "claim-" + claimId.replace(/[^A-Za-z0-9_-]+/g, "_");
+const PRETTY = { g1: "γ₁", g2: "γ₂", g3: "γ₃", M1: "M₁", M2: "M₂", M3: "M₃", r1: "r₁", r2: "r₂",
+  mu: "μ", lambda: "λ", eps: "ε" };
+const RUN_DEFAULTS = { t_end: "100", samples: "801", rtol: "1e-10", atol: "1e-12" };
+
+let C = null;          // the case (GET /api/cases/{id})
+let limits = { deadline_s: 20, max_samples: 20000, max_frames: 600 };
+let lastRun = null;    // {request, result}
+let scene = null;
+let running = null;    // AbortController of the run in flight
+
+function katexReady() {
+  return new Promise((resolve) => {
+    if (window.katex) return resolve();
+    document.querySelector('script[src*="katex"]').addEventListener("load", () => resolve());
+  });
+}
+
+// ---------------------------------------------------------------- the case and its claims
+
+function attributionText(list) {
+  return list.map((a) => {
+    const who = a.authors || a.reference_authors.join(", ") || a.ref;
+    const year = a.year ? ` (${a.year})` : "";
+    const title = a.reference_title ? `, <cite>${escapeHtml(a.reference_title)}</cite>` : "";
+    const note = a.note ? ` — ${escapeHtml(a.note)}` : "";
+    return `${escapeHtml(who)}${year}${title} <span class="cid">[${escapeHtml(a.ref)}]</span>${note}`;
+  }).join("; ");
+}
+
+function showHead() {
+  document.title = `${C.title} — Rolling hierarchy`;
+  $("case-title").textContent = C.title;
+  $("crumb-table").innerHTML = `<a href="/#table-${C.surface}">Table ${C.table}</a>`;
+  $("crumb-case").textContent = `column ${C.column}`;
+  const m = C.model;
+  const cond = Object.entries(m.conditions || {}).filter(([, v]) => v !== null && v !== undefined)
+    .map(([k, v]) => `${k}: ${v}`).join(", ");
+  $("facts").innerHTML = [
+    `Table ${C.table}, column ${C.column}`,
+    `support: ${C.surface}`,
+    `body: ${m.body}`,
+    `state ${m.state}`,
+    `equations ${m.equations.join(", ")}`,
+    cond ? `conditions: ${cond}` : "",
+    `id <code>${escapeHtml(C.id)}</code>`,
+  ].filter(Boolean).map((f) => `<span class="chip">${f}</span>`).join("");
+  showTally();
+}
+
+function showTally() {
+  const v = C.verdicts;
+  const parts = ["verified", "fails", "evidence", "unchecked"].filter((k) => v[k])
+    .map((k) => `<span class="badge ${k}">${VERDICT_ICON[k]} ${v[k]} ${k}</span>`);
+  const state = C.verification === "running" ? " · verification running…" : "";
+  $("tally").innerHTML = `${C.claims.length} claims: ${parts.join(" ")}<span class="hint">${state}</span>`;
+  $("nclaims").textContent = `(${C.claims.length})`;
+}
+
+// a merged cell lists claims of the other cases it spans: those link to their own page
+function claimLink(id) {
+  const owner = id.split("/").slice(0, 2).join("/");
+  if (owner === C.id) return `<a href="#${anchor(id)}">${escapeHtml(id.slice(C.id.length + 1))}</a>`;
+  return `<a href="/case/${owner}#${anchor(id)}">${escapeHtml(id)}</a>`;
+}
+
+function showCells() {
+  const rows = C.cells.map((c) => {
+    const own = c.verdict ? c.verdict.claims.find((id) => id.startsWith(C.id + "/")) : null;
+    const mark = c.verdict ? markHtml(c.verdict, own ? `#${anchor(own)}` : `#row-${c.row}`) : "";
+    const att = c.attribution.length ? `<div class="claimrefs">credited: ${attributionText(c.attribution)}</div>` : "";
+    const refs = c.claims.length
+      ? `<div class="claimrefs">claims: ${c.claims.map(claimLink).join(", ")}</div>` : "";
+    const merged = c.merged.length > 1 ? `<div class="claimrefs">merged cell: spans ${c.merged.length} columns</div>` : "";
+    const sub = c.subrow ? `<div>${textHtml(c.subrow.printed)}</div>` : "";
+    const note = c.shade_note ? ` title="${escapeHtml(c.shade_note)}"` : "";
+    return `<tr id="row-${c.row}"><th scope="row">${escapeHtml(c.row_label)}</th>` +
+      `<td class="shade-${c.shade}"${note}>${textHtml(c.printed)}${sub}${att}${refs}${merged}${mark}</td></tr>`;
+  });
+  $("cells").innerHTML = `<table class="cells"><tbody>${rows.join("")}</tbody></table>`;
+}
+
+function verdictLine(v) {
+  const res = v.residual !== null && v.residual !== undefined ? ` · residual <code>${fmt(v.residual, 2)}</code>` : "";
+  const secs = v.seconds ? ` · ${fmt(v.seconds, 2)} s` : "";
+  return `<div class="verdict-line">${badgeHtml(v.verdict)}${res}${secs} — ${escapeHtml(v.message || "")}</div>`;
+}
+
+function claimHtml(c) {
+  const v = c.verdict;
+  const source = [c.label ? `<strong>${escapeHtml(c.label)}</strong>` : "", c.where ? escapeHtml(c.where) : ""]
+    .filter(Boolean).join(" — ");
+  const cond = Object.entries(c.conditions).map(([k, x]) => `${escapeHtml(k)}: ${escapeHtml(x)}`).join("; ");
+  const args = Object.entries(c.check_args).map(([k, x]) => `${escapeHtml(k)} ${escapeHtml(Array.isArray(x) ? x.join(", ") : String(x))}`).join("; ");
+  const dl = [
+    ["source", source],
+    c.attribution.length ? ["credited to", attributionText(c.attribution)] : null,
+    cond ? ["conditions", cond] : null,
+    ["variables", escapeHtml(c.variables)],
+    ["check", `${escapeHtml(c.check)}${args ? ` (${args})` : ""}`],
+  ].filter(Boolean).map(([k, x]) => `<dt>${k}</dt><dd>${x}</dd>`).join("");
+  const notes = [
+    c.convention_note ? `<p><strong>Convention:</strong> ${escapeHtml(c.convention_note)}</p>` : "",
+    c.remarks ? `<p><strong>Remark:</strong> ${escapeHtml(c.remarks)}</p>` : "",
+  ].join("");
+  const corr = c.corrections.map((r) => `<div class="correction"><strong>The project's corrected form</strong>` +
+    `${r.printed ? `<div class="printed">${printedHtml(r.printed)}</div>` : ""}${verdictLine(r)}</div>`).join("");
+  return `<article class="claim ${v.verdict}" id="${anchor(c.id)}">` +
+    `<header><span class="kind">${escapeHtml(c.kind)}</span>${c.label ? `<span class="label">${escapeHtml(c.label)}</span>` : ""}` +
+    `${badgeHtml(v.verdict)}<span class="cid">${escapeHtml(c.id)}</span></header>` +
+    `<div class="printed">${printedHtml(c.printed)}</div>` +
+    `<p class="plain">${escapeHtml(c.plain)}</p><dl>${dl}</dl>${verdictLine(v)}` +
+    `${notes ? `<details><summary>Notes</summary>${notes}</details>` : ""}${corr}</article>`;
+}
+
+function showClaims() {
+  $("claimlist").innerHTML = C.claims.map(claimHtml).join("");
+}
+
+async function reverify() {
+  const btn = $("reverify"), msg = $("reverify-msg");
+  btn.disabled = true;
+  msg.textContent = "Checking every claim of this case…";
+  try {
+    const r = await api(`/api/verify/${C.id}`, { method: "POST" });
+    C = await api(`/api/cases/${C.id}`);
+    showTally(); showCells(); showClaims();
+    msg.textContent = `Done in ${fmt(r.seconds, 2)} s.`;
+  } catch (err) {
+    msg.textContent = `Verification failed: ${err.message}`;
+  } finally {
+    btn.disabled = false;
+  }
+}
+
+// ---------------------------------------------------------------- the simulate form
+
+function inputHtml(name, value, { placeholder = "", title = "", group } = {}) {
+  const label = PRETTY[name] || name;
+  return `<label title="${escapeHtml(title)}"><span class="nm">${escapeHtml(label)}</span>` +
+    `<input id="f-${group}-${name}" data-group="${group}" data-name="${escapeHtml(name)}" value="${escapeHtml(value)}" ` +
+    `placeholder="${escapeHtml(placeholder)}" inputmode="decimal" autocomplete="off" spellcheck="false"></label>`;
+}
+
+function buildForm() {
+  const R = C.runnable;
+  $("params").innerHTML = R.params.map((p) => {
+    const v = p.example ?? "";
+    const placeholder = p.required ? "required" : p.default === null ? "= I1" : String(p.default);
+    const title = p.required ? `${p.name} (required)` : `${p.name} (optional, default ${p.default ?? "I1"})`;
+    return inputHtml(p.name, v === "" ? "" : String(v), { placeholder, title, group: "p" });
+  }).join("");
+  const fixed = R.fixed_k ? ` k is fixed by the case (k = ${R.fixed_k}).` : "";
+  $("params-hint").textContent = `Defaults are the case's example.${fixed} ` +
+    "Optional parameters left empty take their default.";
+  $("state").innerHTML = R.state_labels.map((l, i) => inputHtml(l, String(R.state[i]), { group: "s" })).join("");
+  $("state-hint").innerHTML = R.state_labels.length === 6
+    ? `γ: unit normal at the contact point, from the body into the support; <span id="gnorm"></span> <button type="button" class="small" id="normalise">normalise γ</button>`
+    : "(M, r₁, r₂): γ = e₃ is fixed; r = (r₁, r₂, z) is the contact point on the flat base.";
+  for (const [k, v] of Object.entries(RUN_DEFAULTS)) $(`f-${k}`).value = v;
+  const nb = $("normalise");
+  if (nb) nb.addEventListener("click", normaliseGamma);
+}
+
+function readNumber(el, errors) {
+  const raw = el.value.trim();
+  if (raw === "") return undefined;
+  const x = Number(raw);
+  if (!Number.isFinite(x)) {
+    errors.push({ el, msg: `${el.dataset.name || el.name} = ${raw}: must be a finite number` });
+    return undefined;
+  }
+  return x;
+}
+
+function gatherRequest() {
+  const errors = [];
+  const params = {};
+  for (const el of document.querySelectorAll('input[data-group="p"]')) {
+    const x = readNumber(el, errors);
+    if (x !== undefined) params[el.dataset.name] = x;
+    else if (el.value.trim() === "" && C.runnable.params.find((p) => p.name === el.dataset.name).required) {
+      errors.push({ el, msg: `${el.dataset.name} is required` });
+    }
+  }
+  const state = [];
+  for (const el of document.querySelectorAll('input[data-group="s"]')) {
+    const x = readNumber(el, errors);
+    if (x === undefined && el.value.trim() === "") errors.push({ el, msg: `${el.dataset.name} is required` });
+    state.push(x);
+  }
+  const num = (id, name) => {
+    const el = $(id);
+    el.dataset.name = name;
+    const x = readNumber(el, errors);
+    if (x === undefined && el.value.trim() === "") errors.push({ el, msg: `${name} is required` });
+    return x;
+  };
+  const req = {
+    case: C.id, params, state,
+    t_end: num("f-t_end", "t_end"), samples: num("f-samples", "samples"),
+    rtol: num("f-rtol", "rtol"), atol: num("f-atol", "atol"),
+    method: $("f-method").value, project: $("f-project").checked,
+  };
+  // the simple checks, mirrored here so that most mistakes show before any request
+  if (req.t_end !== undefined && !(req.t_end > 0)) errors.push({ el: $("f-t_end"), msg: `t_end = ${req.t_end}: must be positive` });
+  if (req.samples !== undefined && !(Number.isInteger(req.samples) && req.samples >= 2 && req.samples <= limits.max_samples)) {
+    errors.push({ el: $("f-samples"), msg: `samples = ${req.samples}: must be an integer in [2, ${limits.max_samples}]` });
+  }
+  if (req.rtol !== undefined && !(req.rtol >= 1e-16 && req.rtol <= 0.1)) errors.push({ el: $("f-rtol"), msg: `rtol = ${req.rtol}: must lie in [1e-16, 0.1]` });
+  if (req.atol !== undefined && !(req.atol > 0 && req.atol <= 1)) errors.push({ el: $("f-atol"), msg: `atol = ${req.atol}: must lie in (0, 1]` });
+  if (params.m !== undefined && !(params.m > 0)) errors.push({ el: $("f-p-m"), msg: `m = ${params.m}: must be positive` });
+  if (state.length === 6 && state.every((x) => x !== undefined)) {
+    const n = Math.hypot(state[3], state[4], state[5]);
+    const g = $("gnorm");
+    if (g) g.textContent = `now |γ| = ${n.toPrecision(12)}.`;
+    if (Math.abs(n - 1) > 1e-9) {
+      errors.push({ el: $("f-s-g1"), msg: `|γ| = ${n.toPrecision(6)}: γ is a unit vector, |γ| must be 1 (press “normalise γ”)` });
+    }
+  }
+  return { req, errors };
+}
+
+function normaliseGamma() {
+  const els = ["g1", "g2", "g3"].map((n) => $(`f-s-${n}`));
+  const g = els.map((e) => Number(e.value));
+  const n = Math.hypot(...g);
+  if (!(n > 0) || !Number.isFinite(n)) return;
+  els.forEach((e, i) => { e.value = String(g[i] / n); });
+  onEdit();
+}
+
+function fieldFor(loc) {
+  const [, a, b] = loc;
+  if (a === "params" && b !== undefined) return $(`f-p-${b}`);
+  if (a === "state") return typeof b === "number" ? document.querySelectorAll('input[data-group="s"]')[b] : $("f-s-g1") || $("f-s-M1");
+  if (a) return $(`f-${a}`);
+  return null;
+}
+
+function showFormMessage(text, kind, el) {
+  const msg = $("formmsg");
+  msg.textContent = text;
+  msg.className = `formmsg ${kind}`;
+  for (const i of document.querySelectorAll("#simform input")) i.removeAttribute("aria-invalid");
+  if (el) {
+    el.setAttribute("aria-invalid", "true");
+    el.setAttribute("aria-describedby", "formmsg");
+  }
+}
+
+let validateTimer = null;
+let validateCtl = null;
+
+function onEdit() {
+  const { req, errors } = gatherRequest();
+  if (errors.length) {
+    showFormMessage(errors[0].msg, "bad", errors[0].el);
+    return;
+  }
+  showFormMessage("", "", null);
+  clearTimeout(validateTimer);
+  validateTimer = setTimeout(async () => {
+    if (validateCtl) validateCtl.abort();
+    validateCtl = new AbortController();
+    try {
+      const v = await api("/api/validate", { method: "POST", body: req, signal: validateCtl.signal });
+      showFormMessage(`✓ valid — reports ${v.invariants.join(", ")}`, "good", null);
+    } catch (err) {
+      if (err.name === "AbortError") return;
+      if (err instanceof ApiError && err.status === 422) {
+        showFormMessage(err.message, "bad", fieldFor((err.errors[0] || {}).loc || []));
+      }
+    }
+  }, 250);
+}
+
+function resetForm() {
+  buildForm();
+  $("f-method").value = "dop853";
+  $("f-project").checked = false;
+  onEdit();
+}
+
+// ---------------------------------------------------------------- running
+
+function setRunning(on) {
+  $("run").disabled = on;
+  $("scene-btn").disabled = on;
+  $("progress").hidden = !on;
+}
+
+async function withProgress(label, fn) {
+  const ctl = new AbortController();
+  running = ctl;
+  const t0 = performance.now();
+  setRunning(true);
+  $("progress").hidden = true;
+  const tick = setInterval(() => {
+    const s = (performance.now() - t0) / 1000;
+    if (s > 0.8) $("progress").hidden = false;   // runs over a second show progress
+    $("progress-text").textContent = `${label}: ${s.toFixed(1)} s (limit ${limits.deadline_s} s per run)`;
+  }, 100);
+  try {
+    for (let attempt = 0; ; attempt++) {
+      try {
+        return await fn(ctl.signal);
+      } catch (err) {
+        if (err instanceof ApiError && err.status === 503 && attempt < 5) {
+          const wait = Number(err.retryAfter || 2);
+          $("progress").hidden = false;
+          $("progress-text").textContent = `server busy, retrying in ${wait} s…`;
+          await new Promise((r) => setTimeout(r, wait * 1000));
+          if (ctl.signal.aborted) throw new DOMException("aborted", "AbortError");
+          continue;
+        }
+        throw err;
+      }
+    }
+  } finally {
+    clearInterval(tick);
+    running = null;
+    setRunning(false);
+  }
+}
+
+function runInfo(res, seconds) {
+  const s = res.stats;
+  const drift = Object.entries(s.drift || {}).map(([k, v]) => `${k} ${fmt(v, 2)}`).join(", ");
+  const st = `<span class="st-${res.status}">${res.status}</span>`;
+  const msg = res.status !== "ok" ? ` — ${escapeHtml(res.message)}` : "";
+  return `${st}${msg}<br>${escapeHtml(s.method)} · rtol ${fmt(s.rtol, 1)} · atol ${fmt(s.atol, 1)} · ` +
+    `${s.steps} steps · ${s.rhs_calls} field evaluations · integration ${fmt(s.wall_s * 1000, 3)} ms · ` +
+    `round trip ${fmt(seconds, 3)} s${s.projected ? " · projected" : ""}<br>max relative drift: ${escapeHtml(drift)}`;
+}
+
+async function runSimulation(ev) {
+  ev.preventDefault();
+  const { req, errors } = gatherRequest();
+  if (errors.length) {
+    showFormMessage(errors[0].msg, "bad", errors[0].el);
+    errors[0].el.focus();
+    return;
+  }
+  const t0 = performance.now();
+  try {
+    const res = await withProgress("running", (signal) => api("/api/simulate", { method: "POST", body: req, signal }));
+    const secs = (performance.now() - t0) / 1000;
+    lastRun = { request: req, result: res };
+    $("runinfo").innerHTML = runInfo(res, secs);
+    $("downloads").hidden = false;
+    await showPlots(res);
+    document.body.dataset.run = String(Number(document.body.dataset.run || 0) + 1);
+  } catch (err) {
+    if (err.name === "AbortError") {
+      $("runinfo").textContent = "Cancelled: the server stopped the computation.";
+    } else if (err instanceof ApiError && err.status === 422) {
+      showFormMessage(err.message, "bad", fieldFor((err.errors[0] || {}).loc || []));
+      $("runinfo").textContent = "";
+    } else {
+      $("runinfo").innerHTML = `<span class="error">Run failed: ${escapeHtml(err.message)}</span>`;
+    }
+  }
+}
+
+async function showPlots(res) {
+  const plots = $("plots");
+  if (!$("plot-state")) {
+    plots.innerHTML = '<div class="plot" id="plot-state"></div><div class="plot" id="plot-drift"></div>' +
+      '<div class="plot full" id="plot-gamma"></div>';
+  }
+  await plotState($("plot-state"), res);
+  await plotDrift($("plot-drift"), res);
+  await plotGamma($("plot-gamma"), res);
+}
+
+function csvOf(res) {
+  const names = Object.keys(res.invariants);
+  const lines = [["t", ...res.state_labels, ...names].join(",")];
+  res.t.forEach((t, i) => {
+    lines.push([t, ...res.state[i], ...names.map((n) => res.invariants[n][i])].map((x) => (x === null ? "" : String(x))).join(","));
+  });
+  return lines.join("\n") + "\n";
+}
+
+function fileStem() {
+  return `${C.id.replace(/\//g, "_")}_t${lastRun.request.t_end}`;
+}
+
+async function runScene() {
+  const { req, errors } = gatherRequest();
+  if (errors.length) {
+    showFormMessage(errors[0].msg, "bad", errors[0].el);
+    return;
+  }
+  const frames = Math.max(2, Math.min(limits.max_frames, Math.round(Number($("f-frames").value) || 200)));
+  $("scene-msg").textContent = "";
+  try {
+    const d = await withProgress("computing the scene", (signal) =>
+      api("/api/scene", { method: "POST", body: { ...req, frames }, signal }));
+    if (scene) scene.destroy();
+    const el = $("plot-scene");
+    el.hidden = false;
+    const ck = d.checks;
+    $("scene-msg").textContent = (d.status !== "ok" ? `${d.status}: ${d.message}. ` : "") +
+      `${d.t.length} frames; checks: |QᵀQ − E| ≤ ${fmt(ck.orthogonality, 1)}, contact point off the support ≤ ${fmt(ck.contact_on_support, 1)}.`;
+    scene = new Scene(el, d, {
+      onFrame: (f, t) => {
+        $("scrub").value = String(f);
+        $("scene-time").textContent = `t = ${t.toFixed(3)}`;
+      },
+    });
+    await scene.render();
+    $("scrub").max = String(d.t.length - 1);
+    $("scrub").hidden = false;
+    $("play").hidden = false;
+    $("play").textContent = "Play";
+    document.body.dataset.scene = "1";
+  } catch (err) {
+    if (err.name === "AbortError") $("scene-msg").textContent = "Cancelled.";
+    else $("scene-msg").textContent = `Scene failed: ${err.message}`;
+  }
+}
+
+// ---------------------------------------------------------------- start
+
+async function main() {
+  await katexReady();
+  try {
+    const [c, h, methods] = await Promise.all([
+      api(`/api/cases/${caseId}`), api("/api/health"), api("/api/methods")]);
+    C = c;
+    limits = h.limits;
+    const group = (kind, label) => `<optgroup label="${label}">` + methods.filter((m) => m.kind === kind)
+      .map((m) => `<option value="${m.name}">${m.name}</option>`).join("") + "</optgroup>";
+    $("f-method").innerHTML = group("compiled", "compiled Runge–Kutta") + group("scipy reference", "scipy reference");
+  } catch (err) {
+    $("case-title").textContent = "Could not load the case";
+    $("facts").innerHTML = `<p class="error" role="alert">${escapeHtml(err.message)}</p>`;
+    return;
+  }
+  showHead();
+  showCells();
+  showClaims();
+  resetForm();
+  $("simform").addEventListener("input", onEdit);
+  $("simform").addEventListener("change", onEdit);
+  $("simform").addEventListener("submit", runSimulation);
+  $("reset").addEventListener("click", resetForm);
+  $("cancel").addEventListener("click", () => running && running.abort());
+  $("reverify").addEventListener("click", reverify);
+  $("dl-csv").addEventListener("click", () => download(`${fileStem()}.csv`, csvOf(lastRun.result), "text/csv"));
+  $("dl-json").addEventListener("click", () => download(`${fileStem()}.json`,
+    JSON.stringify({ request: lastRun.request, ...lastRun.result }, null, 1), "application/json"));
+  $("scene-btn").addEventListener("click", runScene);
+  $("play").addEventListener("click", () => {
+    if (!scene) return;
+    if (scene.playing) { scene.pause(); $("play").textContent = "Play"; } else { scene.play(); $("play").textContent = "Pause"; }
+  });
+  $("scrub").addEventListener("input", () => {
+    if (!scene) return;
+    scene.pause();
+    $("play").textContent = "Play";
+    scene.show(Number($("scrub").value));
+  });
+  if (location.hash) document.getElementById(location.hash.slice(1))?.scrollIntoView();
+  document.body.dataset.ready = "1";
+}
+
+main();

@@ -1,0 +1,104 @@
+// Home: Tables 1 and 2 as printed (same rows, columns and merged cells, the paper's gray
+// and partial fill), a verdict mark in every checkable cell, case headers linking to
+// /case/<id>.
+"use strict";
+
+import { api, escapeHtml } from "./api.js";
+import { textHtml } from "./latex.js";
+import { markHtml } from "./marks.js";
+
+function katexReady() {
+  return new Promise((resolve) => {
+    if (window.katex) return resolve();
+    document.querySelector('script[src*="katex"]').addEventListener("load", () => resolve());
+  });
+}
+
+function cellHtml(cell, table) {
+  const cls = [`shade-${cell.shade}`];
+  const first = cell.merged[0];
+  const mark = cell.verdict
+    ? markHtml(cell.verdict, `/case/${first}#row-${cell.row}`)
+    : "";
+  const title = cell.shade_note ? ` title="${escapeHtml(cell.shade_note)}"` : "";
+  const shadeText = cell.shade === "full" ? "invariant exists" : cell.shade === "partial" ? "incomplete set of integrals" : "";
+  const sr = shadeText ? `<span class="sr-only"> (${shadeText})</span>` : "";
+  const cols = cell.colspan > 1 ? ` colspan="${cell.colspan}"` : "";
+  const cases = cell.merged.map((c) => table.columns.find((x) => x.id === c)?.column).join(" ");
+  return `<td${cols} class="${cls.join(" ")}" data-cases="${escapeHtml(cell.merged.join(" "))}" data-columns="${cases}"${title}>` +
+    `<div class="cell-body">${textHtml(cell.printed)}${sr}</div>${mark}</td>`;
+}
+
+function tableHtml(t) {
+  const head = t.columns.map((c) =>
+    `<th scope="col" class="case-head"><a href="${c.href}" data-case="${escapeHtml(c.id)}">` +
+    `<span class="colno">${c.column}</span> <span class="coltitle">${escapeHtml(c.title)}</span></a></th>`).join("");
+  const lastHeader = [...t.rows].reverse().find((r) => r.header)?.key;
+  const rows = [];
+  for (const grow of t.grid) {
+    const row = t.rows.find((r) => r.key === grow.key);
+    const subs = grow.cells.some((c) => c.subrow);
+    const rowspan = subs ? ' rowspan="2"' : "";
+    const cls = [row.header ? "hdr" : "inv", `row-${row.key}`];
+    if (row.key === lastHeader && !subs) cls.push("double-rule");
+    rows.push(`<tr class="${cls.join(" ")}"><th scope="row"${rowspan}>${textHtml(row.printed)}</th>` +
+      grow.cells.map((c) => cellHtml(c, t)).join("") + "</tr>");
+    if (subs) {
+      // Table 2: the restrictions row has a second line (a = 2R) under one column
+      const cells = [];
+      for (const c of grow.cells) {
+        for (const id of c.merged) {
+          const sub = c.subrow && (c.subrow_case || c.merged[0]) === id ? textHtml(c.subrow.printed) : "";
+          cells.push(`<td class="shade-none subrow">${sub}</td>`);
+        }
+      }
+      const sc = ["hdr", "subrow-row"];
+      if (row.key === lastHeader) sc.push("double-rule");
+      rows.push(`<tr class="${sc.join(" ")}">${cells.join("")}</tr>`);
+    }
+  }
+  return `<table class="paper" id="tbl-${t.id}" aria-describedby="cap-${t.id}">` +
+    `<thead><tr><th scope="col" class="corner"><span class="sr-only">row</span></th>${head}</tr></thead>` +
+    `<tbody>${rows.join("")}</tbody></table>`;
+}
+
+async function showTable(id) {
+  const section = document.getElementById(`table-${id}`);
+  const wrap = section.querySelector(".table-wrap");
+  try {
+    const t = await api(`/api/tables/${id}`);
+    section.querySelector("h2").textContent = t.caption_plain;
+    wrap.innerHTML = tableHtml(t);
+    section.querySelector(".remark").innerHTML = textHtml(t.remark_printed);
+    return t;
+  } catch (err) {
+    wrap.innerHTML = `<p class="error" role="alert">Could not load the table: ${escapeHtml(err.message)}</p>`;
+    return null;
+  }
+}
+
+let lastDone = null;
+
+async function showStatus() {
+  const el = document.getElementById("verify-status");
+  try {
+    const h = await api("/api/health");
+    const v = h.verification;
+    const done = `${v.cases_done} of ${v.cases_total} cases verified`;
+    if (lastDone !== null && v.cases_done !== lastDone) {
+      await Promise.all([showTable("plane"), showTable("sphere")]);   // new verdicts
+    }
+    lastDone = v.cases_done;
+    if (v.state === "running") setTimeout(showStatus, 4000);
+    el.textContent = v.state === "running" ? `Verification running: ${done}; the marks fill in as it goes.`
+      : v.state === "done" ? `Verdicts: ${done}.`
+        : v.state === "unavailable" ? "Verification unavailable on this server: every claim shows as unchecked."
+          : `Verification ${v.state}: ${done}.`;
+  } catch {
+    el.textContent = "";
+  }
+}
+
+await katexReady();
+await Promise.all([showTable("plane"), showTable("sphere"), showStatus()]);
+document.body.dataset.ready = "1";

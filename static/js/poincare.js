@@ -1,0 +1,184 @@
+// The 3D point maps page: the paper's Figs ris-*1..ris-*4 (static/data/paper_figures.json,
+// written by bench/paper_figures.py) and maps computed on demand by POST /api/poincare
+// (?stream=true: NDJSON progress events, then the result).
+"use strict";
+
+import { api, escapeHtml, fmt } from "./api.js";
+
+const CONFIG = { responsive: true, displaylogo: false };
+const PALETTE = ["#1f5f99", "#c2571a", "#2a8a3e", "#8e3ea8", "#b8860b", "#0f7f8a", "#c21c2c",
+  "#5b6770", "#d6336c", "#3b5bdb", "#66a80f", "#e8590c"];
+const FIG_ORDER = ["ris-1", "ris-2", "ris-3", "ris-4"];
+
+function layout3d(title) {
+  return {
+    title: { text: title, font: { size: 14 }, x: 0.02 },
+    autosize: true,
+    margin: { l: 0, r: 0, t: 36, b: 0 },
+    showlegend: true,
+    legend: { font: { size: 11 } },
+    scene: {
+      xaxis: { title: { text: "L/G" }, range: [-1, 1] },
+      yaxis: { title: { text: "H/G" }, range: [-1, 1] },
+      zaxis: { title: { text: "l" }, range: [0, 2 * Math.PI] },
+      aspectmode: "cube",
+    },
+  };
+}
+
+function traces(trajectories, size = 1.6) {
+  return trajectories.map((t, i) => ({
+    type: "scatter3d", mode: "markers", name: `trajectory ${i + 1}`,
+    x: t.points.map((p) => p[0]), y: t.points.map((p) => p[1]), z: t.points.map((p) => p[2]),
+    marker: { size, color: PALETTE[i % PALETTE.length], opacity: 0.85 },
+    hovertemplate: "L/G %{x:.4f}<br>H/G %{y:.4f}<br>l %{z:.4f}<extra></extra>",
+  }));
+}
+
+async function figures() {
+  const status = document.getElementById("fig-status");
+  const grid = document.getElementById("fig-grid");
+  let data;
+  try {
+    const res = await fetch("/static/data/paper_figures.json");
+    if (!res.ok) throw new Error(`${res.status} ${res.statusText}`);
+    data = await res.json();
+  } catch (e) {
+    status.textContent = `The figure data is missing (run python bench/paper_figures.py): ${e.message}`;
+    status.classList.add("error");
+    return;
+  }
+  status.textContent = "";
+  for (const key of FIG_ORDER) {
+    const f = data[key];
+    if (!f) continue;
+    const card = document.createElement("article");
+    card.className = "fig-card";
+    card.id = `fig-${key}`;
+    const params = Object.entries(f.params)
+      .map(([k, v]) => `${k} = ${v}`).join(", ");
+    card.innerHTML = `<h3>Fig ${key.replace("ris-", "ris-*")}: ${escapeHtml(f.title)}</h3>
+      <p class="status">${escapeHtml(f.case)}; ${escapeHtml(params)}; E₀ = ${f.energy},
+        section g = ${f.section.g0}</p>
+      <div class="plot3d" data-testid="plot-${key}"></div>
+      <ul class="notes">${f.notes.map((n) => `<li>${escapeHtml(n)}</li>`).join("")}</ul>`;
+    grid.appendChild(card);
+    const el = card.querySelector(".plot3d");
+    await window.Plotly.newPlot(el, traces(f.trajectories), layout3d(""), CONFIG);
+    window.Plotly.Plots.resize(el);
+  }
+}
+
+function parseParams(text) {
+  const out = {};
+  for (const item of text.split(/[\s,;]+/).filter(Boolean)) {
+    const [k, v] = item.split("=");
+    if (!k || v === undefined || !Number.isFinite(Number(v))) {
+      throw new Error(`parameter ${JSON.stringify(item)}: expected NAME=NUMBER`);
+    }
+    out[k.trim()] = Number(v);
+  }
+  return out;
+}
+
+async function cases() {
+  const sel = document.getElementById("case");
+  const list = await api("/api/cases");
+  for (const c of list.filter((c) => c.body !== "flat")) {
+    const o = document.createElement("option");
+    o.value = c.id;
+    o.textContent = `${c.id} — ${c.model_title}`;
+    sel.appendChild(o);
+  }
+}
+
+function table(result) {
+  const rows = result.trajectories.map((t, i) => {
+    const spread = Object.entries(t.spread).map(([k, v]) => `${k} ${fmt(v, 2)}`).join(", ");
+    return `<tr><td>${i + 1}</td><td>${t.initial.map((v) => v.toFixed(4)).join(", ")}</td>
+      <td>${t.points.length}</td><td>${escapeHtml(t.status)}</td>
+      <td>${t.check.missed ?? "—"} / ${t.check.extra ?? "—"}</td><td>${escapeHtml(spread)}</td></tr>`;
+  }).join("");
+  document.getElementById("map-table").innerHTML = `<table class="maptab"><thead><tr>
+    <th>#</th><th>start L/G, H/G, l</th><th>points</th><th>status</th><th>missed / extra</th>
+    <th>spread of the integrals on the trajectory</th></tr></thead><tbody>${rows}</tbody></table>`;
+}
+
+async function compute(ev) {
+  ev.preventDefault();
+  const form = new FormData(ev.target);
+  const status = document.getElementById("map-status");
+  const bar = document.getElementById("progress");
+  const button = document.getElementById("run");
+  status.classList.remove("error");
+  let body;
+  try {
+    const params = parseParams(String(form.get("params") || ""));
+    body = {
+      case: form.get("case"), energy: Number(form.get("energy")),
+      section: `g=${Number(form.get("g0"))}`, direction: Number(form.get("direction")),
+      trajectories: Number(form.get("trajectories")), points: Number(form.get("points")),
+      seed: Number(form.get("seed")), params, example: Object.keys(params).length === 0,
+    };
+  } catch (e) {
+    status.textContent = e.message;
+    status.classList.add("error");
+    return;
+  }
+  button.disabled = true;
+  bar.hidden = false;
+  bar.value = 0;
+  status.textContent = "Starting…";
+  try {
+    const res = await fetch("/api/poincare?stream=true", {
+      method: "POST", headers: { "Content-Type": "application/json" }, body: JSON.stringify(body),
+    });
+    if (!res.ok) {
+      const err = await res.json().catch(() => ({}));
+      throw new Error(err.detail || `${res.status} ${res.statusText}`);
+    }
+    const reader = res.body.getReader();
+    const decoder = new TextDecoder();
+    let buf = "";
+    let result = null;
+    for (;;) {
+      const { value, done } = await reader.read();
+      if (value) buf += decoder.decode(value, { stream: true });
+      let nl;
+      while ((nl = buf.indexOf("\n")) >= 0) {
+        const line = buf.slice(0, nl);
+        buf = buf.slice(nl + 1);
+        if (!line.trim()) continue;
+        const ev = JSON.parse(line);
+        if (ev.event === "progress") {
+          bar.max = ev.total;
+          bar.value = ev.done;
+          status.textContent = `${ev.done} of ${ev.total} trajectories`;
+        } else if (ev.event === "error") {
+          throw new Error(ev.detail);
+        } else if (ev.event === "result") {
+          result = ev.result;
+        }
+      }
+      if (done) break;
+    }
+    if (!result) throw new Error("the answer ended before the result");
+    status.textContent = `${result.trajectories.length} trajectories, ${result.points} points each`;
+    await window.Plotly.react(document.getElementById("map-plot"), traces(result.trajectories, 2),
+      layout3d(`${result.case}, E₀ = ${result.energy}, g = ${result.section.g0}`), CONFIG);
+    table(result);
+  } catch (e) {
+    status.textContent = e.message;
+    status.classList.add("error");
+  } finally {
+    button.disabled = false;
+  }
+}
+
+document.getElementById("map-form").addEventListener("submit", compute);
+cases().catch((e) => {
+  const s = document.getElementById("map-status");
+  s.textContent = `Could not load the cases: ${e.message}`;
+  s.classList.add("error");
+});
+figures();

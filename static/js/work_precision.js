@@ -1,0 +1,94 @@
+// The work-precision page: GET /api/work-precision (bench/work_precision.py) drawn as one
+// log-log diagram per case (error against wall time, a trace per method), the Pareto table
+// (ours against each reference at equal error) and what each tolerance of the default
+// method buys.
+"use strict";
+
+import { api, escapeHtml } from "./api.js";
+
+const $ = (id) => document.getElementById(id);
+const OURS = ["dop853", "vern9", "dop853+proj", "vern9+proj"];
+const fmt = (x, d = 1) => (x == null ? "–" : Number(x).toExponential(d));
+const ms = (s) => (s == null ? "–" : (s * 1e3).toFixed(s < 0.01 ? 2 : 1) + " ms");
+
+function traces(runs) {
+  const by = new Map();
+  for (const r of runs) {
+    if (!r.ok || r.error == null) continue;
+    if (!by.has(r.method)) by.set(r.method, []);
+    by.get(r.method).push(r);
+  }
+  return [...by.entries()].map(([method, rs]) => {
+    rs.sort((a, b) => b.tol - a.tol);
+    const ours = OURS.includes(method);
+    return {
+      name: method, x: rs.map((r) => r.error), y: rs.map((r) => r.wall_s * 1e3),
+      text: rs.map((r) => `tol ${fmt(r.tol, 0)}` + (r.rhs_calls ? `, ${r.rhs_calls} rhs calls` : "")
+        + (r.order ? `, order ${r.order}` : "")),
+      mode: "lines+markers", type: "scatter",
+      line: { width: ours ? 2.5 : 1.5, dash: ours ? "solid" : "dot" },
+      hovertemplate: "%{text}<br>error %{x:.1e}<br>%{y:.3g} ms<extra>" + method + "</extra>",
+    };
+  });
+}
+
+function paretoTable(summary) {
+  const rows = summary.table;
+  const refs = Object.keys(rows[0]).filter((k) => !["level", "ours"].includes(k) && !k.startsWith("ratio_"));
+  let html = `<table class="wp-table"><caption>Least time reaching each error level: ours, and how
+    many times longer each reference takes (— : no run of it reached the level)</caption>
+    <thead><tr><th>error ≤</th><th>ours (method, tol)</th><th>time</th>`
+    + refs.map((r) => `<th>${escapeHtml(r)}</th>`).join("") + "</tr></thead><tbody>";
+  for (const row of rows) {
+    const o = row.ours;
+    html += `<tr><td>${fmt(row.level, 0)}</td><td>${o ? `${escapeHtml(o.method)}, ${fmt(o.tol, 0)}` : "not reached"}</td>`
+      + `<td>${o ? ms(o.wall_s) : "–"}</td>`
+      + refs.map((r) => {
+        const q = row[`ratio_${r}`];
+        return `<td>${q ? q.toFixed(q < 10 ? 1 : 0) + "×" : "—"}</td>`;
+      }).join("") + "</tr>";
+  }
+  return html + "</tbody></table>";
+}
+
+function buys(c, summary) {
+  const items = summary.tolerance_buys.map((b) =>
+    `<li>rtol = atol = ${fmt(b.rtol, 0)}: error ${fmt(b.error)} over t = 0 … ${c.t_end}, `
+    + `${ms(b.wall_s)}, ${b.rhs_calls} right-hand-side calls</li>`).join("");
+  return `<p>Default method for this case (fastest at the most error levels on the measured
+    front): <strong>${escapeHtml(summary.default_method)}</strong>. What a tolerance buys:</p><ul>${items}</ul>`;
+}
+
+async function main() {
+  let data;
+  try {
+    data = await api("/api/work-precision");
+  } catch (e) {
+    $("wp-status").textContent = `The measurements are not available: ${e.message}`;
+    $("wp-status").classList.add("error");
+    return;
+  }
+  $("wp-status").textContent = `Error: ${data.error}. ${data.samples} output times per run.`;
+  const root = $("wp-cases");
+  for (const c of data.cases) {
+    const s = data.summary[c.id];
+    const sec = document.createElement("section");
+    const slug = c.id.replace("/", "-");
+    sec.id = slug;
+    sec.innerHTML = `<h2>${escapeHtml(c.id)} <span class="status">T = ${c.t_end}</span></h2>
+      <p class="status">${c.note ? escapeHtml(c.note) + ". " : ""}Reference: ${escapeHtml(c.reference)}.
+      ${escapeHtml(c.reference_check || "")}</p>
+      <div class="wp-plot" id="plot-${slug}" style="height: 420px"></div>
+      ${paretoTable(s)}${buys(c, s)}`;
+    root.appendChild(sec);
+    const runs = data.runs.filter((r) => r.case === c.id);
+    window.Plotly.newPlot(`plot-${slug}`, traces(runs), {
+      xaxis: { type: "log", title: "error (max over the output grid, relative)" },
+      yaxis: { type: "log", title: "wall time [ms]" },
+      margin: { t: 10, r: 10 }, legend: { orientation: "h" },
+    }, { responsive: true, displaylogo: false });
+  }
+}
+
+if (document.readyState === "loading") document.addEventListener("DOMContentLoaded", main);
+else main();

@@ -1,0 +1,61 @@
+"""Browser tests: a real uvicorn on a free loopback port and Debian's chromium driven by
+Playwright (never a downloaded browser build: no `playwright install`)."""
+
+import os
+import shutil
+from pathlib import Path
+
+import pytest
+
+from app.testing import live_server, wait_idle
+
+CHROMIUM = os.environ.get("ROLLING_CHROMIUM", "/usr/bin/chromium")
+ARGS = ["--no-sandbox", "--headless", "--disable-gpu", "--disable-background-networking",
+        "--disable-component-update", "--disable-sync", "--no-first-run"]
+ARTIFACTS = Path(__file__).resolve().parents[2] / "test-artifacts" / "e2e"
+
+
+def pytest_collection_modifyitems(config, items):
+    if Path(CHROMIUM).exists() or shutil.which("chromium"):
+        return
+    if os.environ.get("CI"):
+        return  # on CI a missing browser must fail loudly, not skip
+    skip = pytest.mark.skip(reason=f"{CHROMIUM} not installed (./dev test installs it)")
+    for item in items:
+        if "e2e" in str(item.fspath):
+            item.add_marker(skip)
+
+
+@pytest.fixture(scope="session")
+def browser_type_launch_args(browser_type_launch_args):
+    return {**browser_type_launch_args, "executable_path": CHROMIUM, "args": ARGS,
+            "headless": True}
+
+
+@pytest.fixture(scope="session")
+def browser_context_args(browser_context_args):
+    return {**browser_context_args, "viewport": {"width": 1500, "height": 950},
+            "device_scale_factor": 1}
+
+
+@pytest.fixture(scope="session")
+def server():
+    with live_server(max_steps=10**9, deadline_s=30.0) as url:
+        wait_idle(url, timeout=600)
+        yield url
+
+
+@pytest.fixture(scope="session")
+def artifacts():
+    ARTIFACTS.mkdir(parents=True, exist_ok=True)
+    return ARTIFACTS
+
+
+@pytest.fixture
+def page(page):
+    """pytest-playwright's page, failing the test on any script error in the page."""
+    errors = []
+    page.on("pageerror", lambda e: errors.append(str(e)))
+    page.set_default_timeout(30_000)
+    yield page
+    assert not errors, f"errors in the page: {errors}"

@@ -1,0 +1,36 @@
+"""Browser: every teaching scene opens from the home page and plays; the 3D point maps page
+draws the paper's figures and computes a map with progress (static/js/scenes.js,
+static/js/poincare.js)."""
+
+import pytest
+from playwright.sync_api import expect
+
+from catalogue.scenes import load_scenes
+
+
+@pytest.mark.parametrize("scene_id", list(load_scenes()))
+def test_every_scene_opens_from_the_home_page_and_plays(page, server, scene_id):
+    page.goto(server + "/")
+    link = page.locator(f'#scene-links a[href="/scenes#{scene_id}"]')
+    expect(link).to_be_visible()
+    link.click()
+    page.wait_for_function(f"document.body.dataset.playing === '{scene_id}'",
+                           timeout=90_000)
+    expect(page.locator("#scene-plot .gl-container canvas").first).to_be_visible()
+    first = page.locator("#scene-time").inner_text()
+    page.wait_for_timeout(600)
+    assert page.locator("#scene-time").inner_text() != first      # it plays
+
+
+def test_paper_figures_and_a_computed_map(page, server, artifacts):
+    page.goto(server + "/poincare")
+    for key in ("ris-1", "ris-2", "ris-3", "ris-4"):
+        expect(page.locator(f"[data-testid=plot-{key}] .main-svg").first).to_be_attached()
+    page.fill("input[name=trajectories]", "3")
+    page.fill("input[name=points]", "60")
+    page.click("#run")
+    expect(page.locator("#map-status")).to_contain_text("3 trajectories, 60 points each",
+                                                     timeout=90_000)
+    assert page.eval_on_selector("#progress", "e => [e.value, e.max]") == [3, 3]
+    expect(page.locator("table.maptab tbody tr")).to_have_count(3)
+    page.screenshot(path=str(artifacts / "poincare.png"))

@@ -1,0 +1,67 @@
+"""POST /api/verify/{id}, GET /api/verdicts (app/api/routes/verify.py) and the verdict
+store behind them (app/services/verdicts.py)."""
+
+import pytest
+from fastapi.testclient import TestClient
+
+from app.main import create_app
+from app.services.verdicts import VerdictStore, summary
+from app.testing import settings_for_tests
+
+pytestmark = pytest.mark.filterwarnings("ignore::DeprecationWarning")
+CASE = "plane/routh-ball"
+
+
+@pytest.fixture(scope="module")
+def client():
+    with TestClient(create_app(settings_for_tests(verify_deadline_s=300))) as c:
+        yield c
+
+
+def test_verify_a_case_and_see_the_verdicts_everywhere(client):
+    r = client.post(f"/api/verify/{CASE}")
+    assert r.status_code == 200, r.text
+    d = r.json()
+    assert d["case"] == CASE and d["records"]
+    verdicts = {rec["verdict"] for rec in d["records"]}
+    assert verdicts <= {"verified", "fails", "evidence", "unchecked"}
+    assert "verified" in verdicts
+    for rec in d["records"]:
+        assert rec["claim"].startswith(CASE + "/") and rec["message"]
+    # the case page shows them claim by claim ...
+    c = client.get(f"/api/cases/{CASE}").json()
+    assert c["verification"] == "done"
+    by_id = {rec["claim"]: rec["verdict"] for rec in d["records"]}
+    for cl in c["claims"]:
+        assert cl["verdict"]["verdict"] == by_id[cl["id"]]
+    # ... and the table marks its cells with them
+    t = client.get("/api/tables/plane").json()
+    marks = [cell["verdict"] for row in t["grid"] for cell in row["cells"]
+             if CASE in cell["merged"] and cell["verdict"]]
+    assert marks and any(m["mark"] != "unchecked" for m in marks)
+    assert {rec["claim"] for rec in client.get("/api/verdicts").json()} == set(by_id)
+
+
+def test_unknown_case_is_404(client):
+    r = client.post("/api/verify/plane/no-such-case")
+    assert r.status_code == 404 and "unknown case" in r.json()["detail"]
+
+
+def test_summary_rules():
+    by = {"a": {"verdict": "verified"}, "b": {"verdict": "fails"}, "c": {"verdict": "evidence"}}
+    assert summary([], by) is None
+    assert summary(["a"], by)["mark"] == "verified"
+    assert summary(["a", "b"], by)["mark"] == "fails"
+    assert summary(["a", "c"], by)["mark"] == "evidence"
+    assert summary(["a", "zz"], by) == {"mark": "unchecked", "claims": ["a", "zz"],
+                                        "counts": {"verified": 1, "unchecked": 1}}
+
+
+def test_store_cache_round_trip(tmp_path):
+    s = VerdictStore(["plane/a", "plane/b"], tmp_path)
+    s.put("plane/a", [{"claim": "plane/a/x", "verdict": "verified"}])
+    t = VerdictStore(["plane/a", "plane/b"], tmp_path)
+    assert t.load_cache() and t.by_claim()["plane/a/x"]["verdict"] == "verified"
+    assert t.state != "done"       # plane/b still to verify
+    u = VerdictStore(["plane/a"], tmp_path / "elsewhere")
+    assert not u.load_cache()

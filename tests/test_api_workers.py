@@ -1,0 +1,113 @@
+"""The worker pool behind the CPU routes (app/core/pool.py), against a real uvicorn:
+deadline, bounded queue (503 + Retry-After), cancellation when the client goes away."""
+
+import statistics
+import threading
+import time
+
+import httpx
+import pytest
+
+from app.testing import live_server, wait_idle
+
+LONG = {"case": "plane/chaplygin-ball", "example": True, "t_end": 1e7, "samples": 11}
+SHORT = {"case": "plane/chaplygin-ball", "example": True, "t_end": 10, "samples": 11}
+
+
+@pytest.fixture(scope="module")
+def server():
+    # one worker, one waiting place, a 2 s deadline and no step budget to speak of
+    with live_server(workers=1, queue_size=1, deadline_s=1.5, max_steps=10**9,
+                     retry_after_s=3) as url:
+        wait_idle(url)
+        yield url
+
+
+def health(url):
+    return httpx.get(f"{url}/api/health", timeout=5).json()
+
+
+def test_deadline_kills_the_run_and_says_so(server):
+    before = health(server)["pool"]["timed_out"]
+    t0 = time.monotonic()
+    r = httpx.post(f"{server}/api/simulate", json=LONG, timeout=30)
+    assert 1.4 < time.monotonic() - t0 < 10
+    assert r.status_code == 422
+    assert r.json()["errors"][0]["type"] == "deadline"
+    assert "1.5 s" in r.json()["detail"]
+    assert health(server)["pool"]["timed_out"] == before + 1
+    # the killed worker is replaced: the next run works
+    assert httpx.post(f"{server}/api/simulate", json=SHORT, timeout=30).status_code == 200
+
+
+def test_full_queue_is_503_with_retry_after(server):
+    results = []
+
+    def long_run():
+        results.append(httpx.post(f"{server}/api/simulate", json=LONG, timeout=30).status_code)
+
+    threads = [threading.Thread(target=long_run) for _ in range(2)]
+    for t in threads:
+        t.start()
+        time.sleep(0.3)
+    h = health(server)["pool"]
+    assert h["running"] == 1 and h["waiting"] == 1
+    r = httpx.post(f"{server}/api/simulate", json=SHORT, timeout=10)
+    assert r.status_code == 503
+    assert r.headers["retry-after"] == "3"
+    assert "busy" in r.json()["detail"]
+    # bad input is still judged at once, even with the queue full
+    bad = httpx.post(f"{server}/api/simulate", json={**SHORT, "t_end": -1}, timeout=10)
+    assert bad.status_code == 422
+    for t in threads:
+        t.join()
+    assert results == [422, 422]   # both reached their deadline
+
+
+def test_client_going_away_cancels_the_worker(server):
+    wait_idle(server)
+    before = health(server)["pool"]
+    with pytest.raises(httpx.ReadTimeout):
+        httpx.post(f"{server}/api/simulate", json=LONG, timeout=0.8)
+    deadline = time.monotonic() + 0.6      # before the 1.5 s deadline would fire
+    while time.monotonic() < deadline:
+        h = health(server)["pool"]
+        if h["cancelled"] > before["cancelled"] and h["running"] == 0:
+            break
+        time.sleep(0.05)
+    assert h["cancelled"] == before["cancelled"] + 1
+    assert h["running"] == 0
+    assert h["timed_out"] == before["timed_out"]
+    assert httpx.post(f"{server}/api/simulate", json=SHORT, timeout=30).status_code == 200
+
+
+def test_health_is_not_blocked_by_a_running_simulation(server):
+    """Relative, not absolute (shared machines are noisy): health is answered again and
+    again WHILE a simulation runs, each answer a small fraction of that run's duration."""
+    wait_idle(server)
+    busy = {**SHORT, "t_end": 5e4}     # about a second of integration, then it returns
+    done = {}
+
+    def run():
+        t0 = time.perf_counter()
+        done["status"] = httpx.post(f"{server}/api/simulate", json=busy,
+                                    timeout=60).status_code
+        done["seconds"] = time.perf_counter() - t0
+
+    t = threading.Thread(target=run)
+    t.start()
+    for _ in range(200):                      # until the worker has the job
+        if httpx.get(f"{server}/api/health", timeout=30).json()["pool"]["running"] >= 1:
+            break
+        time.sleep(0.02)
+    times, during = [], 0
+    while t.is_alive() and len(times) < 20:
+        t0 = time.perf_counter()
+        r = httpx.get(f"{server}/api/health", timeout=30)
+        times.append(time.perf_counter() - t0)
+        assert r.status_code == 200
+        during += r.json()["pool"]["running"] >= 1
+    t.join()
+    assert done["status"] == 200
+    assert during >= 3, (during, times)
+    assert statistics.median(times) < done["seconds"] / 10, (times, done)
