@@ -24,6 +24,7 @@ import numpy as np
 
 from solvers.kernels import layout as L
 from solvers.kernels.jit import kernel
+from solvers.kernels.linalg import set_sym3
 from solvers.kernels.reduced import rev_reduced
 from solvers.kernels.support import support_s
 
@@ -101,15 +102,7 @@ def full_kinematics(p, M, g, r, J, w, gd):
     """r, J, omega and dgamma/dt of the full model (arrays filled). Returns a status."""
     (st, r[0], r[1], r[2], J00, J01, J02, J11, J12, J22, w[0], w[1], w[2],
      gd[0], gd[1], gd[2]) = kinematics_s(p, M[0], M[1], M[2], g[0], g[1], g[2])
-    J[0, 0] = J00
-    J[0, 1] = J01
-    J[0, 2] = J02
-    J[1, 0] = J01
-    J[1, 1] = J11
-    J[1, 2] = J12
-    J[2, 0] = J02
-    J[2, 1] = J12
-    J[2, 2] = J22
+    set_sym3(J, J00, J01, J02, J11, J12, J22)
     return st
 
 

@@ -49,3 +49,17 @@ def solve3(A, b, out):
     out[1] = (c01 * b0 + c11 * b1 + c21 * b2) * inv
     out[2] = (c02 * b0 + c12 * b1 + c22 * b2) * inv
     return det
+
+
+@kernel
+def set_sym3(A, a00, a01, a02, a11, a12, a22):
+    """Fill the symmetric 3x3 matrix A from its upper triangle."""
+    A[0, 0] = a00
+    A[0, 1] = a01
+    A[0, 2] = a02
+    A[1, 0] = a01
+    A[1, 1] = a11
+    A[1, 2] = a12
+    A[2, 0] = a02
+    A[2, 1] = a12
+    A[2, 2] = a22

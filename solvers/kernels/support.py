@@ -17,6 +17,7 @@ import numpy as np
 
 from solvers.kernels import layout as L
 from solvers.kernels.jit import kernel
+from solvers.kernels.linalg import set_sym3
 
 FLAT_DISK = 1e-8
 
@@ -97,13 +98,5 @@ def support(p, g, r, J):
     """Fill r (3,) and J (3, 3) at gamma = g. Returns the disk's sin(theta) proxy s >= 0
     (1.0 when the body has no disk part) so callers can detect the flat disk."""
     s, r[0], r[1], r[2], J00, J01, J02, J11, J12, J22 = support_s(p, g[0], g[1], g[2])
-    J[0, 0] = J00
-    J[0, 1] = J01
-    J[0, 2] = J02
-    J[1, 0] = J01
-    J[1, 1] = J11
-    J[1, 2] = J12
-    J[2, 0] = J02
-    J[2, 1] = J12
-    J[2, 2] = J22
+    set_sym3(J, J00, J01, J02, J11, J12, J22)
     return s
