@@ -25,12 +25,12 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy.integrate import DOP853
 
 from solvers.cases import build, initial_state
 from solvers.errors import InputError
+from solvers.integrator import integrate
 from solvers.kernels import layout as L
-from solvers.kernels.fields import flat_kinematics, full_kinematics, rhs
+from solvers.kernels.fields import flat_kinematics, full_kinematics
 from solvers.kernels.support import support
 
 MAX_FRAMES = 10_000
@@ -198,42 +198,21 @@ def scene(case: str, params: dict | None, state0, t_end: float, *, frames: int =
     Q0 = rotation_taking(g0, -E3)
     xP0 = np.zeros(3) if k == 0.0 else Q0 @ g0 / k
     z0 = np.concatenate([y0, Q0.ravel(), xP0 - Q0 @ r0])
-    dy = np.empty(n)
-
-    def field(t, z):
-        y = np.ascontiguousarray(z[:n])
-        st = rhs(model.model, t, y, model.p, dy)
-        if st != L.OK:
-            raise _Singular(int(st))
-        w, r, _ = body(y)
-        Q = z[n:n + 9].reshape(3, 3)
-        return np.concatenate([dy, (Q @ hat(w)).ravel(), Q @ np.cross(r, w)])
-
+    # the compiled scene model integrates (state, Q, x_G) together (fields.scene_field)
+    scene_model = L.MODEL_FLAT_SCENE if model.model == L.MODEL_FLAT else L.MODEL_FULL_SCENE
     t_frames = np.linspace(0.0, float(t_end), frames)
-    out = [z0]
-    status, message, steps = "ok", "", 0
-    solver = DOP853(field, 0.0, z0, float(t_end), rtol=rtol, atol=atol)
-    i = 1
-    try:
-        while i < frames:
-            if steps >= max_steps:
-                status = "budget"
-                message = (f"step budget of {max_steps} steps used up at t = {solver.t:.6g}; "
-                           "the scene shows the frames before it")
-                break
-            msg = solver.step()
-            steps += 1
-            if solver.status == "failed":
-                status, message = "singular", f"integration failed at t = {solver.t:.6g}: {msg}"
-                break
-            dense = solver.dense_output()
-            while i < frames and t_frames[i] <= solver.t:
-                out.append(dense(t_frames[i]))
-                i += 1
-    except _Singular as exc:
-        status = "singular"
-        message = (f"{L.STATUS_TEXT[exc.args[0]]} near t = {solver.t:.6g}; "
-                   "the scene stops there")
+    res = integrate(scene_model, model.p, z0, t_frames, method="dop853", rtol=rtol, atol=atol,
+                    max_steps=max_steps)
+    status, message, steps = "ok", "", res.steps
+    if not res.success:
+        if res.budget_exhausted:
+            status = "budget"
+            message = (f"step budget of {max_steps} steps used up at t = {res.t_stop:.6g}; "
+                       "the scene shows the frames before it")
+        else:
+            status = "singular"
+            message = f"{res.message}; the scene stops there"
+    out = list(res.y[:len(res.t)]) or [z0]
     Z = np.asarray(out)
     Qs, xP, errs = [], [], []
     orth = 0.0
@@ -283,7 +262,7 @@ def scene(case: str, params: dict | None, state0, t_end: float, *, frames: int =
         "mesh": body_mesh(model, extent),
         "status": status,
         "message": message,
-        "stats": {"steps": steps, "rhs_calls": int(solver.nfev), "frames": len(t)},
+        "stats": {"steps": steps, "rhs_calls": int(res.rhs_calls), "frames": len(t)},
         "checks": {
             "orthogonality": orth,          # max |Q^T Q - E| before re-orthonormalising
             "contact_on_support": on_support,

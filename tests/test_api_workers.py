@@ -83,7 +83,8 @@ def test_client_going_away_cancels_the_worker(server):
 
 def test_health_is_not_blocked_by_a_running_simulation(server):
     """Relative, not absolute (shared machines are noisy): health is answered again and
-    again WHILE a simulation runs, each answer a small fraction of that run's duration."""
+    again WHILE a simulation runs (if the event loop ran the simulation, no answer could
+    come before it ends), each answer a fraction of that run's duration."""
     wait_idle(server)
     busy = {**SHORT, "t_end": 5e4}     # about a second of integration, then it returns
     done = {}
@@ -110,4 +111,4 @@ def test_health_is_not_blocked_by_a_running_simulation(server):
     t.join()
     assert done["status"] == 200
     assert during >= 3, (during, times)
-    assert statistics.median(times) < done["seconds"] / 10, (times, done)
+    assert statistics.median(times) < done["seconds"] / 3, (times, done)

@@ -265,6 +265,10 @@ let validateTimer = null;
 let validateCtl = null;
 
 function onEdit() {
+  // every edit supersedes any pending or in-flight server check: a late answer about an
+  // older form must not clear the message about this one
+  clearTimeout(validateTimer);
+  if (validateCtl) validateCtl.abort();
   const { req, errors } = gatherRequest();
   if (errors.length) {
     showFormMessage(errors[0].msg, "bad", errors[0].el);
