@@ -35,3 +35,29 @@ def case_id(request):
 def example_model(case_id):
     c = registry()[case_id]
     return build(case_id, c.example)
+
+
+def revolution_body(kind, k=0.0, g=0.0, s=0.0, a=0.0, brun=0.0, I1=2.0, I3=3.0, m=1.5):
+    """A body of revolution in the kernel's parameter vector (the reduced-system tests):
+    ellipsoid of revolution, rounded ellipsoid (not a quadric), disk or ball."""
+    p = np.zeros(L.N_PARAMS)
+    p[L.I1] = p[L.I2] = I1
+    p[L.I3] = I3
+    p[L.MASS] = m
+    p[L.CURV] = k
+    p[L.GRAV] = g
+    p[L.S3] = s
+    p[L.A3] = a
+    p[L.BRUN] = brun
+    if kind == "ellipsoid":
+        p[L.B11] = p[L.B22] = 0.8
+        p[L.B33] = 0.3
+    elif kind == "rounded":
+        p[L.B11] = p[L.B22] = 0.5
+        p[L.B33] = 1.2
+        p[L.BALL_C] = 0.3
+    elif kind == "disk":
+        p[L.DISK_D] = 0.9
+    elif kind == "ball":
+        p[L.BALL_C] = 0.7
+    return p

@@ -13,6 +13,7 @@ from functools import partial
 
 import numpy as np
 import pytest
+from conftest import revolution_body as body
 from scipy.integrate import solve_ivp
 
 from solvers import reduced as rd
@@ -26,30 +27,6 @@ TOL = 1e-12        # DOP853 rtol = atol
 
 
 # --- bodies ------------------------------------------------------------------------------
-def body(kind, k=0.0, g=0.0, s=0.0, a=0.0, brun=0.0, I1=2.0, I3=3.0, m=1.5):
-    p = np.zeros(L.N_PARAMS)
-    p[L.I1] = p[L.I2] = I1
-    p[L.I3] = I3
-    p[L.MASS] = m
-    p[L.CURV] = k
-    p[L.GRAV] = g
-    p[L.S3] = s
-    p[L.A3] = a
-    p[L.BRUN] = brun
-    if kind == "ellipsoid":
-        p[L.B11] = p[L.B22] = 0.8
-        p[L.B33] = 0.3
-    elif kind == "rounded":
-        p[L.B11] = p[L.B22] = 0.5
-        p[L.B33] = 1.2
-        p[L.BALL_C] = 0.3
-    elif kind == "disk":
-        p[L.DISK_D] = 0.9
-    elif kind == "ball":
-        p[L.BALL_C] = 0.7
-    return p
-
-
 def flat_body(k, s=0.0, z=0.35, I1=2.0, I3=3.1, m=1.3):
     p = np.zeros(L.N_PARAMS)
     p[L.I1] = p[L.I2] = I1

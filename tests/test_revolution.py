@@ -3,31 +3,11 @@
 
 import numpy as np
 import pytest
+from conftest import revolution_body
 
 from solvers import revolution as rv
 from solvers.kernels import layout as L
 from solvers.kernels.reduced import rev_profile
-
-
-def params(kind, a=0.0):
-    p = np.zeros(L.N_PARAMS)
-    p[L.I1] = p[L.I2] = 2.0
-    p[L.I3] = 3.0
-    p[L.MASS] = 1.5
-    p[L.A3] = a
-    if kind == "ellipsoid":
-        p[L.B11] = p[L.B22] = 0.8
-        p[L.B33] = 0.3
-    elif kind == "rounded":          # ellipsoid of revolution + ball part: not a quadric
-        p[L.B11] = p[L.B22] = 0.5
-        p[L.B33] = 1.2
-        p[L.BALL_C] = 0.3
-    elif kind == "disk":
-        p[L.DISK_D] = 0.9
-    elif kind == "ball":
-        p[L.BALL_C] = 0.7
-    return p
-
 
 KINDS = [("ellipsoid", 0.0), ("ellipsoid", 0.25), ("rounded", 0.0), ("rounded", -0.2),
          ("disk", 0.0), ("disk", 0.3), ("ball", 0.0), ("ball", 0.2)]
@@ -36,7 +16,7 @@ U = np.array([-0.93, -0.6, -0.31, -0.05, 0.12, 0.4, 0.77, 0.95])
 
 @pytest.mark.parametrize(("kind", "a"), KINDS)
 def test_meridian_condition_eq2_1_2(kind, a):
-    prof = rv.Profile.from_params(params(kind, a))
+    prof = rv.Profile.from_params(revolution_body(kind, a=a))
     res = rv.meridian_residual(prof, U)
     scale = np.abs(rv.profile(prof, U)[3]) + np.abs(rv.profile(prof, U)[0]) + 1.0
     assert np.max(np.abs(res) / scale) < 1e-14
@@ -44,7 +24,7 @@ def test_meridian_condition_eq2_1_2(kind, a):
 
 @pytest.mark.parametrize(("kind", "a"), KINDS)
 def test_profile_is_kernel_support_eq2_1(kind, a):
-    p = params(kind, a)
+    p = revolution_body(kind, a=a)
     rng = np.random.default_rng(3)
     for _ in range(20):
         g = rng.normal(size=3)
@@ -54,7 +34,7 @@ def test_profile_is_kernel_support_eq2_1(kind, a):
 
 @pytest.mark.parametrize(("kind", "a"), KINDS)
 def test_profile_derivatives_by_complex_step(kind, a):
-    prof = rv.Profile.from_params(params(kind, a))
+    prof = rv.Profile.from_params(revolution_body(kind, a=a))
     h = 1e-30
     f = rv.profile(prof, U)
     fc = rv.profile(prof, U + 1j * h)
@@ -87,7 +67,7 @@ def test_closed_forms_per_part():
 
 @pytest.mark.parametrize(("kind", "a"), KINDS)
 def test_compiled_profile_matches(kind, a):
-    p = params(kind, a)
+    p = revolution_body(kind, a=a)
     prof = rv.Profile.from_params(p)
     out = np.empty(6)
     for u in U:
@@ -100,7 +80,7 @@ def test_compiled_profile_matches(kind, a):
 @pytest.mark.parametrize(("kind", "a"), KINDS)
 def test_gravity_potential_is_m_g_phi(kind, a):
     """U = m g (r, gamma) = m g phi(gamma3) on the unit sphere (h(gamma) = (r, gamma))."""
-    p = params(kind, a)
+    p = revolution_body(kind, a=a)
     prof = rv.Profile.from_params(p)
     for u in U:
         g = np.array([np.sqrt(1 - u * u) * 0.6, np.sqrt(1 - u * u) * 0.8, u])
@@ -110,11 +90,11 @@ def test_gravity_potential_is_m_g_phi(kind, a):
 
 
 def test_not_a_body_of_revolution_is_refused():
-    p = params("ellipsoid")
+    p = revolution_body("ellipsoid")
     p[L.B22] = 0.5
     with pytest.raises(ValueError, match="B11 != B22"):
         rv.Profile.from_params(p)
-    p = params("ball")
+    p = revolution_body("ball")
     p[L.I2] = 2.5
     with pytest.raises(ValueError, match="I1 != I2"):
         rv.Profile.from_params(p)
