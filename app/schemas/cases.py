@@ -33,7 +33,9 @@ class RunnablePublic(BaseModel):
     invariants_when: list[dict[str, Any]] = Field(default_factory=list)
 
 
-class CaseSummary(BaseModel):
+class CaseHead(BaseModel):
+    """What every view of a case starts with (the list and the permalink page)."""
+
     id: str
     title: str
     table: int
@@ -42,6 +44,9 @@ class CaseSummary(BaseModel):
     body: str
     model_title: str
     href: str
+
+
+class CaseSummary(CaseHead):
     claims: int
 
 
@@ -82,15 +87,7 @@ class ClaimPublic(BaseModel):
     corrections: list[VerdictPublic] = Field(default_factory=list)
 
 
-class CasePublic(BaseModel):
-    id: str
-    title: str
-    table: int
-    column: int
-    surface: str
-    body: str
-    model_title: str
-    href: str
+class CasePublic(CaseHead):
     model: dict[str, Any]
     remarks: list[str] = Field(default_factory=list)
     cells: list[CellPublic]
