@@ -40,18 +40,41 @@ def test_deadline_kills_the_run_and_says_so(server):
     assert httpx.post(f"{server}/api/simulate", json=SHORT, timeout=30).status_code == 200
 
 
-def test_full_queue_is_503_with_retry_after(server):
+@pytest.fixture(scope="module")
+def patient_server():
+    # the queue and cancellation tests must see their state before any deadline fires:
+    # a deadline long enough that a loaded machine (CI runs two test workers on two
+    # cores) cannot let it fire first
+    with live_server(workers=1, queue_size=1, deadline_s=5.0, max_steps=10**9,
+                     retry_after_s=3) as url:
+        wait_idle(url)
+        yield url
+
+
+def wait_pool(url, running, waiting, timeout=4.0):
+    """Poll /api/health until the pool holds `running` and `waiting` requests."""
+    deadline = time.monotonic() + timeout
+    while True:
+        h = health(url)["pool"]
+        if (h["running"], h["waiting"]) == (running, waiting) or time.monotonic() > deadline:
+            return h
+        time.sleep(0.05)
+
+
+def test_full_queue_is_503_with_retry_after(patient_server):
+    server = patient_server
     results = []
 
     def long_run():
         results.append(httpx.post(f"{server}/api/simulate", json=LONG, timeout=30).status_code)
 
     threads = [threading.Thread(target=long_run) for _ in range(2)]
-    for t in threads:
-        t.start()
-        time.sleep(0.3)
-    h = health(server)["pool"]
-    assert h["running"] == 1 and h["waiting"] == 1
+    threads[0].start()
+    h = wait_pool(server, running=1, waiting=0)
+    assert (h["running"], h["waiting"]) == (1, 0)
+    threads[1].start()
+    h = wait_pool(server, running=1, waiting=1)
+    assert (h["running"], h["waiting"]) == (1, 1)
     r = httpx.post(f"{server}/api/simulate", json=SHORT, timeout=10)
     assert r.status_code == 503
     assert r.headers["retry-after"] == "3"
@@ -64,12 +87,13 @@ def test_full_queue_is_503_with_retry_after(server):
     assert results == [422, 422]   # both reached their deadline
 
 
-def test_client_going_away_cancels_the_worker(server):
+def test_client_going_away_cancels_the_worker(patient_server):
+    server = patient_server
     wait_idle(server)
     before = health(server)["pool"]
     with pytest.raises(httpx.ReadTimeout):
         httpx.post(f"{server}/api/simulate", json=LONG, timeout=0.8)
-    deadline = time.monotonic() + 0.6      # before the 1.5 s deadline would fire
+    deadline = time.monotonic() + 3.0      # well before the 5 s deadline would fire
     while time.monotonic() < deadline:
         h = health(server)["pool"]
         if h["cancelled"] > before["cancelled"] and h["running"] == 0:
