@@ -56,6 +56,8 @@ def simulate(
     method: Annotated[str, typer.Option(help="integrator (see `rolling methods`)")] = "dop853",
     rtol: Annotated[float, typer.Option(help="relative tolerance")] = 1e-10,
     atol: Annotated[float, typer.Option(help="absolute tolerance")] = 1e-12,
+    step: Annotated[float | None, typer.Option(help="constant step of a symmetric method "
+                                               "(gauss4/6/8; required there)")] = None,
     samples: Annotated[int, typer.Option(help="number of output samples")] = 201,
     project: Annotated[bool, typer.Option("--project", help="project onto the known "
                                           "integrals after every step")] = False,
@@ -81,7 +83,8 @@ def simulate(
                 _fail("--t-end is required")
             t_end = 100.0
         res = run(case, params, y0, t_end, method=method, rtol=rtol, atol=atol,
-                  samples=samples, project=project, allow_any_inertia=allow_any_inertia)
+                  samples=samples, project=project, allow_any_inertia=allow_any_inertia,
+                  step=step)
     except InputError as e:
         _fail(str(e))
     if as_json:
@@ -101,7 +104,8 @@ def _summary(res):
     s = res.stats
     con.print(f"[bold]{res.case}[/bold]  " + " ".join(f"{k}={v:g}" for k, v in res.params.items()))
     con.print(f"status: {res.status}" + (f"  {res.message}" if not res.ok else ""))
-    con.print(f"method {s['method']}  rtol {s['rtol']:g}  atol {s['atol']:g}  steps {s['steps']}"
+    knob = f"step {s['step']:g}" if "step" in s else f"rtol {s['rtol']:g}  atol {s['atol']:g}"
+    con.print(f"method {s['method']}  {knob}  steps {s['steps']}"
               f"  rhs calls {s['rhs_calls']}  wall {s['wall_s'] * 1e3:.1f} ms"
               f"{'  (projected)' if s['projected'] else ''}")
     if len(res.t):
@@ -178,13 +182,18 @@ def _verify_tables(records, only_case):
 @cli.command()
 def methods():
     """List the integration methods."""
-    from solvers.simulate import SCIPY_METHODS, compiled_methods
+    from solvers.collocation import load
+    from solvers.simulate import SCIPY_METHODS, compiled_methods, symmetric_methods
     from solvers.tableaux import TABLEAUX
 
     for name in compiled_methods():
         t = TABLEAUX[name]
         typer.echo(f"{name:14s} compiled explicit Runge-Kutta, order {t.order}, "
                    f"{len(t.c)} stages")
+    for name in symmetric_methods():
+        m = load(name)
+        typer.echo(f"{name:14s} compiled Gauss collocation, symmetric, order {m.order}, "
+                   f"{m.stages} implicit stages, constant step (--step)")
     for name, sp in SCIPY_METHODS.items():
         typer.echo(f"{name:14s} scipy solve_ivp {sp} on the independent NumPy field (reference)")
 

@@ -14,9 +14,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from solvers import tableaux
+from solvers import collocation, tableaux
+from solvers.kernels import gauss, rk
 from solvers.kernels import layout as L
-from solvers.kernels import rk
 from solvers.kernels.fields import rhs
 
 
@@ -79,7 +79,8 @@ class IntegrationResult:
 def status_message(status: int) -> str:
     if 0 <= status < len(L.STATUS_TEXT):
         return L.STATUS_TEXT[status]
-    return rk.STATUS_TEXT.get(status, f"unknown status {status}")
+    text = {**rk.STATUS_TEXT, **gauss.STATUS_TEXT}
+    return text.get(status, f"unknown status {status}")
 
 
 def method_arrays(name: str):
@@ -126,6 +127,11 @@ def integrate(model, p, y0, t_out, *, method="dop853", rtol=1e-10, atol=1e-12,
         raise ValueError("t_out must be finite and strictly increasing; t_out[0] is t0")
     if n != L.STATE_DIM[model]:
         raise ValueError(f"model {model} has a state of dimension {L.STATE_DIM[model]}")
+    if method in collocation.METHODS:
+        if project_codes or section is not None or not h_fixed or not h_fixed > 0:
+            raise ValueError(f"{method} is a symmetric fixed-step method: give h_fixed > 0; "
+                             "it takes no projection and no section")
+        return _integrate_symmetric(model, p, y0, t_out, method, float(h_fixed), max_steps)
     A, c, b, E, P, meth = method_arrays(method)
     if not dense_output:
         P = np.zeros((0, 1))
@@ -164,6 +170,28 @@ def integrate(model, p, y0, t_out, *, method="dop853", rtol=1e-10, atol=1e-12,
         t_stop=float(t_stop), y_stop=y_stop, steps=int(stats[rk.S_ACCEPTED]),
         rejected=int(stats[rk.S_REJECTED]), rhs_calls=int(stats[rk.S_RHS]), wall_s=wall,
         method=method, crossings_t=cross_t[:k].copy(), crossings_y=cross_y[:k].copy())
+
+
+def _integrate_symmetric(model, p, y0, t_out, method, h, max_steps, max_iter=60):
+    """The Gauss collocation kernel (solvers.kernels.gauss): equal steps <= h in each
+    output interval, stages iterated to round-off, compensated summation."""
+    m = collocation.load(method)
+    n = y0.size
+    Y = np.empty((t_out.size, n))
+    y_stop = np.empty(n)
+    stats = np.zeros(4, dtype=np.int64)
+    t0 = time.perf_counter()
+    status, t_stop = gauss.gauss_integrate(int(model), p, y0, t_out, m.A, m.b, m.c, m.X, h,
+                                           int(max_steps), int(max_iter), Y, y_stop, stats)
+    wall = time.perf_counter() - t0
+    k = stats[gauss.G_SAMPLES]
+    message = status_message(status)
+    if status != L.OK:
+        message += f" (stopped at t = {t_stop:.17g})"
+    return IntegrationResult(
+        t=t_out[:k].copy(), y=Y[:k], status=int(status), message=message,
+        t_stop=float(t_stop), y_stop=y_stop, steps=int(stats[gauss.G_STEPS]), rejected=0,
+        rhs_calls=int(stats[gauss.G_RHS]), wall_s=wall, method=method)
 
 
 class _Singular(Exception):

@@ -23,12 +23,19 @@ MAX_SAMPLES = 200_000
 
 
 def compiled_methods() -> tuple[str, ...]:
+    """The adaptive explicit Runge-Kutta methods (solvers/tableaux)."""
     from solvers.tableaux import TABLEAUX
     return tuple(TABLEAUX)
 
 
+def symmetric_methods() -> tuple[str, ...]:
+    """The symmetric fixed-step Gauss collocation methods (they take `step`, not rtol)."""
+    from solvers.collocation import METHODS
+    return tuple(METHODS)
+
+
 def methods() -> tuple[str, ...]:
-    return (*compiled_methods(), *SCIPY_METHODS)
+    return (*compiled_methods(), *symmetric_methods(), *SCIPY_METHODS)
 
 
 @dataclass
@@ -66,7 +73,28 @@ class SimulationResult:
         }
 
 
-def _check_run_options(t_end, method, rtol, atol, samples):
+def check_step(method, step, t_end, max_steps=None, project=False):
+    """The step of a symmetric fixed-step method: required there, refused elsewhere."""
+    if method in symmetric_methods():
+        if step is None:
+            raise InputError(f"method = {method!r} is a symmetric fixed-step method: give its "
+                             "step (e.g. step = 0.1); rtol and atol do not apply to it")
+        if isinstance(step, bool) or not isinstance(step, int | float) \
+                or not math.isfinite(step) or not step > 0:
+            raise InputError(f"step = {step!r}: must be a positive finite number")
+        if max_steps is not None and t_end / step > max_steps:
+            raise InputError(f"step = {step!r}: t_end / step = {t_end / step:.3g} steps, more "
+                             f"than the budget of {max_steps}; take a larger step")
+    elif step is not None:
+        raise InputError(f"step = {step!r}: only the symmetric fixed-step methods "
+                         f"({', '.join(symmetric_methods())}) take a step; {method} "
+                         "chooses its own from rtol and atol")
+    if project and method in symmetric_methods():
+        raise InputError(f"project = true: {method} is symmetric and holds the integrals "
+                         "without projection (a projection would break its symmetry)")
+
+
+def _check_run_options(t_end, method, rtol, atol, samples, step=None, max_steps=None):
     for name, v in (("t_end", t_end), ("rtol", rtol), ("atol", atol)):
         if not isinstance(v, int | float) or not math.isfinite(v):
             raise InputError(f"{name} = {v!r}: must be a finite number")
@@ -80,9 +108,10 @@ def _check_run_options(t_end, method, rtol, atol, samples):
         raise InputError(f"samples = {samples!r}: must be an integer in [2, {MAX_SAMPLES}]")
     if method not in methods():
         raise InputError(f"method = {method!r}: unknown; choose one of {', '.join(methods())}")
+    check_step(method, step, t_end, max_steps)
 
 
-def _integrate(model: Model, y0, t_out, method, rtol, atol, project, max_steps):
+def _integrate(model: Model, y0, t_out, method, rtol, atol, project, max_steps, step=None):
     """Compiled kernels, or scipy's solve_ivp on the independent NumPy field."""
     from solvers.integrator import integrate, solve_ivp_reference
 
@@ -96,6 +125,9 @@ def _integrate(model: Model, y0, t_out, method, rtol, atol, project, max_steps):
             return solve_ivp_reference(model.model, model.p, y0, t_out,
                                        method=SCIPY_METHODS[method], rtol=rtol, atol=atol,
                                        fun=fun)
+    if method in symmetric_methods():
+        return integrate(model.model, model.p, y0, t_out, method=method, h_fixed=step,
+                         max_steps=max_steps)
     return integrate(model.model, model.p, y0, t_out, method=method, rtol=rtol, atol=atol,
                      max_steps=max_steps,
                      project_codes=model.integral_codes if project else ())
@@ -104,7 +136,7 @@ def _integrate(model: Model, y0, t_out, method, rtol, atol, project, max_steps):
 def simulate(case: str, params: dict | None, state0, t_end: float, *,
              method: str = DEFAULT_METHOD, rtol: float = 1e-10, atol: float = 1e-12,
              samples: int = 201, project: bool = False, max_steps: int = 50_000_000,
-             allow_any_inertia: bool = False) -> SimulationResult:
+             allow_any_inertia: bool = False, step: float | None = None) -> SimulationResult:
     """Integrate `case` from `state0` over [0, t_end]; see the module docstring."""
     model = build(case, params, allow_any_inertia=allow_any_inertia)
     y0 = initial_state(model, state0)
@@ -112,14 +144,15 @@ def simulate(case: str, params: dict | None, state0, t_end: float, *,
         from solvers.workprecision import default_method
 
         method = default_method(case, DEFAULT_METHOD)
-    _check_run_options(t_end, method, rtol, atol, samples)
+    _check_run_options(t_end, method, rtol, atol, samples, step, max_steps)
     if project and method in SCIPY_METHODS:
         raise InputError("project = true needs a compiled method (projection happens inside "
                          f"the step); {method} is a scipy reference method")
+    check_step(method, step, t_end, max_steps, project)
     t_out = np.linspace(0.0, float(t_end), samples)
     if not np.all(np.diff(t_out) > 0):
         raise InputError(f"t_end = {t_end!r} is too small for {samples} distinct sample times")
-    res = _integrate(model, y0, t_out, method, rtol, atol, project, max_steps)
+    res = _integrate(model, y0, t_out, method, rtol, atol, project, max_steps, step)
     status = "ok" if res.success else ("budget" if res.budget_exhausted else "singular")
     message = "" if res.success else res.message
     stats = {"steps": res.steps, "rejected": res.rejected, "rhs_calls": res.rhs_calls,
@@ -131,6 +164,10 @@ def simulate(case: str, params: dict | None, state0, t_end: float, *,
         integral_series(code, model.model, np.ascontiguousarray(Y), model.p, out)
         inv[name] = out
     stats.update(rtol=rtol, atol=atol, projected=bool(project), samples=len(t))
+    if step is not None:   # the equal steps that land on the evenly spaced samples
+        dt = float(t_end) / (samples - 1)
+        stats["step"] = dt / max(1, math.ceil(dt / step * (1 - 1e-14)))
+        stats["step_requested"] = step
     result = SimulationResult(case, model.params, model.state_labels, np.asarray(t),
                               np.asarray(Y), inv, stats, status, message)
     stats["drift"] = {name: result.drift(name) for name in inv}

@@ -13,7 +13,7 @@ def warm() -> float:
     from solvers.cases import registry
     from solvers.derivatives import field_jacobian, integral_gradient
     from solvers.kernels.integrals import ENERGY
-    from solvers.simulate import compiled_methods, simulate
+    from solvers.simulate import compiled_methods, simulate, symmetric_methods
 
     seen = set()
     for cid, case in registry().items():
@@ -25,6 +25,8 @@ def warm() -> float:
             r = simulate(cid, case.example, case.state, 0.01, method=method, samples=3)
             simulate(cid, case.example, case.state, 0.01, method=method, samples=3,
                      project=True)
+        simulate(cid, case.example, case.state, 0.01, method=symmetric_methods()[0],
+                 samples=3, step=0.005)
         from solvers.cases import build
         m = build(cid, case.example)
         y = np.asarray(r.state[0])

@@ -108,6 +108,10 @@ def test_schema_errors_are_422_with_field_value_and_why(client, body, field, wor
     ({"params": {"I1": 1}}, "missing parameters"),
     ({"state": None}, "state is required"),
     ({"method": "scipy-rk45", "project": True}, "compiled method"),
+    ({"method": "gauss8"}, "give its step"),
+    ({"method": "vern9", "step": 0.1}, "only the symmetric fixed-step methods"),
+    ({"method": "gauss8", "step": 0.1, "project": True}, "symmetric and holds"),
+    ({"method": "gauss6", "step": 1e-5, "t_end": 1000.0}, "more than the budget of 20000"),
     ({"case": "plane/round-disk", "params": {"I1": 0.25, "I3": 0.5, "m": 1, "R": 1},
       "state": [0, 0, 1, 0, 0, 1]}, "lies flat"),
     ({"case": "sphere/chaplygin-ball", "params": {**BALL["params"], "k": 2.0}}, "does not fit"),
@@ -136,8 +140,18 @@ def test_validate_says_what_would_run(client):
 
 
 def test_methods(client):
-    names = [m["name"] for m in client.get("/api/methods").json()]
-    assert "dop853" in names and "scipy-radau" in names
+    kinds = {m["name"]: m["kind"] for m in client.get("/api/methods").json()}
+    assert kinds["dop853"] == "compiled" and kinds["scipy-radau"] == "scipy reference"
+    assert kinds["gauss8"] == "symmetric"
+
+
+def test_symmetric_method_runs_with_its_step(client):
+    r = client.post("/api/simulate", json={**BALL, "method": "gauss8", "step": 0.25})
+    assert r.status_code == 200, r.text
+    s = r.json()["stats"]
+    # samples 1 apart: four equal steps of 0.25 each
+    assert s["method"] == "gauss8" and s["steps"] == 40 and s["step"] == 0.25
+    assert max(s["drift"].values()) < 1e-14
 
 
 def test_scipy_reference_method(client):

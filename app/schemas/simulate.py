@@ -22,7 +22,7 @@ def _methods() -> tuple[str, ...]:
 
         return tuple(methods())
     except ImportError:  # the compiled integrator is missing: list what the API promises
-        return ("dop853", "vern9", "rk45", "scipy-dop853", "scipy-rk45", "scipy-lsoda",
+        return ("dop853", "vern9", "rk45", "gauss4", "gauss6", "gauss8", "scipy-dop853", "scipy-rk45", "scipy-lsoda",
                 "scipy-radau")
 
 
@@ -57,6 +57,9 @@ class SimulateRequest(BaseModel):
     method: Method = Field("dop853", description="integrator (GET /api/methods)")
     rtol: FiniteFloat = Field(1e-10, ge=1e-16, le=0.1)
     atol: FiniteFloat = Field(1e-12, gt=0, le=1.0)
+    step: FiniteFloat | None = Field(None, gt=0, le=1e3, description="the constant step of "
+                                     "a symmetric method (gauss4/6/8; required there, "
+                                     "refused elsewhere: the others choose theirs)")
     samples: int = Field(201, ge=2, le=MAX_SAMPLES, description="output times, evenly "
                          "spaced on [0, t_end]")
     project: bool = Field(False, description="project onto the known integrals after "

@@ -13,7 +13,7 @@ const $ = (id) => document.getElementById(id);
 const anchor = (claimId) => "claim-" + claimId.replace(/[^A-Za-z0-9_-]+/g, "_");
 const PRETTY = { g1: "γ₁", g2: "γ₂", g3: "γ₃", M1: "M₁", M2: "M₂", M3: "M₃", r1: "r₁", r2: "r₂",
   mu: "μ", lambda: "λ", eps: "ε" };
-const RUN_DEFAULTS = { t_end: "100", samples: "801", rtol: "1e-10", atol: "1e-12" };
+const RUN_DEFAULTS = { t_end: "100", samples: "801", rtol: "1e-10", atol: "1e-12", step: "0.1" };
 
 let C = null;          // the case (GET /api/cases/{id})
 let limits = { deadline_s: 20, max_samples: 20000, max_frames: 600 };
@@ -214,6 +214,18 @@ function gatherRequest() {
     rtol: num("f-rtol", "rtol"), atol: num("f-atol", "atol"),
     method: $("f-method").value, project: $("f-project").checked,
   };
+  // a symmetric method (Gauss collocation) runs with a constant step instead of tolerances
+  const symmetric = req.method.startsWith("gauss");
+  $("l-rtol").hidden = $("l-atol").hidden = symmetric;
+  $("l-step").hidden = !symmetric;
+  $("f-project").disabled = symmetric;
+  if (symmetric) {
+    delete req.rtol;
+    delete req.atol;
+    req.project = false;
+    req.step = num("f-step", "step");
+    if (req.step !== undefined && !(req.step > 0)) errors.push({ el: $("f-step"), msg: `step = ${req.step}: must be positive` });
+  }
   // the simple checks, mirrored here so that most mistakes show before any request
   if (req.t_end !== undefined && !(req.t_end > 0)) errors.push({ el: $("f-t_end"), msg: `t_end = ${req.t_end}: must be positive` });
   if (req.samples !== undefined && !(Number.isInteger(req.samples) && req.samples >= 2 && req.samples <= limits.max_samples)) {
@@ -345,7 +357,8 @@ function runInfo(res, seconds) {
   const drift = Object.entries(s.drift || {}).map(([k, v]) => `${k} ${fmt(v, 2)}`).join(", ");
   const st = `<span class="st-${res.status}">${res.status}</span>`;
   const msg = res.status !== "ok" ? ` — ${escapeHtml(res.message)}` : "";
-  return `${st}${msg}<br>${escapeHtml(s.method)} · rtol ${fmt(s.rtol, 1)} · atol ${fmt(s.atol, 1)} · ` +
+  const knob = s.step !== undefined ? `step ${fmt(s.step, 1)}` : `rtol ${fmt(s.rtol, 1)} · atol ${fmt(s.atol, 1)}`;
+  return `${st}${msg}<br>${escapeHtml(s.method)} · ${knob} · ` +
     `${s.steps} steps · ${s.rhs_calls} field evaluations · integration ${fmt(s.wall_s * 1000, 3)} ms · ` +
     `round trip ${fmt(seconds, 3)} s${s.projected ? " · projected" : ""}<br>max relative drift: ${escapeHtml(drift)}`;
 }
@@ -449,7 +462,8 @@ async function main() {
     limits = h.limits;
     const group = (kind, label) => `<optgroup label="${label}">` + methods.filter((m) => m.kind === kind)
       .map((m) => `<option value="${m.name}">${m.name}</option>`).join("") + "</optgroup>";
-    $("f-method").innerHTML = group("compiled", "compiled Runge–Kutta") + group("scipy reference", "scipy reference");
+    $("f-method").innerHTML = group("compiled", "compiled Runge–Kutta") +
+      group("symmetric", "symmetric, constant step (Gauss)") + group("scipy reference", "scipy reference");
   } catch (err) {
     $("case-title").textContent = "Could not load the case";
     $("facts").innerHTML = `<p class="error" role="alert">${escapeHtml(err.message)}</p>`;

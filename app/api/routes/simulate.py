@@ -34,6 +34,7 @@ _validation_threads = anyio.CapacityLimiter(2)
 def resolve(req: SimulateRequest) -> dict:
     """The run a request asks for, checked by the solvers' own validation (InputError)."""
     from solvers.cases import build, get_case, initial_state
+    from solvers.simulate import check_step
 
     # the output times are linspace(0, t_end, samples); they must be distinct
     if not np.all(np.diff(np.linspace(0.0, req.t_end, req.samples)) > 0):
@@ -49,8 +50,9 @@ def resolve(req: SimulateRequest) -> dict:
     if req.project and req.method.startswith("scipy-"):
         raise InputError(f"project = true needs a compiled method (projection happens inside "
                          f"the step); {req.method} is a scipy reference method")
+    check_step(req.method, req.step, req.t_end, project=req.project)
     return {"case": req.case, "params": params, "state": list(state), "t_end": req.t_end,
-            "method": req.method, "rtol": req.rtol, "atol": req.atol,
+            "method": req.method, "rtol": req.rtol, "atol": req.atol, "step": req.step,
             "samples": req.samples, "project": req.project,
             "allow_any_inertia": req.allow_any_inertia,
             "_model": model}
@@ -64,7 +66,12 @@ async def _resolved(req: SimulateRequest, settings=None) -> dict:
     if settings is not None and frames is not None and frames > settings.max_frames:
         raise InputError(f"frames = {frames}: this server renders at most "
                          f"{settings.max_frames} frames per scene")
-    return await anyio.to_thread.run_sync(resolve, req, limiter=_validation_threads)
+    from solvers.simulate import check_step
+
+    resolved = await anyio.to_thread.run_sync(resolve, req, limiter=_validation_threads)
+    if settings is not None:
+        check_step(req.method, req.step, req.t_end, settings.max_steps)
+    return resolved
 
 
 def _job(resolved: dict) -> dict:
@@ -123,5 +130,5 @@ async def methods() -> list[dict]:
     """Integration methods: compiled Runge-Kutta pairs and scipy reference methods."""
     from app.schemas.simulate import METHODS
 
-    return [{"name": m, "kind": "scipy reference" if m.startswith("scipy-") else "compiled"}
-            for m in METHODS]
+    return [{"name": m, "kind": "scipy reference" if m.startswith("scipy-") else
+             "symmetric" if m.startswith("gauss") else "compiled"} for m in METHODS]
