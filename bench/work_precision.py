@@ -5,7 +5,9 @@ ellipsoid, a ball on a sphere, a flat base on a sphere) and tolerances 1e-4 ... 
 (rtol = atol; scipy from 1e-4 to 1e-14):
 
   ours      dop853, vern9 (compiled kernels, compensated summation), each also with
-            projection onto the case's integrals after every step ("+proj")
+            projection onto the case's integrals after every step ("+proj"); gauss8,
+            the symmetric 4-stage Gauss collocation method with constant steps STEPS
+            (its knob is the step h, not a tolerance: recorded as tol = h, knob "h")
   scipy     solve_ivp DOP853 on the independent NumPy field (solvers/reference.py, what
             `--method scipy-dop853` runs) and on our compiled field (scipy's own overhead
             only); LSODA and Radau on the compiled field
@@ -49,6 +51,7 @@ from solvers.taylor import Taylor
 
 OUT = Path(__file__).with_name("results")
 TOLS = (1e-4, 1e-6, 1e-8, 1e-10, 1e-12, 1e-14, 1e-15, 1e-16)
+STEPS = (0.4, 0.2, 0.1, 0.05, 0.025, 0.0125)     # gauss8
 SCIPY_MIN_TOL = 1e-14    # scipy clips rtol to 2.2e-14: tighter runs would repeat that one
 SAMPLES = 101
 REPEATS = 5
@@ -82,7 +85,8 @@ def _record(case, method, tol, Y, Yref, wall, rhs_calls, steps, ok, msg="", **ex
         if not np.isfinite(err):       # a "successful" run that returned garbage
             err, ok, msg = None, False, f"non-finite output ({msg})"
     return {"case": case.id, "method": method, "tol": tol, "error": err, "wall_s": wall,
-            "rhs_calls": rhs_calls, "steps": steps, "ok": bool(ok), "message": msg, **extra}
+            "rhs_calls": rhs_calls, "steps": steps, "ok": bool(ok), "message": msg,
+            "knob": "tol", **extra}
 
 
 def run_ours(model, y0, t, method, tol, project):
@@ -143,6 +147,13 @@ def run_case(case: WPCase, tols, quick: bool, say) -> list[dict]:
                 r = run_ours(model, y0, t, method, tol, project)
                 runs.append(_record(case, name, tol, r.y, Yref, r.wall_s, r.rhs_calls, r.steps,
                                     r.success, r.message))
+    # the symmetric method, constant steps
+    integrate(model.model, model.p, y0, t[:3], method="gauss8", h_fixed=0.01)
+    for h in (STEPS[:3] if quick else STEPS):
+        r = min((integrate(model.model, model.p, y0, t, method="gauss8", h_fixed=h)
+                 for _ in range(REPEATS)), key=lambda r: r.wall_s)
+        runs.append(_record(case, "gauss8", h, r.y, Yref, r.wall_s, r.rhs_calls, r.steps,
+                            r.success, r.message, knob="h"))
     # heyoka, float64
     compile_s = 0.0
     for tol in tols:
@@ -190,7 +201,9 @@ def table(data) -> list[str]:
                                 for r in refs))
         for row in s["table"]:
             o = row["ours"]
-            head = (f"{row['level']:9.0e} {o['method']:>18s} {o['tol']:6.0e} "
+            knob = (f"{o['tol']:6.0e}" if o.get("knob", "tol") == "tol"
+                    else f"h={o['tol']:.3g}".rjust(6)) if o else ""
+            head = (f"{row['level']:9.0e} {o['method']:>18s} {knob} "
                     f"{o['wall_s'] * 1e3:8.2f} | ") if o else f"{row['level']:9.0e} {'-':>18s} " \
                 f"{'':6s} {'':8s} | "
             cells = []
@@ -238,7 +251,8 @@ def main(argv=None):
         for r in runs:
             e = f"{r['error']:.1e}" if r["error"] is not None else "-"
             w = f"{r['wall_s'] * 1e3:.2f}" if r["wall_s"] is not None else "-"
-            say(f"  {r['method']:20s} tol {r['tol']:.0e}  error {e:>8s}  wall {w:>9s} ms  "
+            k = f"tol {r['tol']:.0e}" if r["knob"] == "tol" else f"h {r['tol']:>7.4g}"
+            say(f"  {r['method']:20s} {k}  error {e:>8s}  wall {w:>9s} ms  "
                 f"rhs {r['rhs_calls'] or '-'}  steps {r['steps'] or '-'}"
                 + ("" if r["ok"] else f"  [{r['message'][:70]}]"))
     lines_table = table(data)

@@ -39,7 +39,7 @@ def _lagrange(c, j):
     den = mpmath.mpf(1)
     for q, cq in enumerate(c):
         if q != j:
-            poly = [a - cq * b for a, b in zip(poly + [0], [0] + poly, strict=True)]
+            poly = [a - cq * b for a, b in zip([*poly, 0], [0, *poly], strict=True)]
             den *= c[j] - cq
     return [a / den for a in poly]
 

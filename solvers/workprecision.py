@@ -24,7 +24,8 @@ LEVELS = (1e-4, 1e-6, 1e-8, 1e-10, 1e-12)
 
 # method keys of the benchmark; OURS are the compiled kernels of this project
 PLAIN = ("dop853", "vern9")
-OURS = (*PLAIN, "dop853+proj", "vern9+proj")
+SYMMETRIC = ("gauss8",)               # constant step: its records' tol is the step h
+OURS = (*PLAIN, "dop853+proj", "vern9+proj", *SYMMETRIC)
 SCIPY_NUMPY = "scipy-DOP853/numpy"    # scipy's DOP853 on the independent NumPy field
 SCIPY_COMPILED = "scipy-DOP853/numba"  # the same on our compiled field (scipy overhead only)
 HEYOKA = "heyoka"
@@ -82,7 +83,7 @@ def _brief(r: dict | None) -> dict | None:
     if r is None:
         return None
     return {"method": r["method"], "tol": r["tol"], "error": r["error"], "wall_s": r["wall_s"],
-            "rhs_calls": r["rhs_calls"]}
+            "rhs_calls": r["rhs_calls"], "knob": r.get("knob", "tol")}
 
 
 def _default_method(by: dict) -> str:

@@ -27,7 +27,8 @@ def test_coefficients_satisfy_B_C_D_in_50_digits(name):
     with mpmath.workdps(collocation.DIGITS):
         eps = mpmath.mpf(10) ** (-40)
         for k in range(1, 2 * s + 1):
-            assert abs(mpmath.fsum(b[i] * c[i] ** (k - 1) for i in range(s)) - mpmath.mpf(1) / k) < eps
+            quad = mpmath.fsum(b[i] * c[i] ** (k - 1) for i in range(s))
+            assert abs(quad - mpmath.mpf(1) / k) < eps
         for k in range(1, s + 1):
             for i in range(s):
                 lhs = mpmath.fsum(A[i][j] * c[j] ** (k - 1) for j in range(s))

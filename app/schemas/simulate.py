@@ -22,8 +22,8 @@ def _methods() -> tuple[str, ...]:
 
         return tuple(methods())
     except ImportError:  # the compiled integrator is missing: list what the API promises
-        return ("dop853", "vern9", "rk45", "gauss4", "gauss6", "gauss8", "scipy-dop853", "scipy-rk45", "scipy-lsoda",
-                "scipy-radau")
+        return ("dop853", "vern9", "rk45", "gauss4", "gauss6", "gauss8", "scipy-dop853",
+                "scipy-rk45", "scipy-lsoda", "scipy-radau")
 
 
 CASE_IDS = _case_ids()

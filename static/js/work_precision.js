@@ -7,7 +7,7 @@
 import { api, escapeHtml } from "./api.js";
 
 const $ = (id) => document.getElementById(id);
-const OURS = ["dop853", "vern9", "dop853+proj", "vern9+proj"];
+const OURS = ["dop853", "vern9", "dop853+proj", "vern9+proj", "gauss8"];
 const fmt = (x, d = 1) => (x == null ? "–" : Number(x).toExponential(d));
 const ms = (s) => (s == null ? "–" : (s * 1e3).toFixed(s < 0.01 ? 2 : 1) + " ms");
 
@@ -23,7 +23,7 @@ function traces(runs) {
     const ours = OURS.includes(method);
     return {
       name: method, x: rs.map((r) => r.error), y: rs.map((r) => r.wall_s * 1e3),
-      text: rs.map((r) => `tol ${fmt(r.tol, 0)}` + (r.rhs_calls ? `, ${r.rhs_calls} rhs calls` : "")
+      text: rs.map((r) => `${r.knob === "h" ? "step h" : "tol"} ${fmt(r.tol, 0)}` + (r.rhs_calls ? `, ${r.rhs_calls} rhs calls` : "")
         + (r.order ? `, order ${r.order}` : "")),
       mode: "lines+markers", type: "scatter",
       line: { width: ours ? 2.5 : 1.5, dash: ours ? "solid" : "dot" },
@@ -41,7 +41,7 @@ function paretoTable(summary) {
     + refs.map((r) => `<th>${escapeHtml(r)}</th>`).join("") + "</tr></thead><tbody>";
   for (const row of rows) {
     const o = row.ours;
-    html += `<tr><td>${fmt(row.level, 0)}</td><td>${o ? `${escapeHtml(o.method)}, ${fmt(o.tol, 0)}` : "not reached"}</td>`
+    html += `<tr><td>${fmt(row.level, 0)}</td><td>${o ? `${escapeHtml(o.method)}, ${o.knob === "h" ? "h = " : ""}${fmt(o.tol, 0)}` : "not reached"}</td>`
       + `<td>${o ? ms(o.wall_s) : "–"}</td>`
       + refs.map((r) => {
         const q = row[`ratio_${r}`];

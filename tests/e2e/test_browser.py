@@ -100,6 +100,27 @@ def test_validation_as_you_type(page, server, artifacts):
     expect(page.locator("#runinfo")).to_have_text("")
 
 
+def test_symmetric_method_takes_a_step_instead_of_tolerances(page, server, artifacts):
+    page.goto(server + "/case/plane/chaplygin-ball")
+    ready(page)
+    expect(page.locator("#l-step")).to_be_hidden()
+    page.select_option("#f-method", "gauss8")
+    expect(page.locator("#l-step")).to_be_visible()
+    expect(page.locator("#l-rtol")).to_be_hidden()
+    expect(page.locator("#f-project")).to_be_disabled()
+    page.fill("#f-step", "-1")
+    expect(page.locator("#formmsg")).to_contain_text("step = -1")
+    page.fill("#f-step", "0.25")
+    page.fill("#f-t_end", "200")
+    page.fill("#f-samples", "201")
+    expect(page.locator("#formmsg")).to_contain_text("valid")
+    page.click("#run")
+    page.wait_for_function("document.body.dataset.run === '1'")
+    expect(page.locator("#runinfo")).to_contain_text("gauss8 · step 0.25")
+    unstick(page)
+    page.locator("#simform").screenshot(path=str(artifacts / "symmetric-method.png"))
+
+
 def test_a_long_run_shows_progress_and_can_be_cancelled(page, server, artifacts):
     page.goto(server + "/case/plane/chaplygin-ball")
     ready(page)
