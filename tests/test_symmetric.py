@@ -179,3 +179,16 @@ def test_field_status_reaches_the_caller():
     r = integrate(model.model, model.p, y, [0, 1], method="gauss4", h_fixed=0.1)
     assert not r.success and r.status < 20 and r.status != L.OK
     assert np.all(np.isfinite(r.y_stop))
+
+
+def test_stiff_near_contact_stops_with_a_message():
+    """1 - kR = 1e-6 (a ball that barely fits its cavity): off the sphere |gamma| = 1 the
+    field is amplified by 1/(1 - kR), so the fixed-point iteration of the implicit stages
+    cannot contract at any step that resolves the motion. The run stops at once, saying
+    why; the adaptive explicit methods do this run (tests/test_extremes.py)."""
+    cid = "sphere/chaplygin-ball"
+    spec = registry()[cid]
+    r = simulate(cid, {**spec.example, "k": 1.0 - 1e-6}, spec.state, 1e-5, samples=11,
+                 method="gauss8", step=1e-8)
+    assert r.status == "singular" and "implicit stages could not be solved" in r.message
+    assert np.all(np.isfinite(r.state))
