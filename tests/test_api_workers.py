@@ -14,13 +14,17 @@ LONG = {"case": "plane/chaplygin-ball", "example": True, "t_end": 1e7, "samples"
 SHORT = {"case": "plane/chaplygin-ball", "example": True, "t_end": 10, "samples": 11}
 
 
-@pytest.fixture(scope="module")
-def server():
-    # one worker, one waiting place, a 2 s deadline and no step budget to speak of
-    with live_server(workers=1, queue_size=1, deadline_s=1.5, max_steps=10**9,
+def _one_worker_server(deadline_s):
+    """One worker, one waiting place, this deadline and no step budget to speak of."""
+    with live_server(workers=1, queue_size=1, deadline_s=deadline_s, max_steps=10**9,
                      retry_after_s=3) as url:
         wait_idle(url)
         yield url
+
+
+@pytest.fixture(scope="module")
+def server():
+    yield from _one_worker_server(1.5)
 
 
 def health(url):
@@ -45,10 +49,7 @@ def patient_server():
     # the queue and cancellation tests must see their state before any deadline fires:
     # a deadline long enough that a loaded machine (CI runs two test workers on two
     # cores) cannot let it fire first
-    with live_server(workers=1, queue_size=1, deadline_s=5.0, max_steps=10**9,
-                     retry_after_s=3) as url:
-        wait_idle(url)
-        yield url
+    yield from _one_worker_server(5.0)
 
 
 def wait_pool(url, running, waiting, timeout=4.0):
