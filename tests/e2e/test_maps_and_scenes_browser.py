@@ -36,3 +36,23 @@ def test_paper_figures_and_a_computed_map(page, server, artifacts):
     assert page.eval_on_selector("#progress", "e => [e.value, e.max]") == [3, 3]
     expect(page.locator("table.maptab tbody tr")).to_have_count(3)
     page.screenshot(path=str(artifacts / "poincare.png"))
+
+
+def test_work_precision_page_draws_every_case(page, server, artifacts):
+    """/work-precision: one log-log diagram per benchmarked case with a trace per method
+    (ours, gauss8 among them, and the references), and the Pareto table under it."""
+    from solvers.workprecision import load_results
+
+    data = load_results()
+    page.goto(server + "/work-precision")
+    expect(page.locator("#wp-status")).to_contain_text("output times per run")
+    for c in data["cases"]:
+        slug = c["id"].replace("/", "-")
+        plot = page.locator(f"#plot-{slug}")
+        expect(plot.locator(".main-svg").first).to_be_attached(timeout=30_000)
+        methods = {r["method"] for r in data["runs"] if r["case"] == c["id"]}
+        assert plot.locator(".scatterlayer .trace").count() == len(methods)
+        expect(plot.locator(".legend")).to_contain_text("gauss8")
+        expect(page.locator(f"#{slug} table tbody tr")).to_have_count(
+            len(data["summary"][c["id"]]["table"]))
+    page.screenshot(path=str(artifacts / "work-precision.png"), full_page=True)
