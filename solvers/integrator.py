@@ -76,11 +76,13 @@ class IntegrationResult:
         return self.status == rk.MAX_STEPS
 
 
+_INTEGRATOR_STATUS_TEXT = {**rk.STATUS_TEXT, **gauss.STATUS_TEXT}
+
+
 def status_message(status: int) -> str:
     if 0 <= status < len(L.STATUS_TEXT):
         return L.STATUS_TEXT[status]
-    text = {**rk.STATUS_TEXT, **gauss.STATUS_TEXT}
-    return text.get(status, f"unknown status {status}")
+    return _INTEGRATOR_STATUS_TEXT.get(status, f"unknown status {status}")
 
 
 def method_arrays(name: str):

@@ -16,6 +16,7 @@ const PRETTY = { g1: "γ₁", g2: "γ₂", g3: "γ₃", M1: "M₁", M2: "M₂", 
 const RUN_DEFAULTS = { t_end: "100", samples: "801", rtol: "1e-10", atol: "1e-12", step: "0.1" };
 
 let C = null;          // the case (GET /api/cases/{id})
+let SYMMETRIC = new Set();  // methods of kind "symmetric" (GET /api/methods): they take a step
 let limits = { deadline_s: 20, max_samples: 20000, max_frames: 600 };
 let lastRun = null;    // {request, result}
 let scene = null;
@@ -215,7 +216,7 @@ function gatherRequest() {
     method: $("f-method").value, project: $("f-project").checked,
   };
   // a symmetric method (Gauss collocation) runs with a constant step instead of tolerances
-  const symmetric = req.method.startsWith("gauss");
+  const symmetric = SYMMETRIC.has(req.method);
   $("l-rtol").hidden = $("l-atol").hidden = symmetric;
   $("l-step").hidden = !symmetric;
   $("f-project").disabled = symmetric;
@@ -460,6 +461,7 @@ async function main() {
       api(`/api/cases/${caseId}`), api("/api/health"), api("/api/methods")]);
     C = c;
     limits = h.limits;
+    SYMMETRIC = new Set(methods.filter((m) => m.kind === "symmetric").map((m) => m.name));
     const group = (kind, label) => `<optgroup label="${label}">` + methods.filter((m) => m.kind === kind)
       .map((m) => `<option value="${m.name}">${m.name}</option>`).join("") + "</optgroup>";
     $("f-method").innerHTML = group("compiled", "compiled Runge–Kutta") +

@@ -31,8 +31,9 @@ router = APIRouter(tags=["simulate"])
 _validation_threads = anyio.CapacityLimiter(2)
 
 
-def resolve(req: SimulateRequest) -> dict:
-    """The run a request asks for, checked by the solvers' own validation (InputError)."""
+def resolve(req: SimulateRequest, max_steps: int | None = None) -> dict:
+    """The run a request asks for, checked by the solvers' own validation (InputError);
+    max_steps: the server's step budget, which a symmetric method's step must fit."""
     from solvers.cases import build, get_case, initial_state
     from solvers.simulate import check_step
 
@@ -50,7 +51,7 @@ def resolve(req: SimulateRequest) -> dict:
     if req.project and req.method.startswith("scipy-"):
         raise InputError(f"project = true needs a compiled method (projection happens inside "
                          f"the step); {req.method} is a scipy reference method")
-    check_step(req.method, req.step, req.t_end, project=req.project)
+    check_step(req.method, req.step, req.t_end, max_steps, req.project)
     return {"case": req.case, "params": params, "state": list(state), "t_end": req.t_end,
             "method": req.method, "rtol": req.rtol, "atol": req.atol, "step": req.step,
             "samples": req.samples, "project": req.project,
@@ -66,12 +67,8 @@ async def _resolved(req: SimulateRequest, settings=None) -> dict:
     if settings is not None and frames is not None and frames > settings.max_frames:
         raise InputError(f"frames = {frames}: this server renders at most "
                          f"{settings.max_frames} frames per scene")
-    from solvers.simulate import check_step
-
-    resolved = await anyio.to_thread.run_sync(resolve, req, limiter=_validation_threads)
-    if settings is not None:
-        check_step(req.method, req.step, req.t_end, settings.max_steps)
-    return resolved
+    max_steps = settings.max_steps if settings is not None else None
+    return await anyio.to_thread.run_sync(resolve, req, max_steps, limiter=_validation_threads)
 
 
 def _job(resolved: dict) -> dict:
@@ -129,6 +126,7 @@ async def scene(req: SceneRequest, request: Request, pool: PoolDep,
 async def methods() -> list[dict]:
     """Integration methods: compiled Runge-Kutta pairs and scipy reference methods."""
     from app.schemas.simulate import METHODS
+    from solvers.simulate import symmetric_methods
 
     return [{"name": m, "kind": "scipy reference" if m.startswith("scipy-") else
-             "symmetric" if m.startswith("gauss") else "compiled"} for m in METHODS]
+             "symmetric" if m in symmetric_methods() else "compiled"} for m in METHODS]
