@@ -61,3 +61,17 @@ def revolution_body(kind, k=0.0, g=0.0, s=0.0, a=0.0, brun=0.0, I1=2.0, I3=3.0, 
     elif kind == "ball":
         p[L.BALL_C] = 0.7
     return p
+
+
+@pytest.fixture(scope="module")
+def patient_client():
+    """A TestClient of the app without worker warm-up and with a 120 s deadline (the
+    Poincare and scene API tests run maps that take seconds)."""
+    from fastapi.testclient import TestClient
+
+    from app.main import create_app
+    from app.testing import settings_for_tests
+
+    with TestClient(create_app(settings_for_tests(warm_workers=False,
+                                                  deadline_s=120.0))) as c:
+        yield c

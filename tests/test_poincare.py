@@ -219,23 +219,11 @@ def test_cli_given_starts_and_errors():
 
 # --- API ---------------------------------------------------------------------------------
 
-@pytest.fixture(scope="module")
-def client():
-    from fastapi.testclient import TestClient
-
-    from app.main import create_app
-    from app.testing import settings_for_tests
-
-    with TestClient(create_app(settings_for_tests(warm_workers=False,
-                                                  deadline_s=120.0))) as c:
-        yield c
-
-
 @pytest.mark.filterwarnings("ignore::DeprecationWarning")
-def test_api_poincare_same_content_as_the_cli(client):
+def test_api_poincare_same_content_as_the_cli(patient_client):
     body = {"case": "plane/chaplygin-ball", "params": BALL, "energy": 2.0, "section": "g=0.5",
             "trajectories": 2, "points": 5}
-    r = client.post("/api/poincare", json=body)
+    r = patient_client.post("/api/poincare", json=body)
     assert r.status_code == 200, r.text
     d = r.json()
     cli_out = runner.invoke(cli, ["poincare", "plane/chaplygin-ball", "--set", "I1=1",
@@ -245,7 +233,7 @@ def test_api_poincare_same_content_as_the_cli(client):
     c = json.loads(cli_out.stdout.strip().splitlines()[-1])
     assert [t["points"] for t in d["trajectories"]] == [t["points"] for t in c["trajectories"]]
     # streamed: progress events, then the same result
-    r = client.post("/api/poincare?stream=true", json=body)
+    r = patient_client.post("/api/poincare?stream=true", json=body)
     events = [json.loads(x) for x in r.text.strip().splitlines()]
     assert r.headers["content-type"].startswith("application/x-ndjson")
     assert [e["done"] for e in events if e["event"] == "progress"][-1] == 2
@@ -254,20 +242,20 @@ def test_api_poincare_same_content_as_the_cli(client):
 
 
 @pytest.mark.filterwarnings("ignore::DeprecationWarning")
-def test_api_poincare_bad_input_is_422(client):
+def test_api_poincare_bad_input_is_422(patient_client):
     for body in ({"case": "sphere/flat-base", "example": True},
                  {"case": "plane/chaplygin-ball", "example": True, "section": "l=0"},
                  {"case": "plane/chaplygin-ball", "example": True, "points": 0},
                  {"case": "plane/chaplygin-ball", "example": True, "energy": -1.0}):
-        r = client.post("/api/poincare", json=body)
+        r = patient_client.post("/api/poincare", json=body)
         assert r.status_code == 422, body
         assert r.json()["detail"]
 
 
 @pytest.mark.filterwarnings("ignore::DeprecationWarning")
-def test_poincare_page_and_figure_data(client):
-    assert client.get("/poincare").status_code == 200
-    r = client.get("/static/data/paper_figures.json")
+def test_poincare_page_and_figure_data(patient_client):
+    assert patient_client.get("/poincare").status_code == 200
+    r = patient_client.get("/static/data/paper_figures.json")
     assert r.status_code == 200
     figs = r.json()
     assert set(figs) == {"ris-1", "ris-2", "ris-3", "ris-4"}

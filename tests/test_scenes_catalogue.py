@@ -104,37 +104,25 @@ def test_the_scene_planner_runs_every_preset(scene_id):
 
 # --- explorer --------------------------------------------------------------------------
 
-@pytest.fixture(scope="module")
-def client():
-    from fastapi.testclient import TestClient
-
-    from app.main import create_app
-    from app.testing import settings_for_tests
-
-    with TestClient(create_app(settings_for_tests(warm_workers=False,
-                                                  deadline_s=120.0))) as c:
-        yield c
-
-
 @pytest.mark.filterwarnings("ignore::DeprecationWarning")
-def test_scenes_api_page_and_home_links(client):
-    r = client.get("/api/scenes")
+def test_scenes_api_page_and_home_links(patient_client):
+    r = patient_client.get("/api/scenes")
     assert r.status_code == 200
     assert [s["id"] for s in r.json()] == list(SCENES)
-    one = client.get("/api/scenes/rattleback-spin-reversal").json()
+    one = patient_client.get("/api/scenes/rattleback-spin-reversal").json()
     assert one["scene"]["case"] == "plane/rattleback"
-    assert client.get("/api/scenes/nope").status_code == 404
-    page = client.get("/scenes")
+    assert patient_client.get("/api/scenes/nope").status_code == 404
+    page = patient_client.get("/scenes")
     assert page.status_code == 200 and "/static/js/scenes.js" in page.text
-    home = client.get("/")
+    home = patient_client.get("/")
     assert 'href="/scenes"' in home.text and "home_links.js" in home.text
-    assert client.get("/static/js/scenes.js").status_code == 200
+    assert patient_client.get("/static/js/scenes.js").status_code == 200
 
 
 @pytest.mark.filterwarnings("ignore::DeprecationWarning")
-def test_rattleback_scene_plays_through_the_scene_api(client):
+def test_rattleback_scene_plays_through_the_scene_api(patient_client):
     sc = SCENES["rattleback-spin-reversal"].scene
-    r = client.post("/api/scene", json={"case": sc.case, "params": sc.params,
+    r = patient_client.post("/api/scene", json={"case": sc.case, "params": sc.params,
                                         "state": sc.state, "t_end": 10.0, "frames": 20})
     assert r.status_code == 200, r.text
     d = r.json()
