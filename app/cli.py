@@ -39,7 +39,7 @@ def _parse_state(text: str) -> list[str]:
 @cli.command()
 def cases():
     """List the case ids (Tables 1 and 2) with their parameters."""
-    from solvers.cases import registry
+    from solvers.models.cases import registry
 
     for cid, c in registry().items():
         opt = " ".join(f"[{k}]" for k in c.optional)
@@ -68,8 +68,8 @@ def simulate(
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
 ):
     """Integrate one case and report the state, the invariants and the cost."""
-    from solvers.cases import get_case
     from solvers.errors import InputError
+    from solvers.models.cases import get_case
     from solvers.simulate import simulate as run
 
     try:
@@ -182,9 +182,9 @@ def _verify_tables(records, only_case):
 @cli.command()
 def methods():
     """List the integration methods."""
-    from solvers.collocation import load
+    from solvers.integrate.collocation import load
+    from solvers.integrate.tableaux import TABLEAUX
     from solvers.simulate import SCIPY_METHODS, compiled_methods, symmetric_methods
-    from solvers.tableaux import TABLEAUX
 
     for name in compiled_methods():
         t = TABLEAUX[name]
@@ -255,10 +255,10 @@ def poincare(
     """3D Poincare map in Andoyer-Deprit variables (L/G, H/G, l) on the level E = E0."""
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TimeElapsedColumn
 
-    from solvers.cases import get_case
     from solvers.errors import InputError
-    from solvers.poincare import MapSpec
-    from solvers.poincare import poincare as run
+    from solvers.maps.poincare import MapSpec
+    from solvers.maps.poincare import poincare as run
+    from solvers.models.cases import get_case
     from solvers.simulate import compiled_methods
 
     if method not in compiled_methods():
@@ -314,10 +314,10 @@ def sweep(
     """Maps over a parameter (--vary) or over energy levels (--energies) on dask."""
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TimeElapsedColumn
 
-    from solvers.cases import get_case
     from solvers.errors import InputError
-    from solvers.sweeps import DaskSettings, energy_tasks, parameter_tasks
-    from solvers.sweeps import sweep as run
+    from solvers.maps.sweeps import DaskSettings, energy_tasks, parameter_tasks
+    from solvers.maps.sweeps import sweep as run
+    from solvers.models.cases import get_case
 
     if (vary is None) == (energies is None):
         _fail("give exactly one of --vary NAME=v1,v2,... and --energies e1,e2,...")

@@ -47,7 +47,7 @@ def _prepare() -> None:
     event loop: validation calls compiled functions (the support function, the fit on a
     sphere) whose first call loads them from numba's cache while holding the GIL."""
     from catalogue.load import load_catalogue
-    from solvers.cases import build, initial_state, registry
+    from solvers.models.cases import build, initial_state, registry
 
     load_catalogue()
     for cid, spec in registry().items():
@@ -66,7 +66,7 @@ async def lifespan(app: FastAPI):
     settings: Settings = app.state.settings
     pool = WorkerPool(settings.workers, settings.queue_size, settings.retry_after_s,
                       warm=jobs.warm)
-    from solvers.cases import table_case_ids
+    from solvers.models.cases import table_case_ids
 
     store = VerdictStore(table_case_ids(), settings.cache_dir)
     app.state.pool, app.state.verdicts = pool, store

@@ -1,4 +1,4 @@
-"""Batches of initial conditions on both cores: solvers/batch.py's thread pool (the
+"""Batches of initial conditions on both cores: solvers/integrate/batch.py's thread pool (the
 kernels release the GIL) from 1 to 2 workers, for a Poincare-map batch and a sweep.
 
     .venv/bin/python bench/batch_scaling.py      (or: rolling bench batch)
@@ -19,9 +19,9 @@ from pathlib import Path
 
 import numpy as np
 
-from solvers.batch import integrate_batch
-from solvers.cases import build, registry
-from solvers.integrator import Section
+from solvers.integrate.batch import integrate_batch
+from solvers.integrate.integrator import Section
+from solvers.models.cases import build, registry
 
 OUT = Path(__file__).with_name("results") / "batch_scaling.txt"
 N = 32

@@ -17,7 +17,7 @@ from pathlib import Path
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from solvers.integrator import integrate
+from solvers.integrate.integrator import integrate
 from solvers.kernels import layout as L
 
 T_END, RTOL, REPEATS = 1000.0, 1e-10, 5

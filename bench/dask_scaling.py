@@ -16,7 +16,7 @@ import os
 import time
 from pathlib import Path
 
-from solvers.sweeps import DaskSettings, parameter_tasks, run_task, seeded, sweep
+from solvers.maps.sweeps import DaskSettings, parameter_tasks, run_task, seeded, sweep
 
 BASE = {"I1": 1.0, "I2": 2.0, "I3": 3.0, "m": 1.0, "R": 1.0, "a1": -0.24, "a2": -0.09}
 VALUES = [-0.6 + 0.1 * i for i in range(12)]

@@ -6,7 +6,7 @@ every compiled method (no projection): the solver core's done-when figure.
 
 from pathlib import Path
 
-from solvers.cases import registry
+from solvers.models.cases import registry
 from solvers.simulate import simulate
 
 

@@ -19,9 +19,9 @@ import time
 import numba
 import numpy as np
 
-from solvers.cases import build, registry
 from solvers.kernels import layout as L
 from solvers.kernels.fields import rhs
+from solvers.models.cases import build, registry
 
 N = 200_000
 CASES = ("plane/chaplygin-ball", "plane/unbalanced-ball", "plane/round-disk",

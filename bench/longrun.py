@@ -29,9 +29,9 @@ from pathlib import Path
 
 import numpy as np
 
-from solvers.cases import build, initial_state, registry
-from solvers.integrator import integrate
+from solvers.integrate.integrator import integrate
 from solvers.kernels.integrals import integral_series
+from solvers.models.cases import build, initial_state, registry
 
 OUT = Path(__file__).with_name("results")
 T_END = 1e5

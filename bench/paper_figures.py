@@ -17,8 +17,8 @@ from pathlib import Path
 
 import numpy as np
 
-from solvers.map_analysis import correlation_dimension, jacobian, log_det_series
-from solvers.poincare import MapSpec, map_model, poincare
+from solvers.maps.map_analysis import correlation_dimension, jacobian, log_det_series
+from solvers.maps.poincare import MapSpec, map_model, poincare
 
 ROOT = Path(__file__).resolve().parents[1]
 TOL = {"rtol": 1e-12, "atol": 1e-14}
@@ -201,7 +201,7 @@ def main():
             "map coordinates (L/G, H/G, l); spreads: (max - min)/|mean| over the points of "
             "one trajectory for the integrals, absolute for H/G; D2: correlation dimension "
             "(scales 0.01-0.1 of (L/G, H/G, l/pi)); missed/extra: the crossing check of "
-            "solvers/poincare.py", ""]
+            "solvers/maps/poincare.py", ""]
     data = {}
     fig1(text, data)
     fig23(text, data)

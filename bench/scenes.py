@@ -2,7 +2,7 @@
 what the scene shows.
 
 For every scene below (and the teaching presets of catalogue/scenes.yaml), in this
-process: the planner's run (solvers/planner.py: reduced system where it serves, no
+process: the planner's run (solvers/scenes/planner.py: reduced system where it serves, no
 orientation or contact path unless animated, only the plotted samples, no dense output
 for a section alone) and the baseline `full_plan` (the animation model with every output,
 at the scene's samples), best of REPEATS each, with the same rtol/atol. Accuracy: what
@@ -23,8 +23,8 @@ from pathlib import Path
 
 import numpy as np
 
-from solvers import planner
-from solvers.scenes import Scene
+from solvers.scenes import planner
+from solvers.scenes.scenes import Scene
 
 OUT = Path(__file__).with_name("results")
 REPEATS = 5

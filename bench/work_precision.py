@@ -8,10 +8,10 @@ ellipsoid, a ball on a sphere, a flat base on a sphere) and tolerances 1e-4 ... 
             projection onto the case's integrals after every step ("+proj"); gauss8,
             the symmetric 4-stage Gauss collocation method with constant steps STEPS
             (its knob is the step h, not a tolerance: recorded as tol = h, knob "h")
-  scipy     solve_ivp DOP853 on the independent NumPy field (solvers/reference.py, what
+  scipy     solve_ivp DOP853 on the independent NumPy field (solvers/models/reference.py, what
             `--method scipy-dop853` runs) and on our compiled field (scipy's own overhead
             only); LSODA and Radau on the compiled field
-  heyoka    adaptive Taylor in float64 on the expression system of solvers/taylor.py
+  heyoka    adaptive Taylor in float64 on the expression system of solvers/integrate/taylor.py
             (compiled once per tolerance, compilation excluded and reported)
 
 Error: max over 101 output times of |y - y_ref|_inf / max(1, max|y_ref|_inf); the
@@ -26,7 +26,7 @@ absolute time is asserted anywhere: the ratios are read side by side.
     .venv/bin/python bench/work_precision.py [--quick]       (or: rolling bench work-precision)
 
 Writes bench/results/work_precision.json (every run) and work_precision.txt (the table);
-solvers/workprecision.py summarises them for the explorer (GET /api/work-precision).
+solvers/integrate/workprecision.py summarises them for the explorer (GET /api/work-precision).
 """
 
 from __future__ import annotations
@@ -42,12 +42,12 @@ from pathlib import Path
 
 import numpy as np
 
-from solvers import workprecision as wp
-from solvers.cases import build, initial_state, registry
-from solvers.integrator import integrate, solve_ivp_reference
+from solvers.integrate import workprecision as wp
+from solvers.integrate.integrator import integrate, solve_ivp_reference
+from solvers.integrate.taylor import Taylor
 from solvers.kernels.fields import rhs
-from solvers.reference import field as ref_field
-from solvers.taylor import Taylor
+from solvers.models.cases import build, initial_state, registry
+from solvers.models.reference import field as ref_field
 
 OUT = Path(__file__).with_name("results")
 TOLS = (1e-4, 1e-6, 1e-8, 1e-10, 1e-12, 1e-14, 1e-15, 1e-16)

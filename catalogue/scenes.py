@@ -2,9 +2,9 @@
 
 Each preset is a short explanation for a class, the claim it demonstrates, the paper's
 labels, the run itself as the scene planner's declaration (`scene`: a
-`solvers.scenes.Scene` with the case, all its parameters, the initial state, t_end, what
+`solvers.scenes.scenes.Scene` with the case, all its parameters, the initial state, t_end, what
 is shown and how many samples / frames), and the checks that show the claim on that run
-(`checks`, run by solvers.scene_checks and tests/test_scenes_catalogue.py). The schema is
+(`checks`, run by solvers.scenes.scene_checks and tests/test_scenes_catalogue.py). The schema is
 strict (extra="forbid"); `load_scenes()` also builds every model and validates every state.
 
     from catalogue.scenes import load_scenes
@@ -20,7 +20,7 @@ from typing import Annotated, Literal
 import yaml
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
-from solvers.scenes import Scene as SceneDeclaration
+from solvers.scenes.scenes import Scene as SceneDeclaration
 
 PATH = Path(__file__).resolve().parent / "scenes.yaml"
 
@@ -82,14 +82,14 @@ class Scene(_Strict):
     paper: list[str] = Field(default_factory=list, description="equation / figure labels "
                              "of the paper, or other sources")
     scene: SceneDeclaration = Field(description="the run, as the scene planner declares "
-                                    "it (solvers/scenes.py); params and state in full")
+                                    "it (solvers/scenes/scenes.py); params and state in full")
     checks: list[Check] = Field(min_length=1)
 
     @model_validator(mode="after")
     def _runnable(self):
-        from solvers.cases import build, get_case, initial_state
         from solvers.errors import InputError
         from solvers.kernels.integrals import NAMES
+        from solvers.models.cases import build, get_case, initial_state
 
         sc = self.scene
         try:

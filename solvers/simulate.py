@@ -2,7 +2,7 @@
 
 It validates everything first (InputError, nothing runs), integrates with the compiled
 in-house Runge-Kutta kernels or, for `scipy-*` methods, with scipy's solve_ivp on the
-independent NumPy field of solvers/reference.py, and reports the drift of every
+independent NumPy field of solvers/models/reference.py, and reports the drift of every
 invariant the case carries. A run that meets a singularity returns what it computed up to
 there, with status "singular" and a message saying where: never NaN as a result.
 """
@@ -12,9 +12,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from solvers.cases import Model, build, initial_state
 from solvers.errors import InputError
 from solvers.kernels.integrals import integral_series
+from solvers.models.cases import Model, build, initial_state
 
 SCIPY_METHODS = {"scipy-dop853": "DOP853", "scipy-rk45": "RK45", "scipy-lsoda": "LSODA",
                  "scipy-radau": "Radau"}
@@ -24,13 +24,13 @@ MAX_SAMPLES = 200_000
 
 def compiled_methods() -> tuple[str, ...]:
     """The adaptive explicit Runge-Kutta methods (solvers/tableaux)."""
-    from solvers.tableaux import TABLEAUX
+    from solvers.integrate.tableaux import TABLEAUX
     return tuple(TABLEAUX)
 
 
 def symmetric_methods() -> tuple[str, ...]:
     """The symmetric fixed-step Gauss collocation methods (they take `step`, not rtol)."""
-    from solvers.collocation import METHODS
+    from solvers.integrate.collocation import METHODS
     return tuple(METHODS)
 
 
@@ -112,10 +112,10 @@ def _check_run_options(t_end, method, rtol, atol, samples):
 
 def _integrate(model: Model, y0, t_out, method, rtol, atol, project, max_steps, step=None):
     """Compiled kernels, or scipy's solve_ivp on the independent NumPy field."""
-    from solvers.integrator import integrate, solve_ivp_reference
+    from solvers.integrate.integrator import integrate, solve_ivp_reference
 
     if method in SCIPY_METHODS:
-        from solvers.reference import field as ref_field
+        from solvers.models.reference import field as ref_field
 
         def fun(t, y):
             return ref_field(model.model, model.p, y)
@@ -140,7 +140,7 @@ def simulate(case: str, params: dict | None, state0, t_end: float, *,
     model = build(case, params, allow_any_inertia=allow_any_inertia)
     y0 = initial_state(model, state0)
     if method == "auto":   # the case's default, from the measured work-precision front
-        from solvers.workprecision import default_method
+        from solvers.integrate.workprecision import default_method
 
         method = default_method(case, DEFAULT_METHOD)
     _check_run_options(t_end, method, rtol, atol, samples)

@@ -10,9 +10,9 @@ import numpy as np
 
 def warm() -> float:
     t0 = time.perf_counter()
-    from solvers.cases import registry
-    from solvers.derivatives import field_jacobian, integral_gradient
     from solvers.kernels.integrals import ENERGY
+    from solvers.models.cases import registry
+    from solvers.models.derivatives import field_jacobian, integral_gradient
     from solvers.simulate import compiled_methods, simulate, symmetric_methods
 
     seen = set()
@@ -27,7 +27,7 @@ def warm() -> float:
                      project=True)
         simulate(cid, case.example, case.state, 0.01, method=symmetric_methods()[0],
                  samples=3, step=0.005)
-        from solvers.cases import build
+        from solvers.models.cases import build
         m = build(cid, case.example)
         y = np.asarray(r.state[0])
         field_jacobian(m.model, m.p, y)

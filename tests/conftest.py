@@ -1,16 +1,16 @@
 import numpy as np
 import pytest
 
-from solvers.cases import build, initial_state, registry
 from solvers.kernels import layout as L
+from solvers.models.cases import build, initial_state, registry
 
 CASE_IDS = list(registry())
 
 
 def random_states(model, n, rng, spread=1.0):
     """n random phase points of the model near its demo state (unit gamma, fitting)."""
-    from solvers.bodies import check_state
     from solvers.errors import InputError
+    from solvers.models.bodies import check_state
 
     base = initial_state(model, model.case.state)
     out = []

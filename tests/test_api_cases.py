@@ -6,7 +6,7 @@ from fastapi.testclient import TestClient
 from app.main import create_app
 from app.testing import settings_for_tests
 from catalogue.load import load_catalogue
-from solvers.cases import table_case_ids
+from solvers.models.cases import table_case_ids
 
 pytestmark = pytest.mark.filterwarnings("ignore::DeprecationWarning")
 

@@ -1,5 +1,5 @@
 """POST /api/scene (app/api/routes/simulate.py) and the kinematics behind it
-(solvers/kinematics.py): the body's rotation and contact path for the 3D animation."""
+(solvers/models/kinematics.py): the body's rotation and contact path for the 3D animation."""
 
 import numpy as np
 import pytest
@@ -7,8 +7,8 @@ from fastapi.testclient import TestClient
 
 from app.main import create_app
 from app.testing import settings_for_tests
-from solvers.cases import registry, table_case_ids
-from solvers.kinematics import nearest_rotation, rotation_taking, scene
+from solvers.models.cases import registry, table_case_ids
+from solvers.models.kinematics import nearest_rotation, rotation_taking, scene
 
 pytestmark = pytest.mark.filterwarnings("ignore::DeprecationWarning")
 

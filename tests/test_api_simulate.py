@@ -9,7 +9,7 @@ from fastapi.testclient import TestClient
 
 from app.main import create_app
 from app.testing import settings_for_tests
-from solvers.cases import registry
+from solvers.models.cases import registry
 
 pytestmark = pytest.mark.filterwarnings("ignore::DeprecationWarning")
 

@@ -4,7 +4,7 @@ scipy reference, singularities reported where they happen."""
 import numpy as np
 import pytest
 
-from solvers.cases import registry
+from solvers.models.cases import registry
 from solvers.simulate import simulate
 
 
@@ -27,7 +27,7 @@ def test_energy_and_geometric_integral_over_1000(case_id):
 
 def test_agrees_with_scipy_reference(case_id):
     """Same trajectory from the compiled integrator on the compiled field and from scipy's
-    DOP853 on the independent NumPy field (solvers/reference.py)."""
+    DOP853 on the independent NumPy field (solvers/models/reference.py)."""
     c = registry()[case_id]
     ours = simulate(case_id, c.example, c.state, 20.0, rtol=1e-13, atol=1e-14, samples=41)
     ref = simulate(case_id, c.example, c.state, 20.0, method="scipy-dop853", rtol=1e-13,
@@ -76,8 +76,8 @@ def test_body_stops_when_it_no_longer_fits_the_sphere():
     """An elongated ellipsoid in a cavity: fits at the start, not after tipping over."""
     params = {"m": 1.0, "b1": 0.04, "b2": 0.05, "b3": 1.0, "mu": 0.1}
     # a cavity where the flat end fits but the long side does not
-    from solvers.cases import build
     from solvers.errors import InputError
+    from solvers.models.cases import build
     with pytest.raises(InputError):
         build("plane/ellipsoid", {**params, "k": 1.0})   # plane case has no k
     r = simulate("sphere/body-of-revolution",

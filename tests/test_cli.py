@@ -7,7 +7,7 @@ import sys
 import numpy as np
 import pytest
 
-from solvers.cases import registry
+from solvers.models.cases import registry
 
 
 def rolling(*args):

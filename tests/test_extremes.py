@@ -13,10 +13,10 @@ import math
 import numpy as np
 import pytest
 
-from solvers.cases import registry
 from solvers.errors import InputError
-from solvers.integrator import Section, integrate
+from solvers.integrate.integrator import Section, integrate
 from solvers.kernels import layout as L
+from solvers.models.cases import registry
 from solvers.simulate import simulate
 
 BALL = "plane/chaplygin-ball"
@@ -198,7 +198,7 @@ def test_section_crossings_agree_across_methods_and_tolerances():
     """The Chaplygin ball on a sphere grazes g3 = 0 near t = 144.6 (down, then up at
     144.853): every method and tolerance finds the same upward crossings."""
     c = registry()[CAVITY]
-    from solvers.cases import build
+    from solvers.models.cases import build
 
     m = build(CAVITY, c.example)
     runs = [integrate(m.model, m.p, c.state, [0.0, 240.0], method=meth, rtol=rtol,

@@ -4,13 +4,13 @@ import numpy as np
 import pytest
 from conftest import random_states
 
-from solvers.cases import build, registry
-from solvers.derivatives import field, integral_rate
 from solvers.kernels import integrals as Q
 from solvers.kernels import layout as L
 from solvers.kernels.support import support
-from solvers.reference import field as ref_field
-from solvers.reference import omega_eq1_6
+from solvers.models.cases import build, registry
+from solvers.models.derivatives import field, integral_rate
+from solvers.models.reference import field as ref_field
+from solvers.models.reference import omega_eq1_6
 
 
 def with_potentials(case_id):

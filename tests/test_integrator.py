@@ -12,8 +12,8 @@ import numba
 import numpy as np
 import pytest
 
-from solvers import tableaux
-from solvers.integrator import (
+from solvers.integrate import tableaux
+from solvers.integrate.integrator import (
     Section,
     initial_integrals,
     integrate,
@@ -305,7 +305,7 @@ def test_second_process_loads_the_kernel_from_the_cache():
     integrate(OSC, P0, [0.0, 1.0], [0.0, 1.0])          # compiled (or loaded) here
     code = textwrap.dedent("""
         import numpy as np
-        from solvers.integrator import integrate
+        from solvers.integrate.integrator import integrate
         from solvers.kernels import rk
         integrate(0, np.zeros(22), [0.0, 1.0], [0.0, 1.0])
         s = rk.rk_integrate.stats

@@ -10,7 +10,7 @@ import sys
 import numpy as np
 import pytest
 
-from solvers.cases import registry
+from solvers.models.cases import registry
 from solvers.simulate import simulate
 
 T_LONG = 1e5

@@ -1,4 +1,4 @@
-"""3D point maps in Andoyer-Deprit variables (solvers/andoyer.py, solvers/poincare.py, the
+"""3D point maps in Andoyer-Deprit variables (solvers/maps/andoyer.py, solvers/maps/poincare.py, the
 nonlinear section of solvers/kernels/sections.py), `rolling poincare` and POST /api/poincare."""
 
 import json
@@ -8,12 +8,12 @@ import pytest
 from typer.testing import CliRunner
 
 from app.cli import cli
-from solvers.andoyer import from_andoyer, g_angle, map_point, on_energy_level, to_andoyer
 from solvers.errors import InputError
 from solvers.kernels.integrals import ENERGY
 from solvers.kernels.rk import model_integral, section_value
 from solvers.kernels.sections import SECTION_ANDOYER_G, andoyer_g_value
-from solvers.poincare import MapSpec, dense_check, map_model, poincare, trace
+from solvers.maps.andoyer import from_andoyer, g_angle, map_point, on_energy_level, to_andoyer
+from solvers.maps.poincare import MapSpec, dense_check, map_model, poincare, trace
 
 BALL = {"I1": 1.0, "I2": 2.0, "I3": 3.0, "m": 1.0, "R": 1.0}
 UNBALANCED = {**BALL, "a1": -0.24, "a2": -0.09, "a3": -0.57}
@@ -139,7 +139,7 @@ def test_fast_turning_g_near_the_pole_gives_no_wild_crossing():
     kernel's step control keeps every located crossing on the trajectory."""
     model = map_model("plane/ellipsoid", ELLIPSOID)
     spec = MapSpec(energy=1.0, points=1000)
-    from solvers.poincare import sample_initial
+    from solvers.maps.poincare import sample_initial
 
     y0 = sample_initial(model, spec, 6, np.random.default_rng(2))[0]
     tr = trace(model, y0, spec)

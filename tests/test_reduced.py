@@ -16,11 +16,11 @@ import pytest
 from conftest import revolution_body as body
 from scipy.integrate import solve_ivp
 
-from solvers import reduced as rd
 from solvers.kernels import layout as L
 from solvers.kernels.fields import rhs
 from solvers.kernels.reduced import rev_reduced_general, rev_reduced_plane
-from solvers.revolution import phi_derivs
+from solvers.models import reduced as rd
+from solvers.models.revolution import phi_derivs
 
 H = 1e-30          # complex step
 TOL = 1e-12        # DOP853 rtol = atol

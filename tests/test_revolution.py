@@ -1,13 +1,13 @@
-"""Profiles of bodies of revolution (solvers.revolution): eq2.1, eq2.1/2, eq2.28, eq2.71,
+"""Profiles of bodies of revolution (solvers.models.revolution): eq2.1, eq2.1/2, eq2.28, eq2.71,
 2-14*, against the compiled support function (support.py) and by complex step."""
 
 import numpy as np
 import pytest
 from conftest import revolution_body
 
-from solvers import revolution as rv
 from solvers.kernels import layout as L
 from solvers.kernels.reduced import rev_profile
+from solvers.models import revolution as rv
 
 KINDS = [("ellipsoid", 0.0), ("ellipsoid", 0.25), ("rounded", 0.0), ("rounded", -0.2),
          ("disk", 0.0), ("disk", 0.3), ("ball", 0.0), ("ball", 0.2)]

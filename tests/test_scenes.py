@@ -5,12 +5,12 @@ import numpy as np
 import pytest
 from pydantic import ValidationError
 
-from solvers import planner
-from solvers.cases import build, registry
-from solvers.integrator import integrate
+from solvers.integrate.integrator import integrate
 from solvers.kernels import layout as L
-from solvers.kinematics import scene as kinematics_scene
-from solvers.scenes import Scene
+from solvers.models.cases import build, registry
+from solvers.models.kinematics import scene as kinematics_scene
+from solvers.scenes import planner
+from solvers.scenes.scenes import Scene
 
 
 def close(a, b, tol):
@@ -102,7 +102,7 @@ def test_planned_run_shows_what_the_full_model_shows(scene):
 @pytest.mark.parametrize("case_id", ["plane/chaplygin-ball", "sphere/routh-ball",
                                      "sphere/flat-base", "plane/round-disk"])
 def test_animation_model_matches_the_kinematics_module(case_id):
-    """MODEL_FULL_SCENE / MODEL_FLAT_SCENE (compiled) against solvers/kinematics.py
+    """MODEL_FULL_SCENE / MODEL_FLAT_SCENE (compiled) against solvers/models/kinematics.py
     (scipy DOP853 on the same equations): orientation, centre of mass, contact path; Q
     stays a rotation and the contact point on the support."""
     c = registry()[case_id]

@@ -9,10 +9,10 @@ import yaml
 from pydantic import ValidationError
 
 from catalogue.scenes import PATH, load_scenes, parse
-from solvers.bodies import rattleback_B
-from solvers.cases import build, registry, table_case_ids
 from solvers.kernels import layout as L
-from solvers.scene_checks import run_checks
+from solvers.models.bodies import rattleback_B
+from solvers.models.cases import build, registry, table_case_ids
+from solvers.scenes.scene_checks import run_checks
 
 SCENES = load_scenes()
 REQUIRED_CASES = {"plane/chaplygin-ball", "plane/round-disk", "plane/routh-ball",
@@ -79,7 +79,7 @@ def test_rattleback_body_is_turned_against_the_inertia_axes():
 def test_rattleback_spin_keeps_its_sense_without_the_turn_or_turned_the_other_way(delta):
     """The reversal comes from the turn delta: with delta = 0 the same spin persists, and
     with -delta the same spin is the stable sense."""
-    from solvers.observables import spin_reversals, vertical_spin
+    from solvers.models.observables import spin_reversals, vertical_spin
     from solvers.simulate import simulate
 
     s = SCENES["rattleback-spin-reversal"]
@@ -92,9 +92,9 @@ def test_rattleback_spin_keeps_its_sense_without_the_turn_or_turned_the_other_wa
 
 @pytest.mark.parametrize("scene_id", list(SCENES))
 def test_the_scene_planner_runs_every_preset(scene_id):
-    """The presets are the planner's declarations (solvers/scenes.py): it plans and runs
+    """The presets are the planner's declarations (solvers/scenes/scenes.py): it plans and runs
     them (a short stretch here; the animation model integrates the orientation along)."""
-    from solvers.planner import plan, run
+    from solvers.scenes.planner import plan, run
 
     sc = SCENES[scene_id].scene.model_copy(update={"t_end": 1.0, "samples": 11})
     assert plan(sc).kind == "full+orientation"

@@ -1,10 +1,10 @@
-"""Sweeps of 3D point maps on dask.distributed (solvers/sweeps.py): a tiny LocalCluster,
+"""Sweeps of 3D point maps on dask.distributed (solvers/maps/sweeps.py): a tiny LocalCluster,
 results independent of the number of workers for a fixed seed, settings, validation."""
 
 import pytest
 
 from solvers.errors import InputError
-from solvers.sweeps import (
+from solvers.maps.sweeps import (
     DaskSettings,
     MapTask,
     energy_tasks,

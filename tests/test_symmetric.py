@@ -1,4 +1,4 @@
-"""The symmetric Gauss collocation methods (solvers.collocation, solvers.kernels.gauss):
+"""The symmetric Gauss collocation methods (solvers.integrate.collocation, solvers.kernels.gauss):
 their coefficients, their order, their symmetry, and what symmetry buys on the rolling
 bodies (no secular drift of the integrals), plus the run options that go with them."""
 
@@ -6,12 +6,12 @@ import mpmath
 import numpy as np
 import pytest
 
-from solvers import collocation
-from solvers.cases import build, initial_state, registry
 from solvers.errors import InputError
-from solvers.integrator import initial_integrals, integrate
+from solvers.integrate import collocation
+from solvers.integrate.integrator import initial_integrals, integrate
 from solvers.kernels import gauss
 from solvers.kernels import layout as L
+from solvers.models.cases import build, initial_state, registry
 from solvers.simulate import simulate
 from tests.test_integrator import KEP, P0, TWO_PI, kepler
 

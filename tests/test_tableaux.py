@@ -18,7 +18,7 @@ import numpy as np
 import pytest
 from scipy.integrate import _ivp
 
-from solvers import tableaux as T
+from solvers.integrate import tableaux as T
 
 EXACT_TOL = 1e-24       # the data has >= 30 significant digits (DOP853: scipy's 30)
 FLOAT_TOL = 1e-13

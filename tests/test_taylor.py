@@ -1,4 +1,4 @@
-"""heyoka's expression system of the rolling field (solvers/taylor.py), an independent
+"""heyoka's expression system of the rolling field (solvers/integrate/taylor.py), an independent
 implementation (symbolic r = grad h, J = Hess h of the support function), against the
 compiled field; and heyoka's Taylor integrator against ours on a short run."""
 
@@ -7,13 +7,13 @@ import pytest
 from conftest import random_states
 from test_fields import with_potentials
 
-from solvers.cases import build, registry
-from solvers.derivatives import field
 from solvers.kernels import layout as L
+from solvers.models.cases import build, registry
+from solvers.models.derivatives import field
 
 hy = pytest.importorskip("heyoka")
 
-from solvers.taylor import Taylor, field_function  # noqa: E402
+from solvers.integrate.taylor import Taylor, field_function  # noqa: E402
 
 CASES = [c for c in ("plane/chaplygin-ball", "plane/unbalanced-ball", "plane/round-disk",
                      "plane/ellipsoid", "plane/spherical-inertia", "sphere/chaplygin-ball",
@@ -33,7 +33,7 @@ def test_expression_system_equals_the_compiled_field(case_id):
 
 
 def test_taylor_run_agrees_with_ours():
-    from solvers.integrator import integrate
+    from solvers.integrate.integrator import integrate
 
     c = registry()["plane/chaplygin-ball"]
     model = build("plane/chaplygin-ball", c.example)

@@ -5,8 +5,8 @@ import sys
 
 import pytest
 
-from solvers.cases import registry
 from solvers.errors import InputError
+from solvers.models.cases import registry
 from solvers.simulate import simulate
 
 BALL = {"I1": 1.0, "I2": 2.0, "I3": 2.5, "m": 1.0, "R": 1.0}

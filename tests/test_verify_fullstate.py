@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from catalogue.load import load_catalogue
-from solvers.reduced import to_reduced
+from solvers.models.reduced import to_reduced
 from solvers.verify import verify
 from solvers.verify.checks import structure as S
 from solvers.verify.checks.common import TOL, directional, full_field
@@ -271,7 +271,7 @@ def test_momentum_inverse(catalogue):
 
 
 def test_sphere_reduced_variables_match_solvers(catalogue):
-    """eq3.2-1 here and in solvers.reduced.to_reduced (the map the reduced checks use)."""
+    """eq3.2-1 here and in solvers.models.reduced.to_reduced (the map the reduced checks use)."""
     rng = np.random.default_rng(3)
     for _, P, ys in _models(catalogue, ["sphere/body-of-revolution", "sphere/round-disk"], rng):
         for y in ys:
@@ -281,7 +281,7 @@ def test_sphere_reduced_variables_match_solvers(catalogue):
 def test_sphere_measure_exponent(catalogue):
     """eq3.2: among rho0 (1 - s k f1)^p (1 - s k f2')^q, s = +-1, p, q in -3..3, only p = q = 1,
     s = +1 is invariant (the printed p = 3 is not)."""
-    from solvers.revolution import Profile, profile
+    from solvers.models.revolution import Profile, profile
     from solvers.verify.checks.common import divergence_terms
     from solvers.verify.checks.pointwise import _complex_field
     rng = np.random.default_rng(4)
@@ -431,7 +431,7 @@ def test_wrong_objects_are_caught(monkeypatch):
 
 def test_dependence_check_on_known_functions(catalogue, monkeypatch):
     """A function of F is dependent on F; M^2 and F are not (the against slot replaced)."""
-    from solvers.reduced import flat_reduced
+    from solvers.models.reduced import flat_reduced
     case = catalogue.case("sphere/flat-base-axisymmetric")
     claim = case.claim("sphere/flat-base-axisymmetric/identity/particular-case")
     Q = FORMULAS["flat_axisym_quadratic"]

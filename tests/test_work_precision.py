@@ -7,10 +7,10 @@ import numpy as np
 import pytest
 from fastapi.testclient import TestClient
 
-from solvers import workprecision as wp
-from solvers.batch import integrate_batch
-from solvers.cases import build, registry
-from solvers.integrator import Section, integrate
+from solvers.integrate import workprecision as wp
+from solvers.integrate.batch import integrate_batch
+from solvers.integrate.integrator import Section, integrate
+from solvers.models.cases import build, registry
 
 pytestmark = pytest.mark.filterwarnings("ignore::DeprecationWarning")
 

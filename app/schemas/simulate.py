@@ -11,7 +11,7 @@ MAX_FRAMES = 600
 
 
 def _case_ids() -> tuple[str, ...]:
-    from solvers.cases import case_ids
+    from solvers.models.cases import case_ids
 
     return tuple(case_ids())
 
@@ -72,7 +72,7 @@ class SimulateRequest(BaseModel):
 
 class SceneRequest(SimulateRequest):
     """A run for the 3D animation: the body's orientation and contact path at `frames`
-    evenly spaced times (solvers.kinematics)."""
+    evenly spaced times (solvers.models.kinematics)."""
 
     model_config = ConfigDict(extra="forbid", strict=True)
     frames: int = Field(200, ge=2, le=MAX_FRAMES)

@@ -35,12 +35,12 @@ def warm() -> int:
     """Import the solvers and load the compiled kernels from numba's cache: one short run
     of every case, so that no request pays for a first call (about a second on a sphere)."""
     _lower_priority()
-    from solvers.cases import registry
+    from solvers.models.cases import registry
     from solvers.simulate import simulate
 
     for cid, case in registry().items():
         simulate(cid, case.example, case.state, 0.01, samples=3)
-    import solvers.kinematics  # noqa: F401
+    import solvers.models.kinematics  # noqa: F401
     return os.getpid()
 
 
@@ -96,7 +96,7 @@ def simulate_csv(req: dict, max_steps: int) -> bytes:
 
 def scene_json(req: dict, frames: int, max_steps: int) -> bytes:
     _lower_priority()
-    from solvers.kinematics import scene
+    from solvers.models.kinematics import scene
 
     return dumps(scene(req["case"], req["params"], req["state"], req["t_end"],
                        frames=frames, rtol=min(req["rtol"], 1e-8),

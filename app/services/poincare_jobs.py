@@ -7,7 +7,7 @@ from __future__ import annotations
 def trajectory(job: dict, y0: list[float]) -> dict:
     import numpy as np
 
-    from solvers.poincare import MapSpec, integral_spread, map_model, trace_checked
+    from solvers.maps.poincare import MapSpec, integral_spread, map_model, trace_checked
 
     model = map_model(job["case"], job["params"], allow_any_inertia=job["allow_any_inertia"])
     tr = trace_checked(model, np.asarray(y0, dtype=float), MapSpec(**job["spec"]))

@@ -9,8 +9,8 @@ from functools import cache
 from app.services.verdicts import VERDICTS, summary
 from catalogue.load import load_catalogue
 from catalogue.schema import Attribution, Case, Cell, Claim, Table
-from solvers.bodies import STATE_LABELS
-from solvers.cases import CaseSpec, registry
+from solvers.models.bodies import STATE_LABELS
+from solvers.models.cases import CaseSpec, registry
 
 UNCHECKED_MSG = "no verdict yet: the check has not run (see /api/health, verification)"
 
@@ -104,7 +104,7 @@ def claim(c: Claim, by_claim: dict[str, dict], corrections: dict[str, list[dict]
 
 
 def runnable(spec: CaseSpec) -> dict:
-    from solvers.cases import build
+    from solvers.models.cases import build
 
     model = build(spec.id, spec.example)
     params = [{"name": n, "required": True, "default": None,

@@ -206,7 +206,7 @@ def flat_field_wr(p, y, dydt):
 @kernel
 def scene_field(model, p, y, dydt):
     """MODEL_FULL_SCENE / MODEL_FLAT_SCENE: the body's field plus the orientation and the
-    centre of mass (solvers/kinematics.py): each row q of Q obeys dq/dt = q x omega
+    centre of mass (solvers/models/kinematics.py): each row q of Q obeys dq/dt = q x omega
     (dQ/dt = Q [omega]x), and dx_G/dt = Q (r x omega) (the contact point does not slide)."""
     if model == L.MODEL_FULL_SCENE:
         st, w0, w1, w2, r0, r1, r2 = full_field_wr(p, y, dydt)

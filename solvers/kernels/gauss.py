@@ -20,7 +20,7 @@ method's error is 1e-12.
 The steps are equal inside each output interval [t_k, t_{k+1}] (m_k = ceil(dt / h)
 steps of dt / m_k): a variable step would break the symmetry. Output times are step
 endpoints, so no dense output is needed. There is no error control: the step is the
-user's choice (`solvers.integrator.integrate(method="gauss8", h_fixed=...)`).
+user's choice (`solvers.integrate.integrator.integrate(method="gauss8", h_fixed=...)`).
 """
 
 import numpy as np

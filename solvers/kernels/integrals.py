@@ -2,7 +2,7 @@
 
 One source of truth for reporting drift, for projection inside the integrator, and for
 the exact (complex-step) checks of the catalogue. Which integrals hold for which case and
-under which conditions is decided by the Python layer (solvers/cases.yaml).
+under which conditions is decided by the Python layer (solvers/models/cases.yaml).
 """
 
 import numpy as np

@@ -1,8 +1,8 @@
 """Layout of the flat parameter vector and the integer codes the compiled kernels dispatch on.
 
 The kernels take only floats, arrays and ints (poliastro style); this module is the
-contract between them and the Python layer that builds the vectors (`solvers.bodies`,
-`solvers.cases`). Numba treats these module-level ints as compile-time constants.
+contract between them and the Python layer that builds the vectors (`solvers.models.bodies`,
+`solvers.models.cases`). Numba treats these module-level ints as compile-time constants.
 """
 
 # --- parameter vector `p` (float64, length N_PARAMS) ---------------------------------
@@ -29,7 +29,7 @@ MODEL_FULL = 2                # state (M, gamma) in R^6, eq1.1-eq1.3 (plane and 
 MODEL_FLAT = 3                # state (M, r1, r2) in R^5, eq3.14-eq3.15 (flat base on a sphere)
 MODEL_REV_REDUCED = 4         # state (gamma3, K1, K2, K3), eq2-*1 (body of revolution, plane)
 # The animation's models: the state above plus the orientation Q (body axes -> space, 9
-# entries row by row) and the centre of mass x_G, integrated along (solvers/kinematics.py:
+# entries row by row) and the centre of mass x_G, integrated along (solvers/models/kinematics.py:
 # dQ/dt = Q [omega]x, dx_G/dt = Q (r x omega)). Only scenes that animate need them.
 MODEL_FULL_SCENE = 5          # (M, gamma, Q, x_G) in R^18
 MODEL_FLAT_SCENE = 6          # (M, r1, r2, Q, x_G) in R^17

@@ -4,7 +4,7 @@ Reduced variables (eq2.4 on the plane, eq3.2-1 on the sphere; K3 as in eq2.4 on 
   K1 = (M, r) (1 - k f1) / f1,   K2 = omega3 / rho0,
   K3 = (M2 g1 - M1 g2) / sqrt((1 - g3^2)(I1 + m r^2)),
   rho0 = (I1 I3 + m (r, I r))^-1/2 = (I1 I3 + m I1 f1^2 (1-g3^2) + m I3 f2^2)^-1/2   (eq2.2)
-with the profile r = (f1 g1, f1 g2, f2) of `solvers.revolution` (phi family of support.py).
+with the profile r = (f1 g1, f1 g2, f2) of `solvers.models.revolution` (phi family of support.py).
 
 Two paths:
 * plane (k = 0): eq2-*1 in closed form, as printed (verified against the full field,
@@ -30,7 +30,7 @@ from solvers.kernels.jit import kernel
 @kernel
 def rev_profile_s(p, u):
     """(phi, phi', f1, f2, f1', f2') at u = gamma3 for the support family
-    sqrt(b1 (1-u^2) + b3 u^2) + c + d sqrt(1-u^2) + a u (solvers.revolution)."""
+    sqrt(b1 (1-u^2) + b3 u^2) + c + d sqrt(1-u^2) + a u (solvers.models.revolution)."""
     b1 = p[L.B11]
     b3 = p[L.B33]
     c = p[L.BALL_C]

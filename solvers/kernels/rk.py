@@ -1,6 +1,6 @@
 """Adaptive explicit Runge-Kutta integration of `fields.rhs`, compiled; the method is data.
 
-One kernel, `rk_integrate`, runs every method of `solvers.tableaux`: the tableau comes in
+One kernel, `rk_integrate`, runs every method of `solvers.integrate.tableaux`: the tableau comes in
 as arrays (A, c, b, error weights E, dense-output weights P), so all methods share one
 numba specialization. What it does, in order, for each step (Hairer, Norsett & Wanner,
 Solving ODEs I, Sec. II.4-II.6 and II.10):

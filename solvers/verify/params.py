@@ -1,6 +1,6 @@
 """Concrete parameter draws for a claim, from the case's model and the claim's conditions.
 
-`Params` wraps a built model (solvers.cases.Model) and exposes the physical quantities a
+`Params` wraps a built model (solvers.models.cases.Model) and exposes the physical quantities a
 formula needs by the paper's names (I, m, R, a, b, mu, lam, k, S, g, eps, z, D) plus the
 body's r(gamma) and J(gamma) from the compiled support function (complex-safe).
 """
@@ -10,10 +10,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from catalogue.schema import Case, Claim, Conditions, Gyrostat, InertiaRestriction, Potential
-from solvers.cases import Model, build, registry
 from solvers.errors import InputError
 from solvers.kernels import layout as L
 from solvers.kernels.support import support
+from solvers.models.cases import Model, build, registry
 
 
 @dataclass(frozen=True)
@@ -201,7 +201,7 @@ def draw(case: Case, claim: Claim, rng: np.random.Generator) -> Params:
 def random_states(P: Params, n: int, rng: np.random.Generator, *, pole_margin=0.05):
     """n random phase points (full state) where the model is regular: unit gamma away from
     the poles gamma3 = +-1 (reduced variables and disks need it) and fitting the sphere."""
-    from solvers.bodies import check_state, tangent_fit
+    from solvers.models.bodies import check_state, tangent_fit
 
     out = []
     dim = P.model.dim

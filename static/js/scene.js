@@ -1,4 +1,4 @@
-// 3D animation of the body rolling (data from POST /api/scene, solvers/kinematics.py):
+// 3D animation of the body rolling (data from POST /api/scene, solvers/models/kinematics.py):
 // the body's mesh turned by Q(t) and moved to x_G(t), its axes, and the contact point's
 // path on the plane or the sphere.
 "use strict";

@@ -43,7 +43,7 @@ def test_paper_figures_and_a_computed_map(page, server, artifacts):
 def test_work_precision_page_draws_every_case(page, server, artifacts):
     """/work-precision: one log-log diagram per benchmarked case with a trace per method
     (ours, gauss8 among them, and the references), and the Pareto table under it."""
-    from solvers.workprecision import load_results
+    from solvers.integrate.workprecision import load_results
 
     data = load_results()
     page.goto(server + "/work-precision")

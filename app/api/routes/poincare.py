@@ -33,8 +33,8 @@ def resolve(req: PoincareRequest, max_steps: int) -> tuple[dict, dict, list[list
     """(header of the answer, the job every trajectory shares, the starts)."""
     from dataclasses import asdict
 
-    from solvers.cases import get_case
-    from solvers.poincare import MapSpec, map_model, starts_for
+    from solvers.maps.poincare import MapSpec, map_model, starts_for
+    from solvers.models.cases import get_case
 
     spec_case = get_case(req.case)
     params = {**(spec_case.example if req.example else {}), **req.params}

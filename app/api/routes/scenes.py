@@ -24,7 +24,7 @@ class ScenePreset(BaseModel):
     claim: str
     paper: list[str]
     scene: dict[str, Any] = Field(description="the run as the scene planner declares it "
-                                  "(solvers/scenes.py): case, params, state, t_end, shows, "
+                                  "(solvers/scenes/scenes.py): case, params, state, t_end, shows, "
                                   "samples (the frames of the animation)")
     checks: list[dict[str, Any]]
 

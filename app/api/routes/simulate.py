@@ -34,7 +34,7 @@ _validation_threads = anyio.CapacityLimiter(2)
 def resolve(req: SimulateRequest, max_steps: int | None = None) -> dict:
     """The run a request asks for, checked by the solvers' own validation (InputError);
     max_steps: the server's step budget, which a symmetric method's step must fit."""
-    from solvers.cases import build, get_case, initial_state
+    from solvers.models.cases import build, get_case, initial_state
     from solvers.simulate import check_step
 
     # the output times are linspace(0, t_end, samples); they must be distinct
@@ -114,7 +114,7 @@ async def validate(req: SimulateRequest, settings: SettingsDep) -> dict:
 async def scene(req: SceneRequest, request: Request, pool: PoolDep,
                 settings: SettingsDep) -> Response:
     """The 3D animation of a run: the body's rotation, its centre of mass and its contact
-    point at `frames` times, a mesh of the body, and checks (solvers.kinematics)."""
+    point at `frames` times, a mesh of the body, and checks (solvers.models.kinematics)."""
     job = _job(await _resolved(req, settings))
     body = await cancel_on_disconnect(request, lambda: pool.run(
         jobs.scene_json, job, req.frames, min(settings.max_steps, 200_000),

@@ -32,7 +32,7 @@ class WorkPrecisionPublic(BaseModel):
 async def work_precision() -> dict:
     """Error against cost for every method on six representative cases (ours: DOP853 and
     Verner 9(8), with and without projection; scipy DOP853, LSODA, Radau; heyoka)."""
-    from solvers.workprecision import load_results
+    from solvers.integrate.workprecision import load_results
 
     try:
         return load_results()

@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from solvers.derivatives import field
+from solvers.models.derivatives import field
 from solvers.verify.registry import CORRECTED, FORMULAS
 
 # One project-wide threshold on normalised residuals computed with exact derivatives.

@@ -42,9 +42,9 @@ from dataclasses import replace
 import numpy as np
 from scipy.spatial import cKDTree
 
-from solvers.cases import build
-from solvers.derivatives import field
 from solvers.kernels import layout as L
+from solvers.models.cases import build
+from solvers.models.derivatives import field
 from solvers.verify.checks.common import TOL, directional, divergence_terms, full_field
 from solvers.verify.params import Params, draw, merged_conditions, random_states
 from solvers.verify.registry import Outcome, check
@@ -254,7 +254,7 @@ def liouville_residual(P, rho, rng, n):
 # --- (3) attractors on the section ------------------------------------------------------------
 
 def section_points(P, y0, T, coef, max_crossings=MAX_CROSSINGS):
-    from solvers.integrator import Section, integrate
+    from solvers.integrate.integrator import Section, integrate
 
     run = integrate(P.model.model, P.p, y0, np.array([0.0, T]), rtol=1e-10, atol=1e-12,
                     section=Section(coef=coef), max_crossings=max_crossings)

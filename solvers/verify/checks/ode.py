@@ -40,9 +40,9 @@ few nutation periods; their measured floor is <= 5e-12 (runs of verify), so TOL 
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from solvers import reduced as rd
 from solvers.kernels import layout as L
 from solvers.kernels.fields import rhs
+from solvers.models import reduced as rd
 from solvers.verify.checks import pointwise
 from solvers.verify.checks.common import N_POINTS, N_SETTINGS, TOL, full_field, implementation
 from solvers.verify.params import draw, random_states
@@ -206,7 +206,7 @@ def check_solves_ode(catalogue, case, claim):
 def _good_run(P, y0, V):
     """A full run from y0 (compiled DOP853) sampled at N_SAMPLES times, or None if it
     meets a singularity or comes close to gamma3 = +-1 (reduced variables undefined)."""
-    from solvers.integrator import integrate
+    from solvers.integrate.integrator import integrate
 
     t = np.linspace(0.0, T_RUN, N_SAMPLES)
     run = integrate(P.model.model, P.p, y0, t, method="dop853", rtol=RUN_RTOL, atol=RUN_RTOL)

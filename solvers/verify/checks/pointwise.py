@@ -164,7 +164,7 @@ def measure_residual(catalogue, case, claim, fid, use_corrected=False, seed=1, v
 
 
 def _complex_field(P, y):
-    from solvers.derivatives import field
+    from solvers.models.derivatives import field
     v, _ = field(P.model.model, P.p, y)
     return v
 

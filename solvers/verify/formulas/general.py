@@ -176,7 +176,7 @@ def sphere_kinematics_signed_corrected(P, x):
 def momentum(P, x):
     """eq1.6's explicit inverse as printed: omega = (A M - m r x (A r x A M))/(1 - m (r, A r)),
     A = (I + m r^2)^-1 (returns omega; the printed minus sign is a known misprint,
-    solvers/reference.py)."""
+    solvers/models/reference.py)."""
     return _omega_explicit(P, x, -1.0)
 
 

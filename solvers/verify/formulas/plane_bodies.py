@@ -4,13 +4,13 @@ eq2-27, bodies of revolution eq2.1-eq2.4, the disk eq2.71, the Routh ball eq2.14
 the gyrostatic integrals eq2.25-eq2.27 (Bobylev).
 
 Shapes f1, f2 of a body of revolution come from the model's support function
-(solvers.revolution.profile) unless the paper prints them (disk eq2.71, ball 2-14*), in which
+(solvers.models.revolution.profile) unless the paper prints them (disk eq2.71, ball 2-14*), in which
 case the printed ones are used.
 """
 
 import numpy as np
 
-from solvers.revolution import Profile, profile
+from solvers.models.revolution import Profile, profile
 from solvers.verify.formulas.general import contact_inertia, dU, omega_of
 from solvers.verify.registry import compares, corrected, formula
 

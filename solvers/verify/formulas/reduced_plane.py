@@ -2,7 +2,7 @@
 eq2-*1 .. eq2a-*4, the linear systems eq2.5, eq2.20, eq2.24, the disk eq2.8, eq2.9, eq2.21
 and its hypergeometric form, the superposition eq2.7 and the quadratic integral of rem-*1.
 
-The systems wrap solvers/reduced.py (printed and corrected forms, tested against the full
+The systems wrap solvers/models/reduced.py (printed and corrected forms, tested against the full
 field in tests/test_reduced.py). Contracts of the roles used here:
 
 * system in (gamma3, K1, K2, K3): f(P, x) = dx/dt (dx/dtau for eq2a-*1, eq2a-*4);
@@ -15,13 +15,13 @@ field in tests/test_reduced.py). Contracts of the roles used here:
 
 The potential of the drawn models is U = m g (r, gamma) + eps/2 (I gamma, gamma), i.e.
 U(gamma3) = m g phi(gamma3) + eps/2 (I1 (1 - gamma3^2) + I3 gamma3^2) on a body of
-revolution (phi: the support function on the axis, solvers/revolution.py).
+revolution (phi: the support function on the axis, solvers/models/revolution.py).
 """
 
 import numpy as np
 
-from solvers import reduced as rd
-from solvers.revolution import phi_derivs, profile
+from solvers.models import reduced as rd
+from solvers.models.revolution import phi_derivs, profile
 from solvers.verify.registry import corrected, formula
 
 

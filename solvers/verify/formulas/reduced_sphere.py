@@ -3,15 +3,15 @@
 eq3.4, eq3.7-eq3.11 and Kuleshov's eq3-8. Contracts as in reduced_plane.py.
 
 k is the signed curvature of CONVENTIONS.md (+1/R0 inside a cavity, -1/R0 outside a ball);
-that is the reading under which eq3.3 holds (solvers/reduced.py, tests/test_reduced.py).
+that is the reading under which eq3.3 holds (solvers/models/reduced.py, tests/test_reduced.py).
 rho0 is the first expression of eq3.2, (I1 I3 + m (r, I r))^-1/2 (its expanded form there
 carries a misprinted gamma3^2; rho0 of eq3.2 is not a formula of this module).
 """
 
 import numpy as np
 
-from solvers import reduced as rd
-from solvers.revolution import profile
+from solvers.models import reduced as rd
+from solvers.models.revolution import profile
 from solvers.verify.formulas.reduced_plane import body, potential
 from solvers.verify.registry import corrected, formula
 

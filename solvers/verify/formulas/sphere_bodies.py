@@ -3,13 +3,13 @@ eq3.2-1, the disk, the Routh ball (eq3.8's lambda and tau, eq3.9, the gyrostatic
 integral), the balanced nonsymmetric ball eq3.12 and the Borisov-Fedorov case eq3.13.
 
 k is CONVENTIONS.md's signed curvature (+1/R0 inside a cavity, -1/R0 outside a fixed ball),
-which is the reading under which eq3.2-eq3.11 hold (solvers/reduced.py); eq3.12's own k is
+which is the reading under which eq3.2-eq3.11 hold (solvers/models/reduced.py); eq3.12's own k is
 the factor R0/(R0 - a) = 1/(1 - k a) of that curvature.
 """
 
 import numpy as np
 
-from solvers.revolution import Profile, profile
+from solvers.models.revolution import Profile, profile
 from solvers.verify.formulas.chaplygin import chaplygin_omega
 from solvers.verify.formulas.general import omega_of
 from solvers.verify.registry import compares, corrected, formula

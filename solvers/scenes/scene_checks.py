@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from solvers.cases import build
+from solvers.models.cases import build
 from solvers.simulate import simulate
 
 
@@ -52,7 +52,7 @@ def check_stays_up(scene, check, res=None) -> CheckResult:
 
 
 def check_spin_reversal(scene, check, res=None) -> CheckResult:
-    from solvers.observables import spin_reversals, vertical_spin
+    from solvers.models.observables import spin_reversals, vertical_spin
 
     res = res or _run(scene)
     model = build(scene.scene.case, scene.scene.params)
@@ -65,9 +65,9 @@ def check_spin_reversal(scene, check, res=None) -> CheckResult:
 
 
 def check_map(scene, check) -> CheckResult:
-    from solvers.andoyer import map_point
-    from solvers.map_analysis import correlation_dimension
-    from solvers.poincare import MapSpec, map_model, trace_checked
+    from solvers.maps.andoyer import map_point
+    from solvers.maps.map_analysis import correlation_dimension
+    from solvers.maps.poincare import MapSpec, map_model, trace_checked
 
     model = map_model(scene.scene.case, scene.scene.params)
     from solvers.kernels.integrals import ENERGY

@@ -3,7 +3,7 @@
 The s-stage Gauss method (order 2s, symmetric, symplectic) has nodes c_i = the roots of
 the shifted Legendre polynomial P_s(2x - 1), a_ij = int_0^{c_i} l_j, b_j = int_0^1 l_j
 (l_j: Lagrange basis on the nodes). The nodes are irrational, so unlike the explicit
-tableaux (`solvers/tableaux/*.yaml`, published rationals) they are computed here in
+tableaux (`solvers/integrate/tableaux/*.yaml`, published rationals) they are computed here in
 50-digit arithmetic (mpmath) and rounded once to float64. The kernel is
 `solvers.kernels.gauss`; tests check the simplifying assumptions B(2s), C(s), D(s) and
 the symmetry of the rounded coefficients.

@@ -1,7 +1,7 @@
 """Python entry point of the compiled Runge-Kutta integrators (diffrax-style separation).
 
 *What* is integrated: a model code and its parameter vector (`solvers.kernels.layout`);
-*how*: a method name (a tableau of `solvers.tableaux`) and a `StepControl`; *what to
+*how*: a method name (a tableau of `solvers.integrate.tableaux`) and a `StepControl`; *what to
 record*: the output times `t_out`, integrals to project onto, a `Section` to cross. This
 layer converts everything to the float/int arrays the kernel takes (poliastro style) and
 turns the kernel's status code into a message; the kernel knows nothing of it.
@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from solvers import collocation, tableaux
+from solvers.integrate import collocation, tableaux
 from solvers.kernels import gauss, rk
 from solvers.kernels import layout as L
 from solvers.kernels.fields import rhs

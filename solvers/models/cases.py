@@ -1,4 +1,4 @@
-"""The case registry (solvers/cases.yaml), validated once, and the builder that turns a
+"""The case registry (solvers/models/cases.yaml), validated once, and the builder that turns a
 case id plus named parameters into a kernel model: (model code, parameter vector p)."""
 
 import math
@@ -11,10 +11,10 @@ import numpy as np
 import yaml
 from pydantic import BaseModel, ConfigDict, Field
 
-from solvers.bodies import STATE_LABELS, check_state, fill_body, fill_inertia
 from solvers.errors import InputError
 from solvers.kernels import integrals as Q
 from solvers.kernels import layout as L
+from solvers.models.bodies import STATE_LABELS, check_state, fill_body, fill_inertia
 
 PARAM_SLOTS = {"S1": L.S1, "S2": L.S2, "S3": L.S3, "g": L.GRAV, "eps": L.BRUN, "k": L.CURV}
 

@@ -5,9 +5,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from solvers.cases import Model
 from solvers.kernels import layout as L
 from solvers.kernels.fields import full_kinematics
+from solvers.models.cases import Model
 
 
 def omega(model: Model, Y) -> np.ndarray:

@@ -1,6 +1,6 @@
 """The scene planner: the smallest model that serves what a scene shows, and its run.
 
-Rules (`plan`), from what the scene declares (solvers/scenes.py):
+Rules (`plan`), from what the scene declares (solvers/scenes/scenes.py):
   * the reduced system (gamma3, K1, K2, K3) of eq2-*1 (MODEL_REV_REDUCED, 4 equations
     instead of 6) when the case has one and the scene shows only time series of reduced
     variables (gamma3 = g3, K1, K2, K3);
@@ -24,13 +24,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from solvers.bodies import STATE_LABELS
-from solvers.cases import Model, build, get_case, initial_state
-from solvers.integrator import IntegrationResult, Section, integrate
+from solvers.integrate.integrator import IntegrationResult, Section, integrate
 from solvers.kernels import layout as L
 from solvers.kernels.fields import flat_kinematics, full_kinematics
 from solvers.kernels.integrals import integral_series
-from solvers.scenes import REDUCED_LABELS, Scene, has_reduced
+from solvers.models.bodies import STATE_LABELS
+from solvers.models.cases import Model, build, get_case, initial_state
+from solvers.scenes.scenes import REDUCED_LABELS, Scene, has_reduced
 
 E3 = np.array([0.0, 0.0, 1.0])
 SCENE_MODEL = {L.MODEL_FULL: L.MODEL_FULL_SCENE, L.MODEL_FLAT: L.MODEL_FLAT_SCENE}
@@ -84,7 +84,7 @@ def full_plan(scene: Scene) -> Plan:
 
 # --- running a plan ------------------------------------------------------------------------
 def rotation_taking(a, b) -> np.ndarray:
-    """The smallest rotation R with R a = b (unit vectors), as solvers/kinematics.py."""
+    """The smallest rotation R with R a = b (unit vectors), as solvers/models/kinematics.py."""
     a = np.asarray(a, float) / np.linalg.norm(a)
     b = np.asarray(b, float) / np.linalg.norm(b)
     v = np.cross(a, b)
@@ -109,7 +109,7 @@ def _omega_r(model: Model, y):
 
 
 def scene_initial(model: Model, y0) -> np.ndarray:
-    """(state, Q0, x_G0) with the space frame of solvers/kinematics.py: Q0 gamma0 = -e_z,
+    """(state, Q0, x_G0) with the space frame of solvers/models/kinematics.py: Q0 gamma0 = -e_z,
     the contact point at the origin (plane) or at Q0 gamma0 / k (sphere)."""
     _, r0, g0 = _omega_r(model, y0)
     Q0 = rotation_taking(g0, -E3)
@@ -142,7 +142,7 @@ def run(scene: Scene, the_plan: Plan | None = None) -> SceneRun:
     n_base = model.dim
     t_out = np.linspace(0.0, scene.t_end, pl.samples)
     if pl.kind == "reduced":
-        from solvers.reduced import to_reduced
+        from solvers.models.reduced import to_reduced
 
         z0 = to_reduced(model.p, y0)
     elif pl.kind == "full+orientation":
@@ -181,7 +181,7 @@ def _shown(scene: Scene, pl: Plan, model: Model, res: IntegrationResult, n: int)
             labels = STATE_LABELS[model.model]
             red = None
             if any(v in REDUCED_LABELS for v in names):
-                from solvers.reduced import to_reduced
+                from solvers.models.reduced import to_reduced
 
                 red = np.array([to_reduced(model.p, y[:n]) for y in Y]).reshape(-1, 4)
             out["series"] = {v: (Y[:, labels.index(v)] if v in labels

@@ -15,7 +15,7 @@ A scene names a run (case, parameters, initial state, t_end) and what is shown o
               g3, or M1 M2 M3 r1 r2) and, for a body of revolution, disk or Routh ball,
               the reduced variables gamma3 K1 K2 K3 of eq2.4 / eq3.2-1
 
-`solvers.planner` turns a scene into the smallest model that serves it and runs it.
+`solvers.scenes.planner` turns a scene into the smallest model that serves it and runs it.
 Example (YAML, as in a catalogue of presets):
 
     case: plane/round-disk
@@ -35,9 +35,9 @@ from typing import Literal
 
 from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
 
-from solvers.bodies import STATE_LABELS
-from solvers.cases import get_case
 from solvers.kernels import layout as L
+from solvers.models.bodies import STATE_LABELS
+from solvers.models.cases import get_case
 
 Show = Literal["series", "drift", "section", "animation", "gamma_path"]
 SHOWS = ("series", "drift", "section", "animation", "gamma_path")

@@ -19,7 +19,7 @@ import math
 from functools import cache
 from pathlib import Path
 
-RESULTS = Path(__file__).resolve().parent.parent / "bench" / "results" / "work_precision.json"
+RESULTS = Path(__file__).resolve().parents[2] / "bench" / "results" / "work_precision.json"
 LEVELS = (1e-4, 1e-6, 1e-8, 1e-10, 1e-12)
 
 # method keys of the benchmark; OURS are the compiled kernels of this project

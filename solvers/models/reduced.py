@@ -41,7 +41,7 @@ import numpy as np
 
 from solvers.kernels import layout as L
 from solvers.kernels.support import support
-from solvers.revolution import Profile, profile
+from solvers.models.revolution import Profile, profile
 
 
 @dataclass(frozen=True)

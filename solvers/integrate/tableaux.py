@@ -1,6 +1,6 @@
 """Explicit Runge-Kutta methods as data: a method is its Butcher tableau.
 
-The coefficients live in YAML files beside this module (`solvers/tableaux/<name>.yaml`),
+The coefficients live in YAML files beside this module (`solvers/integrate/tableaux/<name>.yaml`),
 one per method, as the published decimals or rationals written as *strings*, 1-based and
 sparse as in the papers (a_ij, b_i, c_i). Why YAML and strings: the data file is the
 registry (CONVENTIONS.md), it keeps every published digit (a YAML float would be rounded

@@ -74,8 +74,8 @@ class SweepResult:
 
 def run_task(task: MapTask) -> dict:
     """The map of one task, summarised per trajectory (run on a dask worker)."""
-    from solvers.map_analysis import correlation_dimension
-    from solvers.poincare import MapSpec, poincare
+    from solvers.maps.map_analysis import correlation_dimension
+    from solvers.maps.poincare import MapSpec, poincare
 
     spec = MapSpec(energy=task.energy, g0=task.g0, direction=task.direction,
                    points=task.points, rtol=task.rtol, atol=task.atol)
@@ -97,7 +97,7 @@ def run_task(task: MapTask) -> dict:
 
 def warm() -> float:
     """Load the compiled kernels in a worker (numba's on-disk cache) with one tiny map."""
-    from solvers.poincare import MapSpec, poincare
+    from solvers.maps.poincare import MapSpec, poincare
 
     t0 = time.perf_counter()
     poincare("plane/chaplygin-ball", {"I1": 1, "I2": 2, "I3": 3, "m": 1, "R": 1},
@@ -140,7 +140,7 @@ def _client(settings: DaskSettings):
 
 def validate(tasks: Sequence[MapTask]) -> None:
     """Check every task here, before anything is shipped (bad input: InputError)."""
-    from solvers.poincare import MapSpec, map_model
+    from solvers.maps.poincare import MapSpec, map_model
 
     if not tasks:
         raise InputError("the sweep has no task")

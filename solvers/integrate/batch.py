@@ -3,7 +3,7 @@
 The compiled kernels are `nogil` (solvers/kernels/jit.py), so a pool of threads runs one
 `rk_integrate` per thread truly in parallel, with no process start-up, no pickling and
 no second copy of the numba cache in memory. Each item is one call of
-`solvers.integrator.integrate` with its own initial state (same model, parameters and
+`solvers.integrate.integrator.integrate` with its own initial state (same model, parameters and
 options); the results come back in the order of the inputs.
 
     res = integrate_batch(model.model, model.p, Y0, t_out, workers=2, method="dop853",
@@ -17,7 +17,7 @@ from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
-from solvers.integrator import IntegrationResult, integrate
+from solvers.integrate.integrator import IntegrationResult, integrate
 
 
 def default_workers() -> int:

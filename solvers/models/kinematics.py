@@ -26,12 +26,12 @@ import math
 
 import numpy as np
 
-from solvers.cases import build, initial_state
 from solvers.errors import InputError
-from solvers.integrator import integrate
+from solvers.integrate.integrator import integrate
 from solvers.kernels import layout as L
 from solvers.kernels.fields import flat_kinematics, full_kinematics
 from solvers.kernels.support import support
+from solvers.models.cases import build, initial_state
 
 MAX_FRAMES = 10_000
 E3 = np.array([0.0, 0.0, 1.0])

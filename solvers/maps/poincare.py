@@ -4,7 +4,7 @@ trajectory with the section g = g0 in Andoyer-Deprit variables, drawn as (L/G, H
 
 How (the parts are separate, diffrax style):
   * initial conditions on the level: (L/G, H/G, l) sampled (or given) on the section
-    g = g0, |M| from the energy (solvers.andoyer.on_energy_level);
+    g = g0, |M| from the energy (solvers.maps.andoyer.on_energy_level);
   * crossings: the compiled integrator with the nonlinear section s = sin(g - g0)
     (solvers/kernels/sections.py), located by Henon's trick to round-off, the branch
     g = g0 + pi refused, in the direction asked (+1: g increasing);
@@ -27,12 +27,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from solvers.andoyer import TWO_PI, g_angle, map_point, on_energy_level
-from solvers.cases import Model, build, initial_state
 from solvers.errors import InputError
 from solvers.kernels import layout as L
 from solvers.kernels.integrals import NAMES, integral_series
 from solvers.kernels.sections import SECTION_ANDOYER_G
+from solvers.maps.andoyer import TWO_PI, g_angle, map_point, on_energy_level
+from solvers.models.cases import Model, build, initial_state
 
 MAX_POINTS = 100_000
 MAX_TRAJECTORIES = 1_000
@@ -70,7 +70,7 @@ class MapSpec:
             raise InputError("samples_per_crossing must be at least 8")
 
     def section(self):
-        from solvers.integrator import Section
+        from solvers.integrate.integrator import Section
 
         return Section(coef=(math.cos(self.g0), math.sin(self.g0), 0.0, 0.0, 0.0, 0.0),
                        direction=self.direction, code=SECTION_ANDOYER_G)
@@ -134,7 +134,7 @@ def dense_check(t: np.ndarray, Y: np.ndarray, ct: np.ndarray, g0: float,
 
 
 def _run(model, y0, t0, t_out, spec, max_cross, control):
-    from solvers.integrator import integrate
+    from solvers.integrate.integrator import integrate
 
     return integrate(model.model, model.p, y0, t0 + t_out, method=spec.method,
                      rtol=spec.rtol, atol=spec.atol, max_steps=spec.max_steps,
@@ -149,7 +149,7 @@ def _status(res) -> str:
 
 def trace(model: Model, y0, spec: MapSpec, *, h_max: float = math.inf) -> MapTrajectory:
     """spec.points crossings of the section from y0 (see the module docstring)."""
-    from solvers.integrator import StepControl
+    from solvers.integrate.integrator import StepControl
 
     y0 = np.array(y0, dtype=float)
     x0 = tuple(float(v) for v in map_point(y0))

@@ -1,0 +1,2 @@
+"""Integrators: Runge-Kutta tableaux, Gauss collocation, the Taylor backend, batches,
+work-precision data."""

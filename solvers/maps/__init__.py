@@ -1,0 +1,1 @@
+"""Three-dimensional point maps (Andoyer-Deprit variables), their analysis and dask sweeps."""

@@ -1,0 +1,2 @@
+"""The rolling models: bodies, cases, reduced systems, kinematics, the independent
+reference field."""
