@@ -2,7 +2,7 @@
 
     python bench/paper_figures.py     (about two minutes on one core)
 
-Writes bench/results/paper_figures.txt (the numbers) and static/data/paper_figures.json
+Writes bench/results/paper_figures.txt (the numbers) and app/static/data/paper_figures.json
 (the points, which the explorer's /poincare page draws as 3D scatter plots). The paper
 gives the inertia of Fig ris-*1 only (I = (1, 2, 3)); every other parameter below is our
 choice, stated with the figure. All runs: E0 = 1, section g = 0 crossed with g
@@ -210,7 +210,7 @@ def main():
     out = "\n".join(text)
     print(out)
     (ROOT / "bench" / "results" / "paper_figures.txt").write_text(out + "\n")
-    path = ROOT / "static" / "data" / "paper_figures.json"
+    path = ROOT / "app" / "static" / "data" / "paper_figures.json"
     path.parent.mkdir(parents=True, exist_ok=True)
     path.write_text(json.dumps(data, separators=(",", ":")))
 

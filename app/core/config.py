@@ -40,7 +40,7 @@ class Settings(BaseSettings):
     cache_dir: Path = Path.home() / ".cache" / "rolling-hierarchy"
     use_verdict_cache: bool = True
     warm_workers: bool = True         # start the worker processes (numba caches) at start
-    static_dir: Path = ROOT / "static"
+    static_dir: Path = Path(__file__).resolve().parents[1] / "static"   # inside the package
     log_level: str = "info"
 
 

@@ -1,6 +1,6 @@
 """Browser: every teaching scene opens from the home page and plays; the 3D point maps page
-draws the paper's figures and computes a map with progress (static/js/scenes.js,
-static/js/poincare.js)."""
+draws the paper's figures and computes a map with progress (app/static/js/scenes.js,
+app/static/js/poincare.js)."""
 
 import pytest
 from playwright.sync_api import expect

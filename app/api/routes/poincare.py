@@ -1,5 +1,5 @@
 """POST /api/poincare: the 3D point map of a case (as `rolling poincare`), and the page
-/poincare that draws it and the paper's Figs ris-*1..ris-*4 (static/data/paper_figures.json,
+/poincare that draws it and the paper's Figs ris-*1..ris-*4 (app/static/data/paper_figures.json,
 written by bench/paper_figures.py).
 
 The starts are resolved (validated, sampled with the seed) in a thread; then every
