@@ -21,7 +21,6 @@ from app.core.pool import WorkerPool
 from app.services import jobs
 
 log = logging.getLogger("rolling.verdicts")
-ROOT = Path(__file__).resolve().parents[2]
 VERDICTS = ("verified", "fails", "evidence", "unchecked")
 
 
@@ -30,11 +29,18 @@ def inputs_key() -> str:
     import numpy
     import scipy
 
+    import catalogue
+    import solvers
+
+    # the packages where they are imported from (a checkout or an installed wheel)
+    cat_dir = Path(catalogue.__file__).resolve().parent
+    sol_dir = Path(solvers.__file__).resolve().parent
     h = hashlib.sha256(f"{numpy.__version__} {scipy.__version__}".encode())
-    files = sorted((ROOT / "catalogue").glob("*.yaml")) + sorted(
-        p for p in (ROOT / "solvers").rglob("*") if p.suffix in (".py", ".yaml", ".json"))
-    for p in files:
-        h.update(str(p.relative_to(ROOT)).encode())
+    files = [(p, "catalogue") for p in sorted(cat_dir.glob("*.yaml"))] + [
+        (p, "solvers") for p in sorted(sol_dir.rglob("*"))
+        if p.suffix in (".py", ".yaml", ".json") and "__pycache__" not in p.parts]
+    for p, pkg in files:
+        h.update(f"{pkg}/{p.relative_to(cat_dir if pkg == 'catalogue' else sol_dir)}".encode())
         h.update(p.read_bytes())
     return h.hexdigest()[:20]
 

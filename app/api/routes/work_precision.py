@@ -1,5 +1,5 @@
 """GET /api/work-precision: the measured work-precision results (bench/work_precision.py,
-committed in bench/results/work_precision.json) with their summary, and the page
+committed in solvers/integrate/data/work_precision.json) with their summary, and the page
 /work-precision that draws the diagram and says what a tolerance buys."""
 
 from __future__ import annotations
