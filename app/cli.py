@@ -212,6 +212,8 @@ def serve(
 
     if workers is not None:
         os.environ["ROLLING_WORKERS"] = str(workers)
+    if host is not None:   # the app derives its Host allow-list from the address it serves
+        os.environ["ROLLING_HOST"] = host
     from app.core.config import get_settings
 
     s = get_settings()

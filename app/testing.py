@@ -19,8 +19,10 @@ import httpx
 from app.core.config import Settings
 
 # quiet, quick defaults for tests: no background verification, no disk cache
+# ("testserver" is the Host of Starlette's TestClient)
 TEST_SETTINGS = {"verify_on_start": False, "use_verdict_cache": False, "workers": 2,
-                 "deadline_s": 20.0, "log_level": "warning"}
+                 "deadline_s": 20.0, "log_level": "warning",
+                 "allowed_hosts": ["127.0.0.1", "localhost", "::1", "testserver"]}
 
 
 def settings_for_tests(**overrides) -> Settings:

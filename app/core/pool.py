@@ -32,10 +32,10 @@ class QueueFull(Exception):
 class DeadlineExceeded(Exception):
     """The job ran longer than its deadline; its worker was killed."""
 
-    def __init__(self, deadline: float):
+    def __init__(self, deadline: float,
+                 hint: str = "shorten t_end, loosen rtol or use fewer samples"):
         super().__init__(f"the computation needed more than the {deadline:g} s one request "
-                         "may take and was stopped; shorten t_end, loosen rtol or use fewer "
-                         "samples")
+                         f"may take and was stopped; {hint}")
         self.deadline = deadline
 
 
