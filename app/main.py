@@ -63,9 +63,20 @@ async def _warm(pool: WorkerPool) -> None:
         log.warning("warming a worker failed: %r", exc)
 
 
+def _log_to_stderr(level: str) -> None:
+    """The explorer's own log lines (verdict progress) on stderr beside uvicorn's."""
+    if not log.handlers:
+        handler = logging.StreamHandler()
+        handler.setFormatter(logging.Formatter("%(levelname)s:     %(name)s: %(message)s"))
+        log.addHandler(handler)
+        log.propagate = False
+    log.setLevel(level.upper())
+
+
 @asynccontextmanager
 async def lifespan(app: FastAPI):
     settings: Settings = app.state.settings
+    _log_to_stderr(settings.log_level)
     pool = WorkerPool(settings.workers, settings.queue_size, settings.retry_after_s,
                       warm=jobs.warm)
     from solvers.models.cases import table_case_ids

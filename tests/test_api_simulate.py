@@ -62,7 +62,10 @@ def test_csv_download(client):
     assert r.headers["content-type"].startswith("text/csv")
     assert "attachment" in r.headers["content-disposition"]
     rows = list(csv.reader(io.StringIO(r.text)))
-    assert rows[0] == ["t", "M1", "M2", "M3", "g1", "g2", "g3", "energy", "gamma2", "area", "M2"]
+    # unique names that say what they hold: the component M2 and the integral M_squared
+    assert rows[0] == ["t", "M1", "M2", "M3", "g1", "g2", "g3", "energy_H", "gamma_squared",
+                       "area_M_dot_gamma", "M_squared"]
+    assert len(set(rows[0])) == len(rows[0])
     assert len(rows) == 12 and float(rows[-1][0]) == 10.0
 
 

@@ -8,12 +8,14 @@ here renders non-finite numbers as text first.
 
 from __future__ import annotations
 
+import html
 import math
 import re
+from pathlib import Path
 
 from fastapi import FastAPI, Request
 from fastapi.exceptions import RequestValidationError
-from fastapi.responses import JSONResponse, Response
+from fastapi.responses import HTMLResponse, JSONResponse, Response
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from app.core.disconnect import ClientDisconnected
@@ -154,10 +156,27 @@ async def _gone(request: Request, exc: ClientDisconnected) -> Response:
     return Response(status_code=499)  # nginx's "client closed request"; nobody reads it
 
 
+def not_found_page(static_dir: Path, heading: str, message: str) -> HTMLResponse:
+    """The HTML 404 page (with the site's navigation) for a person who mistyped an
+    address; /api/* keeps its JSON Problem answers."""
+    text = (Path(static_dir) / "404.html").read_text()
+    text = text.replace("{{heading}}", html.escape(heading)).replace(
+        "{{message}}", html.escape(message))
+    return HTMLResponse(text, status_code=404)
+
+
+def _is_api(path: str) -> bool:
+    """Machine addresses answer JSON even when they do not exist."""
+    return path.startswith(("/api/", "/openapi.json")) or path == "/api"
+
+
 async def _http(request: Request, exc: StarletteHTTPException) -> Response:
     if exc.status_code in (204, 304):
         return Response(status_code=exc.status_code, headers=exc.headers)
     detail = exc.detail if isinstance(exc.detail, str) else str(exc.detail)
+    if exc.status_code == 404 and not _is_api(request.url.path):
+        return not_found_page(request.app.state.settings.static_dir, "Page not found",
+                              f"Nothing lives at {request.url.path}.")
     if exc.status_code == 400 and "parsing the body" in detail:
         # FastAPI's answer to a body json.loads could not take: bad input like any other,
         # said as what it is (the cause FastAPI chained)

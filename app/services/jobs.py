@@ -13,6 +13,7 @@ import io
 import json
 import math
 import os
+from pathlib import Path
 
 # Worker processes run at a lower CPU priority than the server's event loop, so that on a
 # busy machine (2 cores, 2 workers) the loop still answers /api/health and parses requests
@@ -81,13 +82,31 @@ def simulate_json(req: dict, max_steps: int) -> bytes:
     return dumps(out)
 
 
+COLUMNS_JSON = Path(__file__).resolve().parents[1] / "static" / "data" / "columns.json"
+
+
+def csv_header(state_labels: list[str], invariants: list[str]) -> list[str]:
+    """t, the state, then the invariants under their CSV names (static/data/columns.json,
+    shared with the case page's CSV button): unique, so the integral M^2 is `M_squared`
+    beside the component `M2`."""
+    names = {k: v for k, v in json.loads(COLUMNS_JSON.read_text()).items()
+             if not k.startswith("_")}
+    header = ["t", *state_labels]
+    for n in invariants:
+        col = names.get(n, n)
+        while col in header:
+            col += "_integral"
+        header.append(col)
+    return header
+
+
 def simulate_csv(req: dict, max_steps: int) -> bytes:
     """One row per sample: t, the state, then every invariant the case carries."""
     res = _run(req, max_steps)
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
     names = list(res.invariants)
-    w.writerow(["t", *res.state_labels, *names])
+    w.writerow(csv_header(list(res.state_labels), names))
     for i, t in enumerate(res.t):
         w.writerow([repr(float(t)), *(repr(float(v)) for v in res.state[i]),
                     *(repr(float(res.invariants[n][i])) for n in names)])

@@ -1,59 +1,59 @@
 """Verdicts of the catalogue's claims, computed by solvers.verify in the worker pool.
 
-The store starts empty (every claim 'unchecked'); at start-up a background task verifies
-the cases one by one (one worker at a time, so simulations keep the others) and
-`POST /api/verify/{id}` recomputes one case. Verdicts are cached on disk under a key
-made of everything they depend on (the catalogue's YAML, the solvers' sources, the
-versions of numpy and scipy), so a restart with unchanged code shows them at once.
+At start-up the store loads the verdicts kept in an SQLite database under
+Settings.cache_dir (app.services.verdict_db), each case keyed by a hash of everything its
+verdicts depend on (app.services.verdict_keys): a restart serves them at once, and a
+background task re-checks only the cases whose key changed (one worker at a time, so
+simulations keep the others), logging "computing verdicts: k of n cases".
+`POST /api/verify/{id}` recomputes one case.
 """
 
 from __future__ import annotations
 
-import hashlib
-import json
 import logging
 import time
 from pathlib import Path
 
 import anyio
 
+from app import __version__
 from app.core.pool import WorkerPool
 from app.services import jobs
+from app.services.verdict_db import VerdictDB
 
 log = logging.getLogger("rolling.verdicts")
 VERDICTS = ("verified", "fails", "evidence", "unchecked")
-
-
-def inputs_key() -> str:
-    """A hash of every file the verdicts depend on."""
-    import numpy
-    import scipy
-
-    import catalogue
-    import solvers
-
-    # the packages where they are imported from (a checkout or an installed wheel)
-    cat_dir = Path(catalogue.__file__).resolve().parent
-    sol_dir = Path(solvers.__file__).resolve().parent
-    h = hashlib.sha256(f"{numpy.__version__} {scipy.__version__}".encode())
-    files = [(p, "catalogue") for p in sorted(cat_dir.glob("*.yaml"))] + [
-        (p, "solvers") for p in sorted(sol_dir.rglob("*"))
-        if p.suffix in (".py", ".yaml", ".json") and "__pycache__" not in p.parts]
-    for p, pkg in files:
-        h.update(f"{pkg}/{p.relative_to(cat_dir if pkg == 'catalogue' else sol_dir)}".encode())
-        h.update(p.read_bytes())
-    return h.hexdigest()[:20]
+DB_NAME = "verdicts.sqlite3"
 
 
 class VerdictStore:
     def __init__(self, case_ids: list[str], cache_dir: Path | None):
         self.case_ids = list(case_ids)
         self.records: dict[str, list[dict]] = {}     # case id -> records
+        self.computed: dict[str, dict] = {}          # case id -> {computed_at, version}
         self.updated: float | None = None
         self.state = "idle"
         self.message = ""
         self.cache_dir = cache_dir
-        self._key: str | None = None
+        self.loaded = 0                               # cases served from the database
+        self._keys: dict[str, str] | None = None
+        self._db: VerdictDB | None = None
+
+    def keys(self) -> dict[str, str]:
+        """case id -> hash of what its verdicts depend on (computed once per process)."""
+        if self._keys is None:
+            from app.services.verdict_keys import case_keys
+
+            self._keys = case_keys(self.case_ids)
+        return self._keys
+
+    def key(self, case_id: str) -> str:
+        keys = self.keys()
+        if case_id not in keys:
+            from app.services.verdict_keys import case_keys
+
+            keys.update(case_keys([case_id]))
+        return keys[case_id]
 
     # --- lookups ---------------------------------------------------------------------
 
@@ -76,42 +76,49 @@ class VerdictStore:
     # --- updates ---------------------------------------------------------------------
 
     def put(self, case_id: str, records: list[dict]) -> None:
+        now = time.time()
         self.records[case_id] = records
-        self.updated = time.time()
-        self._save()
+        self.computed[case_id] = {"computed_at": now, "version": __version__}
+        self.updated = now
+        self._save(case_id, records, now)
 
-    def _cache_file(self) -> Path | None:
+    def db(self) -> VerdictDB | None:
         if self.cache_dir is None:
             return None
-        if self._key is None:
-            self._key = inputs_key()
-        return self.cache_dir / f"verdicts-{self._key}.json"
+        if self._db is None:
+            self._db = VerdictDB(Path(self.cache_dir) / DB_NAME)
+        return self._db
 
     def load_cache(self) -> bool:
-        f = self._cache_file()
-        if f is None or not f.is_file():
-            return False
+        """Load every case whose stored key is today's; True when some were found."""
         try:
-            data = json.loads(f.read_text())
-        except (OSError, ValueError):
+            db = self.db()
+            stored = db.load(self.keys()) if db is not None else {}
+        except Exception as exc:  # an unreadable database: check everything again
+            log.warning("cannot read stored verdicts in %s: %r", self.cache_dir, exc)
             return False
-        self.records = {k: v for k, v in data.get("records", {}).items() if k in self.case_ids}
-        self.updated = data.get("updated")
+        for cid, row in stored.items():
+            self.records[cid] = row["records"]
+            self.computed[cid] = {"computed_at": row["computed_at"], "version": row["version"]}
+        self.loaded = len(stored)
+        if stored:
+            self.updated = max(r["computed_at"] for r in stored.values())
         if all(c in self.records for c in self.case_ids):
             self.state = "done"
-        return bool(self.records)
+        log.info("verdicts: %d of %d cases served from %s", len(stored), len(self.case_ids),
+                 self.cache_dir)
+        return bool(stored)
 
-    def _save(self) -> None:
-        f = self._cache_file()
-        if f is None:
-            return
+    def _save(self, case_id: str, records: list[dict], at: float) -> None:
         try:
-            f.parent.mkdir(parents=True, exist_ok=True)
-            tmp = f.with_suffix(".tmp")
-            tmp.write_text(json.dumps({"updated": self.updated, "records": self.records}))
-            tmp.replace(f)
-        except OSError as exc:  # a read-only home: verdicts stay in memory
-            log.warning("cannot cache verdicts in %s: %s", f, exc)
+            db = self.db()
+            if db is not None:
+                db.save(case_id, self.key(case_id), records, __version__, at)
+        except Exception as exc:  # a read-only home: verdicts stay in memory
+            log.warning("cannot store verdicts in %s: %r", self.cache_dir, exc)
+
+    def progress(self) -> str:
+        return f"computing verdicts: {len(self.records)} of {len(self.case_ids)} cases"
 
     async def verify_all(self, pool: WorkerPool, deadline: float) -> None:
         """Verify every case not yet verified, one at a time (background task)."""
@@ -120,6 +127,7 @@ class VerdictStore:
             self.state = "done"
             return
         self.state, self.message = "running", ""
+        log.info("%s (%d to check)", self.progress(), len(todo))
         for cid in todo:
             try:
                 recs = await verify_case(pool, cid, deadline)
@@ -134,6 +142,7 @@ class VerdictStore:
                 await anyio.sleep(0.5)
                 continue
             self.put(cid, recs)
+            log.info(self.progress())
         self.state = "done" if all(c in self.records for c in self.case_ids) else "failed"
 
 

@@ -5,9 +5,10 @@ from functools import cache
 from pathlib import Path
 
 from fastapi import APIRouter, HTTPException
-from fastapi.responses import FileResponse, HTMLResponse
+from fastapi.responses import FileResponse
 
 from app.api.deps import SettingsDep
+from app.core.errors import not_found_page
 from catalogue.load import load_catalogue
 
 router = APIRouter(include_in_schema=False)
@@ -31,7 +32,8 @@ async def case_page(case_id: str, settings: SettingsDep):
     try:
         load_catalogue().case(case_id)
     except KeyError:
-        return HTMLResponse((settings.static_dir / "404.html").read_text(), status_code=404)
+        return not_found_page(settings.static_dir, "No such case",
+                              f"{case_id!r} names no case of Tables 1 and 2.")
     return FileResponse(settings.static_dir / "case.html", media_type="text/html")
 
 

@@ -6,6 +6,8 @@ import { api, ApiError, download, escapeHtml, fmt, VERDICT_ICON } from "./api.js
 import { printedHtml, textHtml } from "./latex.js";
 import { badgeHtml, markHtml } from "./marks.js";
 import { plotDrift, plotGamma, plotState } from "./plots.js";
+import { applyRunQuery, runQuery, setQuery } from "./permalink.js";
+import { csvOf } from "./run_csv.js";
 import { Scene } from "./scene.js";
 
 const caseId = decodeURIComponent(location.pathname.replace(/^\/case\//, "").replace(/\/$/, ""));
@@ -377,6 +379,8 @@ async function runSimulation(ev) {
     const res = await withProgress("running", (signal) => api("/api/simulate", { method: "POST", body: req, signal }));
     const secs = (performance.now() - t0) / 1000;
     lastRun = { request: req, result: res };
+    setQuery(runQuery(req));              // the address is now this run's permalink
+    $("permalink").href = location.href;
     $("runinfo").innerHTML = runInfo(res, secs);
     $("downloads").hidden = false;
     await showPlots(res);
@@ -402,15 +406,6 @@ async function showPlots(res) {
   await plotState($("plot-state"), res);
   await plotDrift($("plot-drift"), res);
   await plotGamma($("plot-gamma"), res);
-}
-
-function csvOf(res) {
-  const names = Object.keys(res.invariants);
-  const lines = [["t", ...res.state_labels, ...names].join(",")];
-  res.t.forEach((t, i) => {
-    lines.push([t, ...res.state[i], ...names.map((n) => res.invariants[n][i])].map((x) => (x === null ? "" : String(x))).join(","));
-  });
-  return lines.join("\n") + "\n";
 }
 
 function fileStem() {
@@ -481,7 +476,7 @@ async function main() {
   $("reset").addEventListener("click", resetForm);
   $("cancel").addEventListener("click", () => running && running.abort());
   $("reverify").addEventListener("click", reverify);
-  $("dl-csv").addEventListener("click", () => download(`${fileStem()}.csv`, csvOf(lastRun.result), "text/csv"));
+  $("dl-csv").addEventListener("click", async () => download(`${fileStem()}.csv`, await csvOf(lastRun.result), "text/csv"));
   $("dl-json").addEventListener("click", () => download(`${fileStem()}.json`,
     JSON.stringify({ request: lastRun.request, ...lastRun.result }, null, 1), "application/json"));
   $("scene-btn").addEventListener("click", runScene);
@@ -497,6 +492,10 @@ async function main() {
   });
   if (location.hash) document.getElementById(location.hash.slice(1))?.scrollIntoView();
   document.body.dataset.ready = "1";
+  if (applyRunQuery(location.search, $)) {   // a permalink of a run: reproduce it
+    onEdit();
+    $("simform").requestSubmit();
+  }
 }
 
 main();

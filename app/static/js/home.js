@@ -90,7 +90,8 @@ async function showStatus() {
     }
     lastDone = v.cases_done;
     if (v.state === "running") setTimeout(showStatus, 4000);
-    el.textContent = v.state === "running" ? `Verification running: ${done}; the marks fill in as it goes.`
+    el.textContent = v.state === "running"
+      ? `Computing verdicts: ${v.cases_done} of ${v.cases_total} cases; the marks fill in as they come.`
       : v.state === "done" ? `Verdicts: ${done}.`
         : v.state === "unavailable" ? "Verification unavailable on this server: every claim shows as unchecked."
           : `Verification ${v.state}: ${done}.`;

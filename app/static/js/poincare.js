@@ -3,7 +3,10 @@
 // (?stream=true: NDJSON progress events, then the result).
 "use strict";
 
-import { api, escapeHtml, fmt } from "./api.js";
+import { api, download, escapeHtml, fmt } from "./api.js";
+import { applyFormQuery, csvText, formQuery, setQuery } from "./permalink.js";
+
+let lastMap = null;    // {request, result} of the last map computed here
 
 const CONFIG = { responsive: true, displaylogo: false };
 const PALETTE = ["#1f5f99", "#c2571a", "#2a8a3e", "#8e3ea8", "#b8860b", "#0f7f8a", "#c21c2c",
@@ -167,6 +170,10 @@ async function compute(ev) {
     await window.Plotly.react(document.getElementById("map-plot"), traces(result.trajectories, 2),
       layout3d(`${result.case}, E₀ = ${result.energy}, g = ${result.section.g0}`), CONFIG);
     table(result);
+    lastMap = { request: body, result };
+    setQuery(formQuery(ev.target, { run: 1 }));     // the address now reproduces this map
+    document.getElementById("map-downloads").hidden = false;
+    document.body.dataset.map = String(Number(document.body.dataset.map || 0) + 1);
   } catch (e) {
     status.textContent = e.message;
     status.classList.add("error");
@@ -175,8 +182,28 @@ async function compute(ev) {
   }
 }
 
-document.getElementById("map-form").addEventListener("submit", compute);
-cases().catch((e) => {
+function mapRows(result) {
+  const rows = [];
+  result.trajectories.forEach((t, i) => t.points.forEach((p, j) => rows.push([i + 1, j + 1, ...p])));
+  return rows;
+}
+
+function stem() {
+  const r = lastMap.request;
+  return `map_${r.case.replace(/\//g, "_")}_E${r.energy}_g${lastMap.result.section.g0}`;
+}
+
+document.getElementById("map-csv").addEventListener("click", () => download(`${stem()}.csv`,
+  csvText(["trajectory", "point", "L_over_G", "H_over_G", "l"], mapRows(lastMap.result)), "text/csv"));
+document.getElementById("map-json").addEventListener("click", () => download(`${stem()}.json`,
+  JSON.stringify({ request: lastMap.request, ...lastMap.result }, null, 1), "application/json"));
+
+const form = document.getElementById("map-form");
+form.addEventListener("submit", compute);
+cases().then(() => {
+  // a permalink (?case=...&energy=...&run=1): fill the form and compute that map
+  if (applyFormQuery(form, location.search)) form.requestSubmit();
+}).catch((e) => {
   const s = document.getElementById("map-status");
   s.textContent = `Could not load the cases: ${e.message}`;
   s.classList.add("error");

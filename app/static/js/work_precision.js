@@ -4,7 +4,8 @@
 // method buys.
 "use strict";
 
-import { api, escapeHtml } from "./api.js";
+import { api, download, escapeHtml } from "./api.js";
+import { csvText } from "./permalink.js";
 
 const $ = (id) => document.getElementById(id);
 const OURS = ["dop853", "vern9", "dop853+proj", "vern9+proj", "gauss8"];
@@ -82,12 +83,31 @@ async function main() {
       ${paretoTable(s)}${buys(c, s)}`;
     root.appendChild(sec);
     const runs = data.runs.filter((r) => r.case === c.id);
+    // ticks as powers of ten (10⁻¹²), never SI prefixes (1p), and the unit in each title
+    const logAxis = (title) => ({ type: "log", title: { text: title }, exponentformat: "power",
+      showexponent: "all", dtick: 1 });
     window.Plotly.newPlot(`plot-${slug}`, traces(runs), {
-      xaxis: { type: "log", title: "error (max over the output grid, relative)" },
-      yaxis: { type: "log", title: "wall time [ms]" },
+      xaxis: logAxis("error: max relative deviation from the reference (dimensionless)"),
+      yaxis: { ...logAxis("wall time (ms)"), dtick: undefined },
       margin: { t: 10, r: 10 }, legend: { orientation: "h" },
     }, { responsive: true, displaylogo: false });
   }
+  showDownloads(data);
+}
+
+function showDownloads(data) {
+  // every run as one row: the columns are the runs' scalar fields, named as in the API
+  const keys = [];
+  for (const r of data.runs) {
+    for (const [k, v] of Object.entries(r)) {
+      if ((v === null || typeof v !== "object") && !keys.includes(k)) keys.push(k);
+    }
+  }
+  const rows = data.runs.map((r) => keys.map((k) => r[k]));
+  $("wp-csv").addEventListener("click", () => download("work_precision.csv", csvText(keys, rows), "text/csv"));
+  $("wp-json").addEventListener("click", () => download("work_precision.json",
+    JSON.stringify(data, null, 1), "application/json"));
+  $("wp-downloads").hidden = false;
 }
 
 if (document.readyState === "loading") document.addEventListener("DOMContentLoaded", main);

@@ -1,0 +1,129 @@
+"""The explorer as a reference (issue 11, part B) in a real browser: a run's permalink
+reproduces it, a map's too, the CSV header is unique, no page scrolls sideways at 390 px,
+and axe-core finds no serious or critical violation on any of the project's pages."""
+
+import csv
+import io
+from pathlib import Path
+
+import pytest
+
+from catalogue.load import load_catalogue
+
+AXE = Path(__file__).resolve().parents[1] / "vendor" / "axe-core" / "axe.min.js"
+CASE = "plane/chaplygin-ball"
+
+
+def project_pages() -> list[str]:
+    """Every page of the explorer (/docs, the vendored Swagger UI, is exempt)."""
+    cases = [f"/case/{c.id}" for c in load_catalogue().cases()]
+    return ["/", *cases, "/poincare", "/scenes", "/work-precision", "/no-such-page"]
+
+
+def settle(page, path):
+    """Open a page and wait until its scripts have drawn it (or, for the 404, loaded)."""
+    page.goto(path)
+    if path.startswith("/case/") or path == "/":
+        page.wait_for_function("document.body?.dataset.ready === '1'")
+    else:
+        page.wait_for_load_state("load")
+    page.wait_for_timeout(300)
+
+
+def last_state(page) -> list:
+    return page.evaluate(
+        "() => document.getElementById('plot-state').data.map(t => t.y[t.y.length - 1])")
+
+
+def test_a_runs_permalink_reproduces_it(page, server, context):
+    page.goto(f"{server}/case/{CASE}")
+    page.wait_for_function("document.body?.dataset.ready === '1'")
+    page.fill("#f-t_end", "7.5")
+    page.fill("#f-samples", "151")
+    page.fill("#f-s-M1", "0.25")
+    page.click("#run")
+    page.wait_for_function("document.body.dataset.run === '1'")
+    url = page.url
+    assert "run=1" in url and "t_end=7.5" in url and "samples=151" in url
+    assert page.locator("#permalink").get_attribute("href") == url
+    first = last_state(page)
+    # the CSV of the run: unique column names, M2 the component and M_squared the integral
+    with page.expect_download() as dl:
+        page.click("#dl-csv")
+    rows = list(csv.reader(io.StringIO(Path(dl.value.path()).read_text())))
+    assert len(set(rows[0])) == len(rows[0]) and {"M2", "M_squared"} <= set(rows[0])
+    assert len(rows) == 1 + 151 and float(rows[-1][0]) == 7.5
+    # the link opened in a new page runs the same run again
+    other = context.new_page()
+    other.goto(url)
+    other.wait_for_function("document.body?.dataset.run === '1'", timeout=60_000)
+    assert other.input_value("#f-t_end") == "7.5" and other.input_value("#f-s-M1") == "0.25"
+    assert last_state(other) == first
+    other.close()
+
+
+def test_a_maps_permalink_reproduces_it(page, server, context):
+    page.goto(f"{server}/poincare")
+    page.wait_for_function("document.querySelectorAll('#case option').length > 1")
+    page.select_option("#case", "plane/chaplygin-ball")
+    page.fill("input[name=trajectories]", "2")
+    page.fill("input[name=points]", "15")
+    page.fill("input[name=seed]", "3")
+    page.click("#run")
+    page.wait_for_function("document.body.dataset.map === '1'", timeout=120_000)
+    url = page.url
+    assert "run=1" in url and "points=15" in url
+    pts = page.evaluate("() => document.getElementById('map-plot').data.map(t => t.x)")
+    with page.expect_download() as dl:
+        page.click("#map-csv")
+    rows = list(csv.reader(io.StringIO(Path(dl.value.path()).read_text())))
+    assert rows[0] == ["trajectory", "point", "L_over_G", "H_over_G", "l"]
+    assert len(rows) - 1 == sum(len(x) for x in pts)
+    other = context.new_page()
+    other.goto(url)
+    other.wait_for_function("document.body?.dataset.map === '1'", timeout=120_000)
+    assert other.evaluate("() => document.getElementById('map-plot').data.map(t => t.x)") == pts
+    other.close()
+
+
+@pytest.fixture
+def phone(browser):
+    ctx = browser.new_context(viewport={"width": 390, "height": 844}, device_scale_factor=1,
+                              is_mobile=True, has_touch=True)
+    page = ctx.new_page()
+    errors = []
+    page.on("pageerror", lambda e: errors.append(str(e)))
+    page.set_default_timeout(30_000)
+    yield page
+    ctx.close()
+    assert not errors, f"errors in the page: {errors}"
+
+
+def test_no_page_scrolls_sideways_on_a_phone(phone, server):
+    wide = {}
+    for path in project_pages():
+        settle(phone, server + path)
+        w = phone.evaluate("() => [document.scrollingElement.scrollWidth, innerWidth]")
+        if w[0] > w[1]:
+            culprits = phone.evaluate("""() => [...document.querySelectorAll('body *')]
+                .filter(e => e.getBoundingClientRect().right > innerWidth + 1)
+                .filter(e => !e.closest('.table-wrap, .scroll-x, .katex-display, pre'))
+                .slice(0, 5).map(e => e.tagName + '.' + e.className + '#' + e.id)""")
+            wide[path] = (w, culprits)
+    assert not wide, f"pages wider than a 390 px phone: {wide}"
+
+
+def test_axe_finds_no_serious_or_critical_violation(page, server):
+    found = {}
+    for path in project_pages():
+        settle(page, server + path)
+        page.add_script_tag(path=str(AXE))
+        res = page.evaluate("""async () => {
+            const r = await axe.run(document, {resultTypes: ['violations']});
+            return r.violations.filter(v => ['serious', 'critical'].includes(v.impact))
+              .map(v => ({id: v.id, impact: v.impact, n: v.nodes.length,
+                          at: v.nodes.slice(0, 3).map(n => n.target.join(' '))}));
+        }""")
+        if res:
+            found[path] = res
+    assert not found, f"axe-core violations: {found}"
