@@ -70,6 +70,11 @@ class VerdictStore:
     # --- updates ---------------------------------------------------------------------
 
     def put(self, case_id: str, records: list[dict]) -> None:
+        # every verdict says when and by which version of the project it was computed
+        from app import __version__
+
+        stamp = time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())
+        records = [{"computed_at": stamp, "version": __version__, **r} for r in records]
         self.records[case_id] = records
         self.updated = time.time()
         self._save()
