@@ -22,7 +22,7 @@ from fastapi.staticfiles import StaticFiles
 
 from app import __version__
 from app.api.main import api_router
-from app.api.routes import pages, poincare, scenes, work_precision
+from app.api.routes import pages, poincare, reader, scenes, work_precision
 from app.core import errors
 from app.core.config import Settings, get_settings
 from app.core.pool import WorkerPool
@@ -98,6 +98,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     errors.install(app)
     app.include_router(api_router)
     app.include_router(pages.router)
+    app.include_router(reader.pages)
     app.include_router(poincare.pages)
     app.include_router(scenes.pages)
     app.include_router(work_precision.pages)

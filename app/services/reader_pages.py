@@ -42,6 +42,8 @@ def static_page(path: Path) -> str:
     else:   # a page without the API link (404): give it the whole navigation
         html = html.replace("</a></header>", f"</a><nav aria-label=\"Site\">{_nav()}</nav>"
                             "</header>", 1)
+    if path.name == "index.html":
+        html = html.replace("</main>", cite_box() + "</main>", 1)
     tips = '<script type="module" src="/static/js/glossary.js"></script>'
     return html.replace("</head>", tips + "\n</head>", 1)
 

@@ -8,6 +8,7 @@ from fastapi import APIRouter, HTTPException
 from fastapi.responses import FileResponse, HTMLResponse
 
 from app.api.deps import SettingsDep
+from app.services.reader_pages import static_page
 from catalogue.load import load_catalogue
 
 router = APIRouter(include_in_schema=False)
@@ -22,8 +23,8 @@ def plotly_js() -> Path:
 
 
 @router.get("/")
-async def home(settings: SettingsDep) -> FileResponse:
-    return FileResponse(settings.static_dir / "index.html", media_type="text/html")
+async def home(settings: SettingsDep) -> HTMLResponse:
+    return HTMLResponse(static_page(settings.static_dir / "index.html"))
 
 
 @router.get("/case/{case_id:path}")
@@ -31,8 +32,8 @@ async def case_page(case_id: str, settings: SettingsDep):
     try:
         load_catalogue().case(case_id)
     except KeyError:
-        return HTMLResponse((settings.static_dir / "404.html").read_text(), status_code=404)
-    return FileResponse(settings.static_dir / "case.html", media_type="text/html")
+        return HTMLResponse(static_page(settings.static_dir / "404.html"), status_code=404)
+    return HTMLResponse(static_page(settings.static_dir / "case.html"))
 
 
 @router.get("/vendor/plotly.min.js")

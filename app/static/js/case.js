@@ -7,6 +7,7 @@ import { printedHtml, textHtml } from "./latex.js";
 import { badgeHtml, markHtml } from "./marks.js";
 import { plotDrift, plotGamma, plotState } from "./plots.js";
 import { Scene } from "./scene.js";
+import { glossary, tipHtml } from "./glossary.js";
 
 const caseId = decodeURIComponent(location.pathname.replace(/^\/case\//, "").replace(/\/$/, ""));
 const $ = (id) => document.getElementById(id);
@@ -198,16 +199,20 @@ async function reverify() {
 
 function inputHtml(name, value, { placeholder = "", title = "", group } = {}) {
   const label = PRETTY[name] || name;
-  return `<label title="${escapeHtml(title)}"><span class="nm">${escapeHtml(label)}</span>` +
+  return `<span class="field"><label title="${escapeHtml(title)}"><span class="nm">${escapeHtml(label)}</span>` +
     `<input id="f-${group}-${name}" data-group="${group}" data-name="${escapeHtml(name)}" value="${escapeHtml(value)}" ` +
-    `placeholder="${escapeHtml(placeholder)}" inputmode="decimal" autocomplete="off" spellcheck="false"></label>`;
+    `placeholder="${escapeHtml(placeholder)}" inputmode="decimal" autocomplete="off" spellcheck="false"></label>${tipHtml(name)}</span>`;
 }
+
+let GLOSSARY = {};
+// what to enter in an empty required field: the glossary's valid range
+const whatToEnter = (name) => (GLOSSARY[name] ? `enter ${name}: ${GLOSSARY[name].range}` : `enter a number for ${name}`);
 
 function buildForm() {
   const R = C.runnable;
   $("params").innerHTML = R.params.map((p) => {
     const v = p.example ?? "";
-    const placeholder = p.required ? "required" : p.default === null ? "= I1" : String(p.default);
+    const placeholder = p.required ? whatToEnter(p.name) : p.default === null ? "= I1" : String(p.default);
     const title = p.required ? `${p.name} (required)` : `${p.name} (optional, default ${p.default ?? "I1"})`;
     return inputHtml(p.name, v === "" ? "" : String(v), { placeholder, title, group: "p" });
   }).join("");
@@ -241,13 +246,13 @@ function gatherRequest() {
     const x = readNumber(el, errors);
     if (x !== undefined) params[el.dataset.name] = x;
     else if (el.value.trim() === "" && C.runnable.params.find((p) => p.name === el.dataset.name).required) {
-      errors.push({ el, msg: `${el.dataset.name} is required` });
+      errors.push({ el, msg: `${el.dataset.name} is required: ${whatToEnter(el.dataset.name)}` });
     }
   }
   const state = [];
   for (const el of document.querySelectorAll('input[data-group="s"]')) {
     const x = readNumber(el, errors);
-    if (x === undefined && el.value.trim() === "") errors.push({ el, msg: `${el.dataset.name} is required` });
+    if (x === undefined && el.value.trim() === "") errors.push({ el, msg: `${el.dataset.name} is required: ${whatToEnter(el.dataset.name)}` });
     state.push(x);
   }
   const num = (id, name) => {
@@ -505,8 +510,9 @@ async function runScene() {
 async function main() {
   await katexReady();
   try {
-    const [c, h, methods] = await Promise.all([
-      api(`/api/cases/${caseId}`), api("/api/health"), api("/api/methods")]);
+    const [c, h, methods, g] = await Promise.all([
+      api(`/api/cases/${caseId}`), api("/api/health"), api("/api/methods"), glossary()]);
+    GLOSSARY = g;
     C = c;
     limits = h.limits;
     SYMMETRIC = new Set(methods.filter((m) => m.kind === "symmetric").map((m) => m.name));
