@@ -23,7 +23,7 @@ from starlette.middleware.trustedhost import TrustedHostMiddleware
 
 from app import __version__
 from app.api.main import api_router
-from app.api.routes import pages, poincare, scenes, work_precision
+from app.api.routes import pages, poincare, reader, scenes, work_precision
 from app.core import errors
 from app.core.config import Settings, get_settings
 from app.core.guards import CSP, HeadAsGet, RequestGuard, SecurityHeaders
@@ -111,6 +111,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     errors.install(app)
     app.include_router(api_router)
     app.include_router(pages.router)
+    app.include_router(reader.pages)
     app.include_router(poincare.pages)
     app.include_router(scenes.pages)
     app.include_router(work_precision.pages)

@@ -162,7 +162,9 @@ def not_found_page(static_dir: Path, heading: str, message: str) -> HTMLResponse
     text = (Path(static_dir) / "404.html").read_text()
     text = text.replace("{{heading}}", html.escape(heading)).replace(
         "{{message}}", html.escape(message))
-    return HTMLResponse(text, status_code=404)
+    from app.services.reader_pages import render_page  # the site's navigation, lazily
+
+    return HTMLResponse(render_page(text, "404.html"), status_code=404)
 
 
 def _is_api(path: str) -> bool:

@@ -19,6 +19,8 @@ class VerdictPublic(BaseModel):
     evidence: dict[str, Any] | None = None
     seconds: float | None = None
     printed: str | None = None
+    computed_at: str | None = Field(None, description="when the verdict was computed (UTC)")
+    version: str | None = Field(None, description="the project version that computed it")
 
 
 class VerdictSummary(BaseModel):

@@ -77,6 +77,9 @@ class VerdictStore:
 
     def put(self, case_id: str, records: list[dict]) -> None:
         now = time.time()
+        # every verdict says when and by which version of the project it was computed
+        stamp = time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime(now))
+        records = [{"computed_at": stamp, "version": __version__, **r} for r in records]
         self.records[case_id] = records
         self.computed[case_id] = {"computed_at": now, "version": __version__}
         self.updated = now

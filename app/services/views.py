@@ -8,6 +8,7 @@ from functools import cache
 
 from app.services.verdicts import VERDICTS, summary
 from catalogue.load import load_catalogue
+from catalogue.numbering import cite, cite_latex, printed
 from catalogue.schema import Attribution, Case, Cell, Claim, Table
 from solvers.models.bodies import STATE_LABELS
 from solvers.models.cases import CaseSpec, registry
@@ -26,7 +27,7 @@ def _references() -> dict:
 
 def attribution(a: Attribution) -> dict:
     ref = _references().get(a.ref)
-    return {"ref": a.ref, "authors": a.authors, "year": a.year, "note": a.note,
+    return {"ref": a.ref, "authors": a.authors, "year": a.year, "note": cite(a.note),
             "reference_authors": list(ref.authors) if ref else [],
             "reference_title": ref.title if ref else None}
 
@@ -37,12 +38,14 @@ def table_of(case_id: str) -> Table:
 
 
 def cell(row_label: str, row: str, c: Cell, by_claim: dict[str, dict]) -> dict:
-    return {"row": row, "row_label": row_label, "printed": c.printed, "plain": c.plain,
-            "shade": c.shade.value, "shade_note": c.shade_note, "labels": list(c.labels),
+    # labels stay as data; what a reader sees carries the printed numbers (catalogue/numbering)
+    return {"row": row, "row_label": row_label, "printed": cite_latex(c.printed),
+            "plain": cite(c.plain), "shade": c.shade.value, "shade_note": cite(c.shade_note),
+            "labels": list(c.labels), "numbers": [printed(x) or x for x in c.labels],
             "attribution": [attribution(a) for a in c.attribution],
             "merged": list(c.merged), "colspan": c.colspan,
             "subrow": c.subrow.model_dump() if c.subrow else None, "subrow_case": None,
-            "claims": list(c.claims), "convention_note": c.convention_note,
+            "claims": list(c.claims), "convention_note": cite(c.convention_note),
             "verdict": summary(list(c.claims), by_claim)}
 
 
@@ -83,22 +86,27 @@ def _verdict(claim: Claim, rec: dict | None) -> dict:
 
 def record(rec: dict) -> dict:
     keys = ("claim", "verdict", "residual", "message", "check", "origin", "corrects",
-            "evidence", "seconds", "printed")
+            "evidence", "seconds", "printed", "computed_at", "version")
     out = {k: rec.get(k) for k in keys if rec.get(k) is not None}
+    if "message" in out:
+        out["message"] = cite(out["message"])
+    if "printed" in out:
+        out["printed"] = cite_latex(out["printed"])
     if out.get("verdict") not in VERDICTS:
         out["verdict"] = "unchecked"
     return out
 
 
 def claim(c: Claim, by_claim: dict[str, dict], corrections: dict[str, list[dict]]) -> dict:
-    return {"id": c.id, "kind": c.kind.value, "printed": c.printed, "plain": c.plain,
-            "label": c.label, "where": c.where,
+    return {"id": c.id, "kind": c.kind.value, "printed": cite_latex(c.printed),
+            "plain": cite(c.plain), "label": c.label, "number": printed(c.label),
+            "where": cite(c.where),
             "attribution": [attribution(a) for a in c.attribution],
             "conditions": {k: str(v) for k, v in c.conditions.model_dump(
                 mode="json", by_alias=True).items() if v is not None},
             "variables": c.variables.value, "check": c.check.value,
             "check_args": c.check_args.model_dump(mode="json", exclude_defaults=True),
-            "convention_note": c.convention_note, "remarks": c.remarks,
+            "convention_note": cite(c.convention_note), "remarks": cite(c.remarks),
             "verdict": _verdict(c, by_claim.get(c.id)),
             "corrections": [record(r) for r in corrections.get(c.id, [])]}
 
@@ -131,8 +139,9 @@ def case_detail(case_id: str, by_claim: dict[str, dict], corrections: dict[str, 
     claims = [claim(c, by_claim, corrections) for c in case.claims]
     verdicts = [c["verdict"]["verdict"] for c in claims]
     return {**case_summary(case),
-            "model": case.model.model_dump(mode="json", by_alias=True),
-            "remarks": list(case.remarks),
+            "model": {**case.model.model_dump(mode="json", by_alias=True),
+                      "equation_numbers": [printed(x) or x for x in case.model.equations]},
+            "remarks": [cite(r) for r in case.remarks],
             "cells": [cell(labels[r.key], r.key.value, case.cells[r.key], by_claim)
                       for r in t.rows],
             "claims": claims,

@@ -5,10 +5,11 @@ from functools import cache
 from pathlib import Path
 
 from fastapi import APIRouter, HTTPException
-from fastapi.responses import FileResponse
+from fastapi.responses import FileResponse, HTMLResponse
 
 from app.api.deps import SettingsDep
 from app.core.errors import not_found_page
+from app.services.reader_pages import static_page
 from catalogue.load import load_catalogue
 
 router = APIRouter(include_in_schema=False)
@@ -23,8 +24,8 @@ def plotly_js() -> Path:
 
 
 @router.get("/")
-async def home(settings: SettingsDep) -> FileResponse:
-    return FileResponse(settings.static_dir / "index.html", media_type="text/html")
+async def home(settings: SettingsDep) -> HTMLResponse:
+    return HTMLResponse(static_page(settings.static_dir / "index.html"))
 
 
 @router.get("/case/{case_id:path}")
@@ -34,7 +35,7 @@ async def case_page(case_id: str, settings: SettingsDep):
     except KeyError:
         return not_found_page(settings.static_dir, "No such case",
                               f"{case_id!r} names no case of Tables 1 and 2.")
-    return FileResponse(settings.static_dir / "case.html", media_type="text/html")
+    return HTMLResponse(static_page(settings.static_dir / "case.html"))
 
 
 @router.get("/vendor/plotly.min.js")

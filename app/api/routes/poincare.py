@@ -19,7 +19,7 @@ import json
 
 import anyio
 from fastapi import APIRouter, Query, Request
-from fastapi.responses import FileResponse, Response, StreamingResponse
+from fastapi.responses import HTMLResponse, Response, StreamingResponse
 
 from app.api.deps import PoolDep, SettingsDep
 from app.core.disconnect import cancel_on_disconnect
@@ -33,6 +33,7 @@ from app.schemas.common import (
 from app.schemas.poincare import PoincarePublic, PoincareRequest
 from app.services import poincare_jobs
 from app.services.jobs import dumps
+from app.services.reader_pages import static_page
 from solvers.errors import InputError
 
 router = APIRouter(tags=["poincare"])
@@ -139,5 +140,5 @@ async def poincare(req: PoincareRequest, request: Request, pool: PoolDep,
 
 
 @pages.get("/poincare")
-async def poincare_page(settings: SettingsDep) -> FileResponse:
-    return FileResponse(settings.static_dir / "poincare.html", media_type="text/html")
+async def poincare_page(settings: SettingsDep) -> HTMLResponse:
+    return HTMLResponse(static_page(settings.static_dir / "poincare.html"))
