@@ -5,6 +5,7 @@ gets its own port from the kernel)."""
 from __future__ import annotations
 
 import contextlib
+import json
 import os
 import socket
 import subprocess
@@ -41,8 +42,8 @@ def live_server(timeout: float = 60.0, **settings) -> Iterator[str]:
     """Start `uvicorn app.main:app` on 127.0.0.1 and a free port with ROLLING_* settings;
     yield its base URL once /api/health answers; stop it (SIGTERM, then SIGKILL)."""
     port = free_port()
-    env = {**os.environ, **{f"ROLLING_{k.upper()}": str(v)
-                           for k, v in {**TEST_SETTINGS, **settings}.items()}}
+    env = {**os.environ, **{f"ROLLING_{k.upper()}": json.dumps(v) if isinstance(v, list)
+                           else str(v) for k, v in {**TEST_SETTINGS, **settings}.items()}}
     env.setdefault("ROLLING_CACHE_DIR",
                    str(Path(tempfile.gettempdir()) / "rolling-hierarchy-test-cache"))
     log = tempfile.TemporaryFile()  # a file, not a pipe: a chatty server never blocks
