@@ -1,11 +1,15 @@
 """The `rolling` command line: one entry point per job.
 
 Errors in the input print one line `error: ...` on stderr and exit with code 2 (no
-traceback); a run that reaches a singularity prints what it computed and exits with 3.
+traceback, whatever fails); a run that reaches a singularity or its step budget prints what
+it computed and exits with 3, and so does a run stopped by --timeout. --json output is
+strict JSON: a non-finite number is written as null (as the API does).
 """
 
-import json
+import contextlib
+import os
 import sys
+import threading
 from typing import Annotated
 
 import typer
@@ -20,6 +24,41 @@ EXIT_SINGULAR = 3
 def _fail(message: str, code: int = EXIT_INPUT):
     typer.echo(f"error: {message}", err=True)
     raise typer.Exit(code)
+
+
+def _write_json(obj) -> None:
+    from app.services.jobs import dumps
+
+    sys.stdout.write(dumps(obj).decode() + "\n")
+
+
+TimeoutOpt = Annotated[float | None, typer.Option(
+    "--timeout", help="stop after this many seconds of wall time (exit 3)")]
+
+
+@contextlib.contextmanager
+def _timeout(seconds: float | None):
+    """Stop the whole process when `seconds` have passed: the compiled kernels run without
+    returning to Python, so a watchdog thread ends the process (exit 3) from outside."""
+    if seconds is None:
+        yield
+        return
+    if not seconds > 0 or seconds != seconds or seconds == float("inf"):
+        _fail(f"--timeout {seconds!r}: must be a positive number of seconds")
+    done = threading.Event()
+
+    def watch():
+        if not done.wait(seconds):
+            sys.stdout.flush()
+            sys.stderr.write(f"error: stopped by --timeout after {seconds:g} s\n")
+            sys.stderr.flush()
+            os._exit(EXIT_SINGULAR)
+
+    threading.Thread(target=watch, daemon=True).start()
+    try:
+        yield
+    finally:
+        done.set()
 
 
 def _parse_sets(items: list[str]) -> dict[str, str]:
@@ -66,11 +105,12 @@ def simulate(
     allow_any_inertia: Annotated[bool, typer.Option("--allow-any-inertia", help="accept "
                                  "moments violating the triangle inequality")] = False,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
+    timeout: TimeoutOpt = None,
 ):
     """Integrate one case and report the state, the invariants and the cost."""
+    from solvers import simulate as sim
     from solvers.errors import InputError
     from solvers.models.cases import get_case
-    from solvers.simulate import simulate as run
 
     try:
         spec = get_case(case)
@@ -82,13 +122,14 @@ def simulate(
             if not example:
                 _fail("--t-end is required")
             t_end = 100.0
-        res = run(case, params, y0, t_end, method=method, rtol=rtol, atol=atol,
-                  samples=samples, project=project, allow_any_inertia=allow_any_inertia,
-                  step=step)
+        with _timeout(timeout):
+            res = sim.simulate(case, params, y0, t_end, method=method, rtol=rtol, atol=atol,
+                               samples=samples, project=project,
+                               allow_any_inertia=allow_any_inertia, step=step)
     except InputError as e:
         _fail(str(e))
     if as_json:
-        sys.stdout.write(json.dumps(res.to_json(), allow_nan=False) + "\n")
+        _write_json(res.to_json())
     else:
         _summary(res)
     if not res.ok:
@@ -125,17 +166,27 @@ def verify(
     claim: Annotated[str | None, typer.Option(help="only this claim id")] = None,
     as_json: Annotated[bool, typer.Option("--json", help="print a JSON list of records")] = False,
     workers: Annotated[int, typer.Option(help="worker processes (0: one per core)")] = 0,
+    timeout: TimeoutOpt = None,
 ):
     """Check every claim of Tables 1-2 and the text; print the tables with verdict marks."""
+    from catalogue.load import load_catalogue
     from solvers.errors import InputError
     from solvers.verify.parallel import verify_parallel
 
+    if claim is not None:
+        known = {cl.id for c in load_catalogue().cases() if case in (None, c.id)
+                 for cl in c.claims}
+        if claim not in known:
+            where = f" of case {case}" if case else ""
+            _fail(f"--claim {claim!r}: no such claim{where} (the claim ids: rolling "
+                  "verify --json, or GET /api/cases/{id})")
     try:
-        records = verify_parallel(case=case, claim=claim, workers=workers)
+        with _timeout(timeout):
+            records = verify_parallel(case=case, claim=claim, workers=workers)
     except InputError as e:
         _fail(str(e))
     if as_json:
-        sys.stdout.write(json.dumps(records, allow_nan=False) + "\n")
+        _write_json(records)
         return
     _verify_tables(records, case)
 
@@ -253,6 +304,7 @@ def poincare(
                                           "(--set overrides)")] = False,
     allow_any_inertia: Annotated[bool, typer.Option("--allow-any-inertia")] = False,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
+    timeout: TimeoutOpt = None,
 ):
     """3D Poincare map in Andoyer-Deprit variables (L/G, H/G, l) on the level E = E0."""
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TimeElapsedColumn
@@ -271,9 +323,10 @@ def poincare(
         starts = [[float(v) for v in _parse_state(s)] for s in initial] or None
         spec = MapSpec(energy=energy, g0=_parse_section(section), direction=direction,
                        points=points, method=method, rtol=rtol, atol=atol)
-        with Progress("[progress.description]{task.description}", BarColumn(),
-                      MofNCompleteColumn(), TimeElapsedColumn(),
-                      console=_stderr_console(), transient=as_json) as bar:
+        with _timeout(timeout), Progress(
+                "[progress.description]{task.description}", BarColumn(),
+                MofNCompleteColumn(), TimeElapsedColumn(),
+                console=_stderr_console(), transient=as_json) as bar:
             task = bar.add_task("trajectories", total=len(starts) if starts else trajectories)
             res = run(case, params, spec, trajectories=trajectories, initial=starts,
                       seed=seed, allow_any_inertia=allow_any_inertia,
@@ -285,7 +338,7 @@ def poincare(
         _fail(str(e))
     out = res.to_json()
     if as_json:
-        sys.stdout.write(json.dumps(out, allow_nan=False) + "\n")
+        _write_json(out)
     else:
         _poincare_summary(out)
     if any(t["status"] not in ("ok", "no-return") for t in out["trajectories"]):
@@ -348,7 +401,7 @@ def sweep(
     except (InputError, ValueError) as e:
         _fail(str(e))
     if as_json:
-        sys.stdout.write(json.dumps(res.to_json(), allow_nan=False) + "\n")
+        _write_json(res.to_json())
         return
     from rich.console import Console
     from rich.table import Table
@@ -419,8 +472,17 @@ def bench(
         sys.argv = saved
 
 
-def main():
-    cli()
+def main(argv: list[str] | None = None):
+    """The entry point: whatever fails ends as one line on stderr and exit code 2."""
+    try:
+        cli(args=argv)
+    except KeyboardInterrupt:
+        sys.stderr.write("error: interrupted\n")
+        sys.exit(130)
+    except Exception as exc:
+        text = " ".join(str(exc).split())[:300] or type(exc).__name__
+        sys.stderr.write(f"error: {type(exc).__name__}: {text}\n")
+        sys.exit(EXIT_INPUT)
 
 
 if __name__ == "__main__":

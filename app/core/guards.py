@@ -10,7 +10,9 @@
   only send form or text types), and a body over `max_body` bytes is 413, counted from
   Content-Length and from the streamed chunks, before anything parses it. Bodies are read
   in full only up to that limit, so a 50 MB upload neither stalls the event loop nor fills
-  the memory.
+  the memory. The connection is not closed after a 413: closing a socket with unread data
+  resets it, and a client still sending would lose the answer; uvicorn drops the rest of
+  the body as it arrives, unparsed.
 
 The Host allow-list (DNS rebinding) is Starlette's TrustedHostMiddleware, set up in
 app.main from Settings.trusted_hosts().
@@ -88,8 +90,7 @@ def _problem(status: int, detail: str, kind: str) -> tuple[dict, bytes]:
          "type": kind}]}).encode()
     start = {"type": "http.response.start", "status": status,
              "headers": [(b"content-type", b"application/json"),
-                         (b"content-length", str(len(body)).encode()),
-                         (b"connection", b"close")]}
+                         (b"content-length", str(len(body)).encode())]}
     return start, body
 
 
