@@ -128,7 +128,8 @@ def case_summary(case: Case) -> dict:
     spec = registry()[case.id]
     return {"id": case.id, "title": case.title, "table": table_of(case.id).number,
             "column": case.column, "surface": spec.surface, "body": spec.body,
-            "model_title": spec.title, "href": case_href(case.id), "claims": len(case.claims)}
+            "model_title": cite(spec.title), "href": case_href(case.id),
+            "claims": len(case.claims)}
 
 
 def case_detail(case_id: str, by_claim: dict[str, dict], corrections: dict[str, list[dict]],
