@@ -4,7 +4,9 @@ verdicts. Pure functions of (catalogue, registry, verdicts); cheap enough for th
 
 from __future__ import annotations
 
+import re
 from functools import cache
+from pathlib import Path
 
 from app.services.verdicts import VERDICTS, summary
 from catalogue.load import load_catalogue
@@ -84,6 +86,20 @@ def _verdict(claim: Claim, rec: dict | None) -> dict:
     return record(rec)
 
 
+_CORRECTION_OF = re.compile(r"\[project's correction of (\w+)\]\s*")
+
+
+@cache
+def corrected_forms() -> dict[str, str]:
+    """fid -> the TeX of the project's corrected form (catalogue/corrected_forms.yaml)."""
+    import yaml
+
+    import catalogue
+
+    path = Path(catalogue.__file__).with_name("corrected_forms.yaml")
+    return yaml.safe_load(path.read_text(encoding="utf-8"))
+
+
 def record(rec: dict) -> dict:
     keys = ("claim", "verdict", "residual", "message", "check", "origin", "corrects",
             "evidence", "seconds", "printed", "computed_at", "version")
@@ -91,7 +107,13 @@ def record(rec: dict) -> dict:
     if "message" in out:
         out["message"] = cite(out["message"])
     if "printed" in out:
-        out["printed"] = cite_latex(out["printed"])
+        m = _CORRECTION_OF.match(out["printed"])
+        if m and m[1] in corrected_forms():
+            # a correction: its formula as TeX, the registered note as words
+            out["printed_tex"] = corrected_forms()[m[1]]
+            out["printed"] = cite(out["printed"][m.end():])
+        else:
+            out["printed"] = cite_latex(out["printed"])
     if out.get("verdict") not in VERDICTS:
         out["verdict"] = "unchecked"
     return out
@@ -105,7 +127,8 @@ def claim(c: Claim, by_claim: dict[str, dict], corrections: dict[str, list[dict]
             "conditions": {k: str(v) for k, v in c.conditions.model_dump(
                 mode="json", by_alias=True).items() if v is not None},
             "variables": c.variables.value, "check": c.check.value,
-            "check_args": c.check_args.model_dump(mode="json", exclude_defaults=True),
+            "check_args": {k: cite(v) if isinstance(v, str) else v for k, v in
+                           c.check_args.model_dump(mode="json", exclude_defaults=True).items()},
             "convention_note": cite(c.convention_note), "remarks": cite(c.remarks),
             "verdict": _verdict(c, by_claim.get(c.id)),
             "corrections": [record(r) for r in corrections.get(c.id, [])]}
