@@ -86,6 +86,17 @@ def _verdict(claim: Claim, rec: dict | None) -> dict:
     return record(rec)
 
 
+def _cite_all(x):
+    """Every string inside x (evidence: nested dicts and lists) with printed numbers."""
+    if isinstance(x, str):
+        return cite(x)
+    if isinstance(x, dict):
+        return {k: _cite_all(v) for k, v in x.items()}
+    if isinstance(x, list):
+        return [_cite_all(v) for v in x]
+    return x
+
+
 _CORRECTION_OF = re.compile(r"\[project's correction of (\w+)\]\s*")
 
 
@@ -106,6 +117,8 @@ def record(rec: dict) -> dict:
     out = {k: rec.get(k) for k in keys if rec.get(k) is not None}
     if "message" in out:
         out["message"] = cite(out["message"])
+    if "evidence" in out:
+        out["evidence"] = _cite_all(out["evidence"])
     if "printed" in out:
         m = _CORRECTION_OF.match(out["printed"])
         if m and m[1] in corrected_forms():
@@ -124,7 +137,7 @@ def claim(c: Claim, by_claim: dict[str, dict], corrections: dict[str, list[dict]
             "plain": cite(c.plain), "label": c.label, "number": printed(c.label),
             "where": cite(c.where),
             "attribution": [attribution(a) for a in c.attribution],
-            "conditions": {k: str(v) for k, v in c.conditions.model_dump(
+            "conditions": {k: cite(str(v)) for k, v in c.conditions.model_dump(
                 mode="json", by_alias=True).items() if v is not None},
             "variables": c.variables.value, "check": c.check.value,
             "check_args": {k: cite(v) if isinstance(v, str) else v for k, v in
@@ -155,6 +168,13 @@ def case_summary(case: Case) -> dict:
             "claims": len(case.claims)}
 
 
+def _cited_model(case: Case) -> dict:
+    m = case.model.model_dump(mode="json", by_alias=True)
+    conds = m.get("conditions") or {}
+    return {**m, "conditions": {k: cite(v) if isinstance(v, str) else v
+                                for k, v in conds.items()}}
+
+
 def case_detail(case_id: str, by_claim: dict[str, dict], corrections: dict[str, list[dict]],
                 verification: str) -> dict:
     case = load_catalogue().case(case_id)
@@ -163,7 +183,7 @@ def case_detail(case_id: str, by_claim: dict[str, dict], corrections: dict[str, 
     claims = [claim(c, by_claim, corrections) for c in case.claims]
     verdicts = [c["verdict"]["verdict"] for c in claims]
     return {**case_summary(case),
-            "model": {**case.model.model_dump(mode="json", by_alias=True),
+            "model": {**_cited_model(case),
                       "equation_numbers": [printed(x) or x for x in case.model.equations]},
             "remarks": [cite(r) for r in case.remarks],
             "cells": [cell(labels[r.key], r.key.value, case.cells[r.key], by_claim)
