@@ -51,7 +51,10 @@ def test_case_json_shows_numbers_and_keeps_labels_as_data(client):
             shown = " ".join(str(c.get(k) or "") for k in
                              ("plain", "where", "convention_note", "remarks", "printed"))
             shown += " " + (c["verdict"].get("message") or "")
+            shown += " " + " ".join(c["conditions"].values())
             assert not INTERNAL.findall(shown), (c["id"], shown)
+        conds = " ".join(str(v) for v in (d["model"].get("conditions") or {}).values())
+        assert not INTERNAL.findall(conds), (case.id, conds)
         assert d["model"]["equation_numbers"] and all(
             n.startswith("(") for n in d["model"]["equation_numbers"])
 
