@@ -227,7 +227,10 @@ def _verify_tables(records, only_case):
     for r in records:
         if r["verdict"] == "fails":
             res = "n/a" if r["residual"] is None else f"{r['residual']:.2e}"
-            con.print(f"✗ {r['claim']} ({r['label'] or ''}): residual {res} — {r['message']}")
+            from catalogue.numbering import cite, printed
+
+            num = printed(r["label"]) or r["label"] or ""
+            con.print(f"✗ {r['claim']} ({num}): residual {res} — {cite(r['message'])}")
 
 
 @cli.command()

@@ -232,7 +232,9 @@ def printed(label: str | None) -> str | None:
     """The printed number of one label; None when the paper prints no number for it."""
     if label is None:
         return None
-    return printed_numbers().get(label)
+    nums = printed_numbers()
+    # the catalogue also writes the seed's `2-14*` as `eq2-14*`
+    return nums.get(label) or nums.get(label.removeprefix("eq").strip())
 
 
 # a label as it appears in free text: the catalogue's own labels, longest first so that

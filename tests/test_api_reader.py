@@ -51,7 +51,10 @@ def test_case_json_shows_numbers_and_keeps_labels_as_data(client):
             shown = " ".join(str(c.get(k) or "") for k in
                              ("plain", "where", "convention_note", "remarks", "printed"))
             shown += " " + (c["verdict"].get("message") or "")
+            shown += " " + " ".join(c["conditions"].values())
             assert not INTERNAL.findall(shown), (c["id"], shown)
+        conds = " ".join(str(v) for v in (d["model"].get("conditions") or {}).values())
+        assert not INTERNAL.findall(conds), (case.id, conds)
         assert d["model"]["equation_numbers"] and all(
             n.startswith("(") for n in d["model"]["equation_numbers"])
 
@@ -104,3 +107,12 @@ def test_search_filters(client):
     assert r["cases"] == [] and r["claims"] == []
     r = client.get("/api/search", params={"verdict": "unchecked", "body": "disk"}).json()
     assert all(c["verdict"] == "unchecked" and c["body"] == "disk" for c in r["claims"])
+
+
+def test_scenes_and_check_args_show_numbers(client):
+    for s in client.get("/api/scenes").json():
+        shown = " ".join([s["title"], s["explanation"], s["claim"], *s["paper_numbers"]])
+        assert not INTERNAL.findall(shown), (s["id"], shown)
+    d = client.get("/api/cases/plane/chaplygin-ball").json()
+    args = " ".join(str(v) for c in d["claims"] for v in c["check_args"].values())
+    assert "(2.24)" in args and not INTERNAL.findall(args)

@@ -95,5 +95,6 @@ def test_cite_replaces_labels_in_free_text():
     assert cite("eq2.17 and (eq2.17), eq1.1-eq1.2") == "(2.24) and (2.24), (1.1)-(1.2)"
     assert cite("eq an-dp, eq2-14*, Fig ris-*1") == "(2.22), (2.18), Fig. 3"
     assert cite("eq2.1/2 but not eq2.171") == "(2.2) but not eq2.171"
+    assert printed("eq2-14*") == printed("2-14*") == "(2.18)"
     assert cite_latex(r"equation~\eqref{eq2.9}, Fig.~\ref{ris-*1}") == \
         r"equation~\eqref{2.17}, Fig.~\ref{3}"

@@ -19,6 +19,7 @@ class VerdictPublic(BaseModel):
     evidence: dict[str, Any] | None = None
     seconds: float | None = None
     printed: str | None = None
+    printed_tex: str | None = Field(None, description="a correction's formula (TeX)")
     computed_at: str | None = Field(None, description="when the verdict was computed (UTC)")
     version: str | None = Field(None, description="the project version that computed it")
 

@@ -4,7 +4,9 @@ verdicts. Pure functions of (catalogue, registry, verdicts); cheap enough for th
 
 from __future__ import annotations
 
+import re
 from functools import cache
+from pathlib import Path
 
 from app.services.verdicts import VERDICTS, summary
 from catalogue.load import load_catalogue
@@ -84,14 +86,47 @@ def _verdict(claim: Claim, rec: dict | None) -> dict:
     return record(rec)
 
 
+def _cite_all(x):
+    """Every string inside x (evidence: nested dicts and lists) with printed numbers."""
+    if isinstance(x, str):
+        return cite(x)
+    if isinstance(x, dict):
+        return {k: _cite_all(v) for k, v in x.items()}
+    if isinstance(x, list):
+        return [_cite_all(v) for v in x]
+    return x
+
+
+_CORRECTION_OF = re.compile(r"\[project's correction of (\w+)\]\s*")
+
+
+@cache
+def corrected_forms() -> dict[str, str]:
+    """fid -> the TeX of the project's corrected form (catalogue/corrected_forms.yaml)."""
+    import yaml
+
+    import catalogue
+
+    path = Path(catalogue.__file__).with_name("corrected_forms.yaml")
+    return yaml.safe_load(path.read_text(encoding="utf-8"))
+
+
 def record(rec: dict) -> dict:
     keys = ("claim", "verdict", "residual", "message", "check", "origin", "corrects",
             "evidence", "seconds", "printed", "computed_at", "version")
     out = {k: rec.get(k) for k in keys if rec.get(k) is not None}
     if "message" in out:
         out["message"] = cite(out["message"])
+    if "evidence" in out:
+        out["evidence"] = _cite_all(out["evidence"])
     if "printed" in out:
-        out["printed"] = cite_latex(out["printed"])
+        m = _CORRECTION_OF.match(out["printed"])
+        if m and m[1] in corrected_forms():
+            # a correction: its formula as TeX, the registered note as words
+            out["printed_tex"] = corrected_forms()[m[1]]
+            out["printed"] = cite(out["printed"][m.end():])
+        else:
+            out["printed"] = cite_latex(out["printed"])
     if out.get("verdict") not in VERDICTS:
         out["verdict"] = "unchecked"
     return out
@@ -102,10 +137,11 @@ def claim(c: Claim, by_claim: dict[str, dict], corrections: dict[str, list[dict]
             "plain": cite(c.plain), "label": c.label, "number": printed(c.label),
             "where": cite(c.where),
             "attribution": [attribution(a) for a in c.attribution],
-            "conditions": {k: str(v) for k, v in c.conditions.model_dump(
+            "conditions": {k: cite(str(v)) for k, v in c.conditions.model_dump(
                 mode="json", by_alias=True).items() if v is not None},
             "variables": c.variables.value, "check": c.check.value,
-            "check_args": c.check_args.model_dump(mode="json", exclude_defaults=True),
+            "check_args": {k: cite(v) if isinstance(v, str) else v for k, v in
+                           c.check_args.model_dump(mode="json", exclude_defaults=True).items()},
             "convention_note": cite(c.convention_note), "remarks": cite(c.remarks),
             "verdict": _verdict(c, by_claim.get(c.id)),
             "corrections": [record(r) for r in corrections.get(c.id, [])]}
@@ -128,7 +164,15 @@ def case_summary(case: Case) -> dict:
     spec = registry()[case.id]
     return {"id": case.id, "title": case.title, "table": table_of(case.id).number,
             "column": case.column, "surface": spec.surface, "body": spec.body,
-            "model_title": spec.title, "href": case_href(case.id), "claims": len(case.claims)}
+            "model_title": cite(spec.title), "href": case_href(case.id),
+            "claims": len(case.claims)}
+
+
+def _cited_model(case: Case) -> dict:
+    m = case.model.model_dump(mode="json", by_alias=True)
+    conds = m.get("conditions") or {}
+    return {**m, "conditions": {k: cite(v) if isinstance(v, str) else v
+                                for k, v in conds.items()}}
 
 
 def case_detail(case_id: str, by_claim: dict[str, dict], corrections: dict[str, list[dict]],
@@ -139,7 +183,7 @@ def case_detail(case_id: str, by_claim: dict[str, dict], corrections: dict[str, 
     claims = [claim(c, by_claim, corrections) for c in case.claims]
     verdicts = [c["verdict"]["verdict"] for c in claims]
     return {**case_summary(case),
-            "model": {**case.model.model_dump(mode="json", by_alias=True),
+            "model": {**_cited_model(case),
                       "equation_numbers": [printed(x) or x for x in case.model.equations]},
             "remarks": [cite(r) for r in case.remarks],
             "cells": [cell(labels[r.key], r.key.value, case.cells[r.key], by_claim)

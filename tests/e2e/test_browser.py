@@ -57,10 +57,12 @@ def test_case_page_verify_simulate_and_plot(page, server, artifacts):
     ready(page)
     claims = page.locator("#claimlist article.claim")
     expect(claims).to_have_count(len(load_catalogue().case("plane/routh-ball").claims))
-    # every claim shows its printed formula, its source and a verdict
+    # every claim shows its printed formula, where it is in the paper (printed number), what
+    # was checked in one sentence, and a verdict (issue 11: "source" became "in the paper")
     first = claims.first
     expect(first.locator(".printed .katex")).not_to_have_count(0)
-    expect(first.locator("dl")).to_contain_text("source")
+    expect(first.locator("dl").first).to_contain_text("in the paper")
+    expect(first.locator("p.checked")).to_contain_text("We checked")
     page.click("#reverify")
     expect(page.locator("#reverify-msg")).to_contain_text("Done", timeout=120_000)
     expect(page.locator("#claimlist .badge.verified").first).to_be_visible()

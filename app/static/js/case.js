@@ -3,7 +3,7 @@
 "use strict";
 
 import { api, ApiError, download, escapeHtml, fmt, VERDICT_ICON } from "./api.js";
-import { printedHtml, textHtml } from "./latex.js";
+import { mathHtml, printedHtml, textHtml } from "./latex.js";
 import { badgeHtml, markHtml } from "./marks.js";
 import { plotDrift, plotGamma, plotState } from "./plots.js";
 import { applyRunQuery, runQuery, setQuery } from "./permalink.js";
@@ -168,7 +168,8 @@ function claimHtml(c) {
     c.remarks ? `<p><strong>Remark:</strong> ${escapeHtml(c.remarks)}</p>` : "",
   ].join("");
   const corr = c.corrections.map((r) => `<div class="correction"><strong>The project's corrected form</strong>` +
-    `${r.printed ? `<div class="printed">${printedHtml(r.printed)}</div>` : ""}${verdictLine(r)}</div>`).join("");
+    `${r.printed_tex ? `<div class="printed">${mathHtml(r.printed_tex, true)}</div>` : ""}` +
+    `${r.printed ? `<p class="plain">${r.printed_tex ? escapeHtml(r.printed) : printedHtml(r.printed)}</p>` : ""}${verdictLine(r)}</div>`).join("");
   return `<article class="claim ${v.verdict}" id="${anchor(c.id)}">` +
     `<header><span class="kind">${escapeHtml(c.kind)}</span>${c.number ? `<span class="label">${escapeHtml(c.number)}</span>` : ""}` +
     `${badgeHtml(v.verdict)}</header>` +

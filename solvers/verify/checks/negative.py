@@ -81,7 +81,7 @@ MAP_CONTROLS = {
                                 "b1 = b2 = b3, a = 0: the integrable Chaplygin ball with "
                                 "spherical inertia"),
     "sphere/chaplygin-ball": ({"case": "sphere/borisov-fedorov"},
-                              "the Borisov-Fedorov ball (k = 2/R), third integral eq3.13"),
+                              "the Borisov–Fedorov ball (k = 2/R), third integral eq3.13"),
 }
 KNOWN_INTEGRALS = {"sphere/chaplygin-ball": 1}   # besides H (and gamma^2): M^2
 
