@@ -4,9 +4,11 @@ and axe-core finds no serious or critical violation on any of the project's page
 
 import csv
 import io
+import re
 from pathlib import Path
 
 import pytest
+from playwright.sync_api import expect
 
 from catalogue.load import load_catalogue
 
@@ -128,3 +130,26 @@ def test_axe_finds_no_serious_or_critical_violation(page, server):
         if res:
             found[path] = res
     assert not found, f"axe-core violations: {found}"
+
+
+def test_a_run_is_estimated_before_it_starts_and_stale_plots_dim(page, server):
+    page.goto(f"{server}/case/{CASE}")
+    page.wait_for_function("document.body?.dataset.ready === '1'")
+    est = page.locator("#estimate")
+    page.fill("#f-t_end", "400")
+    page.fill("#f-samples", "11")
+    expect(est).to_contain_text("Estimate from a pilot run to t = 20", timeout=30_000)
+    expect(est).to_contain_text("Too few samples to resolve the motion")
+    assert "warn" in est.get_attribute("class")
+    steps = int(re.search(r"about ([\d,]+) steps", est.inner_text()).group(1).replace(",", ""))
+    page.fill("#f-samples", "4001")
+    expect(est).not_to_contain_text("Too few samples", timeout=30_000)
+    expect(est).to_contain_text("steps")
+    # the estimate is the pilot's step count scaled to t_end: compare with the real run
+    page.click("#run")
+    expect(page.locator("#runinfo")).to_contain_text("steps", timeout=120_000)
+    real = int(re.search(r"(\d+) steps", page.inner_text("#runinfo")).group(1))
+    assert 0.5 < steps / real < 2.0, (steps, real)
+    expect(page.locator("#plots")).not_to_have_class(re.compile("stale"))
+    page.fill("#f-t_end", "-1")                    # an invalid form: the plots are stale
+    expect(page.locator("#plots")).to_have_class(re.compile("stale"))
