@@ -1,11 +1,14 @@
 """Pages a reader can use without scripts (issue 11, part B): HTML 404 with navigation for
 people, JSON for /api/*."""
 
+import html
+
 import pytest
 from fastapi.testclient import TestClient
 
 from app.main import create_app
 from app.testing import settings_for_tests
+from catalogue.load import load_catalogue
 
 pytestmark = pytest.mark.filterwarnings("ignore::DeprecationWarning")
 
@@ -35,3 +38,19 @@ def test_unknown_api_addresses_stay_json(client, path):
     r = client.get(path)
     assert r.status_code == 404 and r.headers["content-type"] == "application/json"
     assert r.json()["detail"]
+
+
+@pytest.mark.parametrize("case_id", ["plane/chaplygin-ball", "sphere/borisov-fedorov"])
+def test_case_page_holds_its_claims_without_scripts(client, case_id):
+    """The HTML as served (no script run) has the title and every claim in words with
+    its verdict; the scripts then redraw them."""
+    case = load_catalogue().case(case_id)
+    r = client.get(f"/case/{case_id}")
+    assert r.status_code == 200
+    text = r.text
+    assert f'<h1 id="case-title">{html.escape(case.title)}</h1>' in text
+    assert f"<title>{html.escape(case.title)} — Rolling hierarchy</title>" in text
+    assert text.count('<article class="claim ssr"') == len(case.claims)
+    for c in case.claims:
+        assert html.escape(c.plain) in text
+    assert "Verdict: " in text and "Loading…" not in text.split('id="claimlist"')[0][-200:]

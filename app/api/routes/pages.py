@@ -5,10 +5,11 @@ from functools import cache
 from pathlib import Path
 
 from fastapi import APIRouter, HTTPException
-from fastapi.responses import FileResponse
+from fastapi.responses import FileResponse, HTMLResponse
 
-from app.api.deps import SettingsDep
+from app.api.deps import SettingsDep, VerdictsDep
 from app.core.errors import not_found_page
+from app.services import ssr, views
 from catalogue.load import load_catalogue
 
 router = APIRouter(include_in_schema=False)
@@ -28,13 +29,17 @@ async def home(settings: SettingsDep) -> FileResponse:
 
 
 @router.get("/case/{case_id:path}")
-async def case_page(case_id: str, settings: SettingsDep):
+async def case_page(case_id: str, settings: SettingsDep, verdicts: VerdictsDep):
     try:
         load_catalogue().case(case_id)
     except KeyError:
         return not_found_page(settings.static_dir, "No such case",
                               f"{case_id!r} names no case of Tables 1 and 2.")
-    return FileResponse(settings.static_dir / "case.html", media_type="text/html")
+    # the claims and their verdicts in the HTML itself (readable with scripts off)
+    detail = views.case_detail(case_id, verdicts.by_claim(), verdicts.corrections(),
+                               verdicts.case_state(case_id))
+    template = (settings.static_dir / "case.html").read_text()
+    return HTMLResponse(ssr.case_page(template, detail))
 
 
 @router.get("/vendor/plotly.min.js")
