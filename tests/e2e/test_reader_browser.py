@@ -153,3 +153,20 @@ def test_a_run_is_estimated_before_it_starts_and_stale_plots_dim(page, server):
     expect(page.locator("#plots")).not_to_have_class(re.compile("stale"))
     page.fill("#f-t_end", "-1")                    # an invalid form: the plots are stale
     expect(page.locator("#plots")).to_have_class(re.compile("stale"))
+
+
+@pytest.mark.parametrize("scene_id,traces", [("rattleback-spin-reversal", 2),
+                                             ("rolling-disk-stays-up", 1)])
+def test_a_scene_plots_what_its_text_promises_beside_the_3d_view(page, server, scene_id,
+                                                                  traces):
+    page.goto(f"{server}/scenes#{scene_id}")
+    page.wait_for_function(f"document.body?.dataset.playing === '{scene_id}'",
+                           timeout=120_000)
+    series = page.locator("#scene-series")
+    expect(series).to_be_visible()
+    expect(series.locator(".scatterlayer .trace")).to_have_count(traces)
+    title = series.locator(".gtitle").text_content()
+    assert ("Spin" in title) if scene_id.startswith("rattleback") else ("Tilt" in title)
+    # beside the 3D view, not under it (at a desktop width)
+    a, b = series.bounding_box(), page.locator("#scene-plot").bounding_box()
+    assert a["x"] + a["width"] <= b["x"] + 1
