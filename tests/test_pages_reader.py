@@ -54,3 +54,21 @@ def test_case_page_holds_its_claims_without_scripts(client, case_id):
     for c in case.claims:
         assert html.escape(c.plain) in text
     assert "Verdict: " in text and "Loading…" not in text.split('id="claimlist"')[0][-200:]
+
+
+def test_home_page_holds_both_tables_without_scripts(client):
+    """Tables 1 and 2 as served: every case column linked, every row labelled, merged
+    cells spanning their columns, the cells' words (the script later typesets them)."""
+    text = client.get("/").text
+    cat = load_catalogue()
+    for table in (cat.plane, cat.sphere):
+        tid = table.id.value
+        part = text.split(f'id="tbl-{tid}"')[1].split("</table>")[0]
+        for c in table.cases:
+            assert f'href="/case/{c.id}"' in part and html.escape(c.title) in part
+        assert part.count('<th scope="row">') == len(table.rows)
+        for row in table.rows:
+            first = table.cases[0].cells[row.key]
+            assert html.escape(first.plain) in part
+    assert "Loading Table" not in text
+    assert 'colspan="3"' in text.split('id="tbl-plane"')[1].split("</table>")[0]

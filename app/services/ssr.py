@@ -47,3 +47,40 @@ def case_page(template: str, detail: dict) -> str:
             .replace('<div id="claimlist"></div>',
                      f'<div id="claimlist"><p class="status ssr">{len(detail["claims"])} '
                      f'claims: {escape(counts)}.</p>{claims}</div>', 1))
+
+
+def table_html(t: dict) -> str:
+    """A table of the paper (views.table) as plain HTML: the same rows, columns, merged
+    cells and shading as the page's script draws, with the cells' words instead of typeset
+    formulas; the verdict marks are left to the script (static/js/marks.js)."""
+    head = "".join(
+        f'<th scope="col" class="case-head"><a href="{escape(c["href"])}" '
+        f'data-case="{escape(c["id"])}"><span class="colno">{c["column"]}</span> '
+        f'<span class="coltitle">{escape(c["title"])}</span></a></th>' for c in t["columns"])
+    labels = {r["key"]: r.get("plain") or r["key"] for r in t["rows"]}
+    shade_words = {"full": " (invariant exists)", "partial": " (incomplete set of integrals)"}
+    rows = []
+    for grow in t["grid"]:
+        cells = []
+        for c in grow["cells"]:
+            span = f' colspan="{c["colspan"]}"' if c["colspan"] > 1 else ""
+            sr = shade_words.get(c["shade"], "")
+            sub = f'<div>{escape(c["subrow"]["plain"])}</div>' if c.get("subrow") else ""
+            cells.append(f'<td{span} class="shade-{escape(c["shade"])}"><div class="cell-body">'
+                         f'{escape(c["plain"])}{sub}<span class="sr-only">{sr}</span></div></td>')
+        rows.append(f'<tr class="row-{escape(grow["key"])}"><th scope="row">'
+                    f'{escape(labels[grow["key"]])}</th>{"".join(cells)}</tr>')
+    return (f'<table class="paper ssr" id="tbl-{escape(t["id"])}" '
+            f'aria-describedby="cap-{escape(t["id"])}"><thead><tr><th scope="col" '
+            f'class="corner"><span class="sr-only">row</span></th>{head}</tr></thead>'
+            f'<tbody>{"".join(rows)}</tbody></table>')
+
+
+def home_page(template: str, tables: dict[str, dict]) -> str:
+    """index.html with Tables 1 and 2 in the HTML itself."""
+    for n, t in enumerate(tables.values(), start=1):
+        loading = (f'<div class="table-wrap" tabindex="0"><p class="loading">'
+                   f'Loading Table {n}…</p></div>')
+        template = template.replace(
+            loading, f'<div class="table-wrap" tabindex="0">{table_html(t)}</div>', 1)
+    return template

@@ -24,8 +24,13 @@ def plotly_js() -> Path:
 
 
 @router.get("/")
-async def home(settings: SettingsDep) -> FileResponse:
-    return FileResponse(settings.static_dir / "index.html", media_type="text/html")
+async def home(settings: SettingsDep, verdicts: VerdictsDep) -> HTMLResponse:
+    # Tables 1 and 2 in the HTML itself (readable with scripts off); the script redraws
+    # them with typeset formulas and verdict marks
+    by_claim = verdicts.by_claim()
+    tables = {tid: views.table(tid, by_claim) for tid in ("plane", "sphere")}
+    template = (settings.static_dir / "index.html").read_text()
+    return HTMLResponse(ssr.home_page(template, tables))
 
 
 @router.get("/case/{case_id:path}")
