@@ -41,6 +41,11 @@ def shoot(page, url: str, path: str, out: Path, name: str, width: str) -> Path:
         page.wait_for_function("document.body?.dataset.ready === '1'", timeout=60_000)
     else:
         page.wait_for_load_state("networkidle")
+    if path.startswith("/case/"):          # a case page with a run: its plots shown
+        page.fill("#f-t_end", "60")
+        page.click("#run")
+        page.wait_for_function("document.body.dataset.run === '1'", timeout=120_000)
+        page.evaluate("window.scrollTo(0, 0)")
     page.wait_for_timeout(1500)            # plots and KaTeX settle
     h = min(MAX_HEIGHT, page.evaluate("document.scrollingElement.scrollHeight"))
     w = WIDTHS[width][0]
