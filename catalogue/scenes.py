@@ -84,6 +84,9 @@ class Scene(_Strict):
     scene: SceneDeclaration = Field(description="the run, as the scene planner declares "
                                     "it (solvers/scenes/scenes.py); params and state in full")
     checks: list[Check] = Field(min_length=1)
+    plot: Literal["vertical_spin", "tilt"] | None = Field(
+        None, description="the quantity the text promises, plotted against time beside "
+        "the animation (the scene response's `series`)")
 
     @model_validator(mode="after")
     def _runnable(self):

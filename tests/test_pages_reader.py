@@ -1,11 +1,14 @@
 """Pages a reader can use without scripts (issue 11, part B): HTML 404 with navigation for
 people, JSON for /api/*."""
 
+import html
+
 import pytest
 from fastapi.testclient import TestClient
 
 from app.main import create_app
 from app.testing import settings_for_tests
+from catalogue.load import load_catalogue
 
 pytestmark = pytest.mark.filterwarnings("ignore::DeprecationWarning")
 
@@ -35,3 +38,37 @@ def test_unknown_api_addresses_stay_json(client, path):
     r = client.get(path)
     assert r.status_code == 404 and r.headers["content-type"] == "application/json"
     assert r.json()["detail"]
+
+
+@pytest.mark.parametrize("case_id", ["plane/chaplygin-ball", "sphere/borisov-fedorov"])
+def test_case_page_holds_its_claims_without_scripts(client, case_id):
+    """The HTML as served (no script run) has the title and every claim in words with
+    its verdict; the scripts then redraw them."""
+    case = load_catalogue().case(case_id)
+    r = client.get(f"/case/{case_id}")
+    assert r.status_code == 200
+    text = r.text
+    assert f'<h1 id="case-title">{html.escape(case.title)}</h1>' in text
+    assert f"<title>{html.escape(case.title)} — Rolling hierarchy</title>" in text
+    assert text.count('<article class="claim ssr"') == len(case.claims)
+    for c in case.claims:
+        assert html.escape(c.plain) in text
+    assert "Verdict: " in text and "Loading…" not in text.split('id="claimlist"')[0][-200:]
+
+
+def test_home_page_holds_both_tables_without_scripts(client):
+    """Tables 1 and 2 as served: every case column linked, every row labelled, merged
+    cells spanning their columns, the cells' words (the script later typesets them)."""
+    text = client.get("/").text
+    cat = load_catalogue()
+    for table in (cat.plane, cat.sphere):
+        tid = table.id.value
+        part = text.split(f'id="tbl-{tid}"')[1].split("</table>")[0]
+        for c in table.cases:
+            assert f'href="/case/{c.id}"' in part and html.escape(c.title) in part
+        assert part.count('<th scope="row">') == len(table.rows)
+        for row in table.rows:
+            first = table.cases[0].cells[row.key]
+            assert html.escape(first.plain) in part
+    assert "Loading Table" not in text
+    assert 'colspan="3"' in text.split('id="tbl-plane"')[1].split("</table>")[0]

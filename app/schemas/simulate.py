@@ -119,6 +119,10 @@ class ScenePublic(BaseModel):
     message: str
     stats: dict[str, Any]
     checks: dict[str, float]
+    series: dict[str, list[float]] = Field(
+        default_factory=dict, description="per frame: vertical_spin -(omega, gamma) and tilt "
+        "sqrt(g1^2 + g2^2) (sine of the angle of the body's e3 axis to the vertical); "
+        "bodies with the state (M, gamma) only")
 
 
 class MethodPublic(BaseModel):

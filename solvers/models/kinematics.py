@@ -181,6 +181,19 @@ def _disk_mesh(R: float, height: float, dome: float | None) -> dict:
     return {"vertices": verts, "faces": [list(f) for f in faces], "pattern": pattern}
 
 
+def _series(model, Y) -> dict[str, list[float]]:
+    """Time series a teaching scene plots beside the animation, one value per frame:
+    `vertical_spin` -(omega, gamma), the spin about the upward vertical (the rattleback's
+    reversal), and `tilt` sqrt(g1^2 + g2^2), the sine of the angle between the body's e3
+    axis and the vertical (a rolling disk stays up while it stays away from 0)."""
+    if model.dim != 6 or len(Y) == 0:
+        return {}
+    from solvers.models.observables import vertical_spin
+
+    return {"vertical_spin": vertical_spin(model, Y).tolist(),
+            "tilt": np.hypot(Y[:, 3], Y[:, 4]).tolist()}
+
+
 def scene(case: str, params: dict | None, state0, t_end: float, *, frames: int = 200,
           rtol: float = 1e-9, atol: float = 1e-11, max_steps: int = 100_000,
           allow_any_inertia: bool = False) -> dict:
@@ -249,6 +262,7 @@ def scene(case: str, params: dict | None, state0, t_end: float, *, frames: int =
     reach = np.asarray([body(np.ascontiguousarray(z[:n]))[1] for z in Z])
     extent = float(np.max(np.hypot(reach[:, 0], reach[:, 1])))
     return {
+        "series": _series(model, Z[:, :n]),
         "case": model.case.id,
         "surface": model.case.surface,
         "body": model.case.body,

@@ -4,9 +4,11 @@ and axe-core finds no serious or critical violation on any of the project's page
 
 import csv
 import io
+import re
 from pathlib import Path
 
 import pytest
+from playwright.sync_api import expect
 
 from catalogue.load import load_catalogue
 
@@ -88,8 +90,9 @@ def test_a_maps_permalink_reproduces_it(page, server, context):
 
 @pytest.fixture
 def phone(browser):
+    # not is_mobile: a mobile viewport widens itself to fit wide content, hiding the fault
     ctx = browser.new_context(viewport={"width": 390, "height": 844}, device_scale_factor=1,
-                              is_mobile=True, has_touch=True)
+                              has_touch=True)
     page = ctx.new_page()
     errors = []
     page.on("pageerror", lambda e: errors.append(str(e)))
@@ -104,7 +107,7 @@ def test_no_page_scrolls_sideways_on_a_phone(phone, server):
     for path in project_pages():
         settle(phone, server + path)
         w = phone.evaluate("() => [document.scrollingElement.scrollWidth, innerWidth]")
-        if w[0] > w[1]:
+        if w[0] > w[1] or w[1] != 390:
             culprits = phone.evaluate("""() => [...document.querySelectorAll('body *')]
                 .filter(e => e.getBoundingClientRect().right > innerWidth + 1)
                 .filter(e => !e.closest('.table-wrap, .scroll-x, .katex-display, pre'))
@@ -127,3 +130,43 @@ def test_axe_finds_no_serious_or_critical_violation(page, server):
         if res:
             found[path] = res
     assert not found, f"axe-core violations: {found}"
+
+
+def test_a_run_is_estimated_before_it_starts_and_stale_plots_dim(page, server):
+    page.goto(f"{server}/case/{CASE}")
+    page.wait_for_function("document.body?.dataset.ready === '1'")
+    est = page.locator("#estimate")
+    page.fill("#f-t_end", "400")
+    page.fill("#f-samples", "11")
+    expect(est).to_contain_text("Estimate from a pilot run to t = 20", timeout=30_000)
+    expect(est).to_contain_text("Too few samples to resolve the motion")
+    assert "warn" in est.get_attribute("class")
+    steps = int(re.search(r"about ([\d,]+) steps", est.inner_text()).group(1).replace(",", ""))
+    page.fill("#f-samples", "4001")
+    expect(est).not_to_contain_text("Too few samples", timeout=30_000)
+    expect(est).to_contain_text("steps")
+    # the estimate is the pilot's step count scaled to t_end: compare with the real run
+    page.click("#run")
+    expect(page.locator("#runinfo")).to_contain_text("steps", timeout=120_000)
+    real = int(re.search(r"(\d+) steps", page.inner_text("#runinfo")).group(1))
+    assert 0.5 < steps / real < 2.0, (steps, real)
+    expect(page.locator("#plots")).not_to_have_class(re.compile("stale"))
+    page.fill("#f-t_end", "-1")                    # an invalid form: the plots are stale
+    expect(page.locator("#plots")).to_have_class(re.compile("stale"))
+
+
+@pytest.mark.parametrize("scene_id,traces", [("rattleback-spin-reversal", 2),
+                                             ("rolling-disk-stays-up", 1)])
+def test_a_scene_plots_what_its_text_promises_beside_the_3d_view(page, server, scene_id,
+                                                                  traces):
+    page.goto(f"{server}/scenes#{scene_id}")
+    page.wait_for_function(f"document.body?.dataset.playing === '{scene_id}'",
+                           timeout=120_000)
+    series = page.locator("#scene-series")
+    expect(series).to_be_visible()
+    expect(series.locator(".scatterlayer .trace")).to_have_count(traces)
+    title = series.locator(".gtitle").text_content()
+    assert ("Spin" in title) if scene_id.startswith("rattleback") else ("Tilt" in title)
+    # beside the 3D view, not under it (at a desktop width)
+    a, b = series.bounding_box(), page.locator("#scene-plot").bounding_box()
+    assert a["x"] + a["width"] <= b["x"] + 1

@@ -7,9 +7,10 @@ from pathlib import Path
 from fastapi import APIRouter, HTTPException
 from fastapi.responses import FileResponse, HTMLResponse
 
-from app.api.deps import SettingsDep
+from app.api.deps import SettingsDep, VerdictsDep
 from app.core.errors import not_found_page
-from app.services.reader_pages import static_page
+from app.services import ssr, views
+from app.services.reader_pages import render_page
 from catalogue.load import load_catalogue
 
 router = APIRouter(include_in_schema=False)
@@ -24,18 +25,27 @@ def plotly_js() -> Path:
 
 
 @router.get("/")
-async def home(settings: SettingsDep) -> HTMLResponse:
-    return HTMLResponse(static_page(settings.static_dir / "index.html"))
+async def home(settings: SettingsDep, verdicts: VerdictsDep) -> HTMLResponse:
+    # Tables 1 and 2 in the HTML itself (readable with scripts off); the script redraws
+    # them with typeset formulas and verdict marks
+    by_claim = verdicts.by_claim()
+    tables = {tid: views.table(tid, by_claim) for tid in ("plane", "sphere")}
+    template = (settings.static_dir / "index.html").read_text()
+    return HTMLResponse(render_page(ssr.home_page(template, tables), "index.html"))
 
 
 @router.get("/case/{case_id:path}")
-async def case_page(case_id: str, settings: SettingsDep):
+async def case_page(case_id: str, settings: SettingsDep, verdicts: VerdictsDep):
     try:
         load_catalogue().case(case_id)
     except KeyError:
         return not_found_page(settings.static_dir, "No such case",
                               f"{case_id!r} names no case of Tables 1 and 2.")
-    return HTMLResponse(static_page(settings.static_dir / "case.html"))
+    # the claims and their verdicts in the HTML itself (readable with scripts off)
+    detail = views.case_detail(case_id, verdicts.by_claim(), verdicts.corrections(),
+                               verdicts.case_state(case_id))
+    template = (settings.static_dir / "case.html").read_text()
+    return HTMLResponse(render_page(ssr.case_page(template, detail), "case.html"))
 
 
 @router.get("/vendor/plotly.min.js")

@@ -30,6 +30,8 @@ class ScenePreset(BaseModel):
                                   "(solvers/scenes/scenes.py): case, params, state, t_end, shows, "
                                   "samples (the frames of the animation)")
     checks: list[dict[str, Any]]
+    plot: str | None = Field(None, description="the series of POST /api/scene plotted "
+                             "against time beside the animation")
 
 
 def _public(s) -> dict:

@@ -8,6 +8,7 @@ import { badgeHtml, markHtml } from "./marks.js";
 import { plotDrift, plotGamma, plotState } from "./plots.js";
 import { applyRunQuery, runQuery, setQuery } from "./permalink.js";
 import { csvOf } from "./run_csv.js";
+import { estimate } from "./estimate.js";
 import { Scene } from "./scene.js";
 import { glossary, tipHtml } from "./glossary.js";
 
@@ -333,12 +334,17 @@ function showFormMessage(text, kind, el) {
 let validateTimer = null;
 let validateCtl = null;
 
+let pilotGeneration = 0;
+
 function onEdit() {
   // every edit supersedes any pending or in-flight server check: a late answer about an
   // older form must not clear the message about this one
   clearTimeout(validateTimer);
   if (validateCtl) validateCtl.abort();
   const { req, errors } = gatherRequest();
+  $("plots").classList.toggle("stale", errors.length > 0 || lastRun !== null);
+  $("estimate").textContent = "";
+  pilotGeneration++;
   if (errors.length) {
     showFormMessage(errors[0].msg, "bad", errors[0].el);
     return;
@@ -351,6 +357,13 @@ function onEdit() {
     try {
       const v = await api("/api/validate", { method: "POST", body: req, signal: validateCtl.signal });
       showFormMessage(`✓ valid — reports ${v.invariants.join(", ")}`, "good", null);
+      // the pilot is not aborted by a later edit (a short run; aborting counts as a
+      // cancellation on the server): a late answer about an older form is dropped instead
+      const mine = ++pilotGeneration;
+      const e = await estimate(req, limits).catch(() => ({ level: "info", text: "" }));
+      if (mine !== pilotGeneration) return;
+      $("estimate").textContent = e.text;
+      $("estimate").className = `estimate ${e.level}`;
     } catch (err) {
       if (err.name === "AbortError") return;
       if (err instanceof ApiError && err.status === 422) {
@@ -370,6 +383,7 @@ function resetForm() {
 // ---------------------------------------------------------------- running
 
 function setRunning(on) {
+  $("plots").classList.toggle("stale", on);     // the plots shown are of the previous run
   $("run").disabled = on;
   $("scene-btn").disabled = on;
   $("progress").hidden = !on;

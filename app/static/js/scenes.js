@@ -49,6 +49,7 @@ async function play(id) {
       },
     });
     await current.render();
+    await plotSeries(s, d);
     $("scrub").max = String(d.t.length - 1);
     current.play();
     $("play").textContent = "Pause";
@@ -57,6 +58,45 @@ async function play(id) {
     $("scene-status").textContent = `The scene failed: ${e.message}`;
     $("scene-status").classList.add("error");
   }
+}
+
+// What the scene's text promises, against time, beside the 3D view (scenes.yaml `plot`)
+const SERIES = {
+  vertical_spin: { title: "Spin about the vertical against time",
+    y: "spin −(ω, γ) (1 / time unit; > 0 counterclockwise from above)" },
+  tilt: { title: "Tilt of the disk against time",
+    y: "sin θ = √(γ₁² + γ₂²), θ axis to vertical" },
+};
+
+async function plotSeries(s, d) {
+  const el = $("scene-series");
+  const ys = s.plot ? (d.series || {})[s.plot] : null;
+  el.hidden = !ys;
+  if (!ys) { window.Plotly.purge(el); return; }
+  const meta = SERIES[s.plot];
+  const range = s.plot === "tilt" ? { range: [0, 1.05] } : {};
+  const t = d.t.slice(0, ys.length);
+  const traces = [{ x: t, y: ys, mode: "lines", name: "per frame", line: { color: "#1f5f99", width: 1.5 } }];
+  const rev = (s.checks || []).find((c) => c.kind === "spin_reversal");
+  if (s.plot === "vertical_spin" && rev && t.length > 2) {
+    // averaged over the check's window, as the spin_reversal check does: the rocking
+    // oscillation hides the slow spin that reverses
+    const k = Math.max(1, Math.round(rev.window / (t[1] - t[0])));
+    const avg = [], ta = [];
+    for (let i = 0; i + k <= ys.length; i++) {
+      avg.push(ys.slice(i, i + k).reduce((a, b) => a + b, 0) / k);
+      ta.push(t[i + Math.floor(k / 2)]);
+    }
+    traces.push({ x: ta, y: avg, mode: "lines", name: `averaged over ${rev.window} time units`,
+      line: { color: "#c2571a", width: 3 } });
+  }
+  await window.Plotly.react(el, traces, {
+    title: { text: meta.title, font: { size: 14 }, x: 0.02 },
+    xaxis: { title: { text: "time t (scene's time units)" } },
+    yaxis: { title: { text: meta.y }, zeroline: true, ...range },
+    margin: { l: 64, r: 12, t: 40, b: 48 }, showlegend: traces.length > 1,
+    legend: { orientation: "h", y: -0.3 },
+  }, { responsive: true, displaylogo: false });
 }
 
 function route() {

@@ -36,7 +36,7 @@ function traces(runs) {
 function paretoTable(summary) {
   const rows = summary.table;
   const refs = Object.keys(rows[0]).filter((k) => !["level", "ours"].includes(k) && !k.startsWith("ratio_"));
-  let html = `<table class="wp-table"><caption>Least time reaching each error level: ours, and how
+  let html = `<div class="scroll-x" tabindex="0"><table class="wp-table"><caption>Least time reaching each error level: ours, and how
     many times longer each reference takes (— : no run of it reached the level)</caption>
     <thead><tr><th>error ≤</th><th>ours (method, tol)</th><th>time</th>`
     + refs.map((r) => `<th>${escapeHtml(r)}</th>`).join("") + "</tr></thead><tbody>";
@@ -49,7 +49,7 @@ function paretoTable(summary) {
         return `<td>${q ? q.toFixed(q < 10 ? 1 : 0) + "×" : "—"}</td>`;
       }).join("") + "</tr>";
   }
-  return html + "</tbody></table>";
+  return html + "</tbody></table></div>";
 }
 
 function buys(c, summary) {
