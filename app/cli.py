@@ -141,13 +141,11 @@ def verify(
 
 
 def _verify_tables(records, only_case):
-    from collections import Counter
-
     from rich.console import Console
     from rich.table import Table
 
     from catalogue.load import load_catalogue
-    from solvers.verify.table import MARKS, table_marks
+    from solvers.verify.table import MARKS, cell_notes, table_marks
 
     con = Console(width=max(Console().width, 160))
     cat = load_catalogue()
@@ -155,8 +153,9 @@ def _verify_tables(records, only_case):
         cases = [c for c in table.cases if only_case in (None, c.id)]
         if not cases:
             continue
-        marks = table_marks(table, records)
-        tab = Table(title=f"Table {table.number}: {table.caption_plain}", show_lines=True)
+        marks, notes = table_marks(table, records), cell_notes(table, records)
+        tab = Table(title=f"Table {table.number}: {table.caption_plain} "
+                    "(cells: the property each states)", show_lines=True)
         tab.add_column("row")
         for c in cases:
             tab.add_column(c.id.split("/", 1)[1], overflow="fold")
@@ -166,17 +165,45 @@ def _verify_tables(records, only_case):
                 cell = c.cells[row.key]
                 mark = MARKS[marks[c.id][row.key.value]]
                 text = cell.plain if len(cell.plain) < 60 else cell.plain[:57] + "..."
-                cells.append(f"{mark} {text}" if mark else text)
+                note = "".join(f" [{n}]" for n in notes[c.id][row.key.value])
+                cells.append(f"{mark} {text}{note}" if mark else text)
             tab.add_row(row.plain, *cells)
         con.print(tab)
-    counts = Counter(r["verdict"] for r in records)
-    con.print("claims: " + str(len(records)) + "  " +
-              "  ".join(f"{MARKS[v]} {v}: {counts.get(v, 0)}"
-                        for v in ("verified", "fails", "evidence", "unchecked")))
-    for r in records:
+    _verify_summary(con, records)
+
+
+def _verify_summary(con, records):
+    from collections import Counter
+
+    from solvers.verify.table import MARKS
+
+    for level in ("cell", "formula"):
+        recs = [r for r in records if r.get("level", "formula") == level]
+        counts = Counter(r["verdict"] for r in recs)
+        name = "cells: " if level == "cell" else "claims: "
+        what = " (properties of table cells)" if level == "cell" else " (printed formulas)"
+        con.print(f"{name}{len(recs)}{what}  " + "  ".join(
+            f"{MARKS[v]} {v}: {counts.get(v, 0)}"
+            for v in ("verified", "fails", "evidence", "unchecked")))
+    quals = Counter(r.get("qualifier") for r in records if r.get("qualifier"))
+    if quals:
+        con.print("formula qualifiers: " + ", ".join(f"{k}: {v}" for k, v in sorted(
+            quals.items())))
+    cells = [r for r in records if r.get("level") == "cell"]
+    for r in cells:
         if r["verdict"] == "fails":
+            con.print(f"✗ cell {r['claim']}: {r['message']}")
+    con.print("formula records that do not hold as printed (errata: `rolling errata`):")
+    for r in records:
+        if r.get("level", "formula") != "formula":
+            continue
+        if r["verdict"] == "fails" or r.get("qualifier") == "convention":
             res = "n/a" if r["residual"] is None else f"{r['residual']:.2e}"
-            con.print(f"✗ {r['claim']} ({r['label'] or ''}): residual {res} — {r['message']}")
+            kind = r.get("qualifier") or "fails"
+            extra = f" (inherits {r['inherits']})" if r.get("inherits") else ""
+            mark = "✓" if r["verdict"] == "verified" else "✗"
+            con.print(f"{mark} [{kind}]{extra} {r['claim']} ({r['label'] or ''}): "
+                      f"residual {res} — {r['message']}")
 
 
 @cli.command()
