@@ -207,6 +207,61 @@ def _verify_summary(con, records):
 
 
 @cli.command()
+def errata(
+    as_json: Annotated[bool, typer.Option("--json", help="print errata, conventions and "
+                                          "findings as one JSON object")] = False,
+    workers: Annotated[int, typer.Option(help="worker processes (0: one per core)")] = 0,
+):
+    """List the paper's misprints (printed vs corrected form, residuals, exact witness,
+    the command that reproduces each), the conventions and the findings."""
+    from catalogue.load import load_catalogue
+    from solvers.verify import errata as er
+    from solvers.verify.parallel import verify_parallel
+
+    cat = load_catalogue()
+    records = verify_parallel(workers=workers)
+    out = {"errata": er.errata(records, cat), "conventions": er.conventions(records, cat),
+           "findings": er.findings(records, cat)}
+    if as_json:
+        sys.stdout.write(json.dumps(out, allow_nan=False) + "\n")
+        return
+    from rich.console import Console
+
+    con = Console(width=max(Console().width, 140))
+
+    def res(x):
+        return "n/a" if x is None else f"{x:.2e}"
+
+    con.print(f"[bold]Errata[/bold]: {len(out['errata'])} printed formulas fail; "
+              "the project's correction of each holds")
+    for e in out["errata"]:
+        where = e["label"] or e["where"] or ""
+        inh = f" (inherits {e['inherits']})" if e["inherits"] else ""
+        con.print(f"✗ [{e['kind']}]{inh} {e['claim']} — {where}"
+                  f"{', ' + e['section'] if e['section'] else ''}", markup=False)
+        con.print(f"   printed:   {' '.join(e['printed'].split())[:200]}", markup=False)
+        con.print(f"   corrected: {e['corrected']}", markup=False)
+        con.print(f"   residual printed {res(e['residual_printed'])}, corrected "
+                  f"{res(e['residual_corrected'])}", markup=False)
+        ex = e.get("exact")
+        if ex and ex.get("witness") is not None:
+            con.print(f"   exact witness: {ex['witness']}", markup=False)
+        con.print(f"   reproduce: {e['reproduce']}", markup=False)
+    con.print(f"[bold]Conventions[/bold]: {len(out['conventions'])} printed forms hold "
+              "under another convention")
+    for e in out["conventions"]:
+        con.print(f"✓ {e['claim']} ({e['label']}): {e['convention']}", markup=False)
+        con.print(f"   residual under it {res(e['residual_under_convention'])}, with ours "
+                  f"{res(e['residual_printed'])}; reproduce: {e['reproduce']}", markup=False)
+    con.print(f"[bold]Findings the paper does not have[/bold]: {len(out['findings'])}")
+    for e in out["findings"]:
+        con.print(f"• [{e['kind']}] {e['title']}", markup=False)
+        con.print(f"   {e['finding']}", markup=False)
+        con.print(f"   claim {e['claim']} ({e['label']}); reproduce: {e['reproduce']}",
+                  markup=False)
+
+
+@cli.command()
 def methods():
     """List the integration methods."""
     from solvers.integrate.collocation import load

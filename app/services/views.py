@@ -36,14 +36,15 @@ def table_of(case_id: str) -> Table:
     return cat.plane if case_id.startswith("plane/") else cat.sphere
 
 
-def cell(row_label: str, row: str, c: Cell, by_claim: dict[str, dict]) -> dict:
+def cell(row_label: str, row: str, c: Cell, by_claim: dict[str, dict],
+         cases: list[str] | None = None) -> dict:
     return {"row": row, "row_label": row_label, "printed": c.printed, "plain": c.plain,
             "shade": c.shade.value, "shade_note": c.shade_note, "labels": list(c.labels),
             "attribution": [attribution(a) for a in c.attribution],
             "merged": list(c.merged), "colspan": c.colspan,
             "subrow": c.subrow.model_dump() if c.subrow else None, "subrow_case": None,
             "claims": list(c.claims), "convention_note": c.convention_note,
-            "verdict": summary(list(c.claims), by_claim)}
+            "verdict": summary(list(c.claims), by_claim, row, cases or list(c.merged))}
 
 
 def table(table_id: str, by_claim: dict[str, dict]) -> dict:
@@ -57,7 +58,7 @@ def table(table_id: str, by_claim: dict[str, dict]) -> dict:
                 continue
             c = case.cells[row.key]
             skip.update(c.merged)
-            d = cell(labels[row.key], row.key.value, c, by_claim)
+            d = cell(labels[row.key], row.key.value, c, by_claim, list(c.merged) or [case.id])
             d["merged"] = list(c.merged) or [case.id]
             # a second line under one column of a merged cell (Table 2: a = 2R)
             for cid in d["merged"]:
@@ -83,7 +84,8 @@ def _verdict(claim: Claim, rec: dict | None) -> dict:
 
 def record(rec: dict) -> dict:
     keys = ("claim", "verdict", "residual", "message", "check", "origin", "corrects",
-            "evidence", "seconds", "printed")
+            "evidence", "seconds", "printed", "level", "qualifier", "convention", "inherits",
+            "finding", "row", "rests_on", "notes", "exact")
     out = {k: rec.get(k) for k in keys if rec.get(k) is not None}
     if out.get("verdict") not in VERDICTS:
         out["verdict"] = "unchecked"
@@ -133,7 +135,7 @@ def case_detail(case_id: str, by_claim: dict[str, dict], corrections: dict[str, 
     return {**case_summary(case),
             "model": case.model.model_dump(mode="json", by_alias=True),
             "remarks": list(case.remarks),
-            "cells": [cell(labels[r.key], r.key.value, case.cells[r.key], by_claim)
+            "cells": [cell(labels[r.key], r.key.value, case.cells[r.key], by_claim, [case_id])
                       for r in t.rows],
             "claims": claims,
             "runnable": runnable(registry()[case_id]),
