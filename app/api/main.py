@@ -5,6 +5,7 @@ from fastapi import APIRouter
 from app.api.routes import (
     cases,
     catalogue,
+    errata,
     health,
     poincare,
     scenes,
@@ -18,6 +19,6 @@ from app.schemas.common import PROBLEM_RESPONSES
 # every error answer is a Problem (app.core.errors), 422 included: documented once here so
 # that FastAPI does not advertise its own HTTPValidationError shape
 api_router = APIRouter(prefix="/api", responses=PROBLEM_RESPONSES)
-for module in (health, cases, tables, simulate, verify, catalogue, poincare, scenes,
+for module in (health, cases, tables, simulate, verify, errata, catalogue, poincare, scenes,
                work_precision):
     api_router.include_router(module.router)

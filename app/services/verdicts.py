@@ -159,8 +159,11 @@ def summary(claim_ids: list[str], by_claim: dict[str, dict], row: str,
                 notes.append(n)
     done = [m["mark"] for m in marks if m["mark"] != "pending"]
     counts = {v: done.count(v) for v in VERDICTS if v in done}
+    pending = len(done) < len(marks)      # a spanned case not computed yet
     if "fails" in counts:
         mark = "fails"
+    elif pending:
+        mark = "unchecked"
     elif done and set(counts) == {"verified"}:
         mark = "verified"
     elif done and set(counts) <= {"verified", "evidence"}:
