@@ -142,6 +142,7 @@ def verify(
 
 def _verify_tables(records, only_case):
     from rich.console import Console
+    from rich.markup import escape
     from rich.table import Table
 
     from catalogue.load import load_catalogue
@@ -165,8 +166,8 @@ def _verify_tables(records, only_case):
                 cell = c.cells[row.key]
                 mark = MARKS[marks[c.id][row.key.value]]
                 text = cell.plain if len(cell.plain) < 60 else cell.plain[:57] + "..."
-                note = "".join(f" [{n}]" for n in notes[c.id][row.key.value])
-                cells.append(f"{mark} {text}{note}" if mark else text)
+                note = "".join(f" ({n})" for n in notes[c.id][row.key.value])
+                cells.append(escape(f"{mark} {text}{note}" if mark else text))
             tab.add_row(row.plain, *cells)
         con.print(tab)
     _verify_summary(con, records)
@@ -192,7 +193,13 @@ def _verify_summary(con, records):
     cells = [r for r in records if r.get("level") == "cell"]
     for r in cells:
         if r["verdict"] == "fails":
-            con.print(f"✗ cell {r['claim']}: {r['message']}")
+            con.print(f"✗ cell {r['claim']}: {r['message']}", markup=False)
+    noted = [r for r in cells if r.get("notes")]
+    if noted:
+        con.print("cells whose property holds while a printed formula under them does not:")
+    for r in noted:
+        con.print(f"✓ cell {r['claim']}: {'; '.join(r['notes'])} (rests on "
+                  f"{', '.join(r['rests_on'])})", markup=False)
     con.print("formula records that do not hold as printed (errata: `rolling errata`):")
     for r in records:
         if r.get("level", "formula") != "formula":
@@ -203,7 +210,7 @@ def _verify_summary(con, records):
             extra = f" (inherits {r['inherits']})" if r.get("inherits") else ""
             mark = "✓" if r["verdict"] == "verified" else "✗"
             con.print(f"{mark} [{kind}]{extra} {r['claim']} ({r['label'] or ''}): "
-                      f"residual {res} — {r['message']}")
+                      f"residual {res} — {r['message']}", markup=False)
 
 
 @cli.command()

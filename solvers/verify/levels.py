@@ -37,7 +37,8 @@ from catalogue.schema import Case, Catalogue
 NEUTRAL_CHECKS = frozenset({"open_problem", "formula_not_printed", "not_checkable"})
 CELL_NOTE = {"corrected": "holds; printed formula corrected",
              "formula-free": "holds; shown by a formula-free test (printed formula fails)",
-             "convention": "holds under the paper's convention (see the formula record)"}
+             "formula-free-test": "confirmed by a formula-free test",
+             "convention": "holds under the paper's own convention (see the formula record)"}
 QUALIFIERS = ("convention", "misprint", "inherited", "refuted-conjecture", "refuted",
               "formula-free")
 
@@ -97,7 +98,7 @@ def _judge(cid: str, by_claim: dict, establishers: dict) -> tuple[str, str | Non
     r = by_claim[cid]
     if r["verdict"] != "fails":
         basis = "convention" if r.get("qualifier") == "convention" else (
-            "formula-free" if r.get("qualifier") == "formula-free" else "printed")
+            "formula-free-test" if r.get("qualifier") == "formula-free" else "printed")
         return r["verdict"], basis, [cid]
     corr = by_claim.get(f"{cid}/corrected")
     if corr is not None and corr["verdict"] == "verified":
