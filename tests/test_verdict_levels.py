@@ -148,6 +148,10 @@ def test_refuted_conjecture(by):
         if rec.get("qualifier") == "refuted-conjecture":
             assert rid in hedged
     assert by["sphere/borisov-fedorov/reduction/to-chaplygin"]["qualifier"] == "refuted"
+    # refuted only where no correction holds
+    for rid, rec in by.items():
+        if rec.get("qualifier") == "refuted":
+            assert by.get(rid + "/corrected", {}).get("verdict") != "verified"
 
 
 def test_refuted_conjecture_needs_a_failure():
