@@ -142,8 +142,11 @@ def test_inherited_needs_the_source_to_fail(records):
 def test_refuted_conjecture(by):
     r = by["plane/spherical-inertia/negative/sphere-generalization"]
     assert r["qualifier"] == "refuted-conjecture" and "det(E - k J)" in r["finding"]
-    # hedged-free negative claims with evidence are not conjectures refuted
+    # hedged claims the project only gathers evidence for are not refuted conjectures
     hedged = {cl.id for cl in CAT.claims() if cl.hedged}
+    assert len(hedged) >= 10
+    assert by["plane/unbalanced-ball/negative/measure"]["verdict"] == "evidence"
+    assert by["plane/unbalanced-ball/negative/measure"]["qualifier"] is None
     for rid, rec in by.items():
         if rec.get("qualifier") == "refuted-conjecture":
             assert rid in hedged
