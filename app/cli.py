@@ -192,13 +192,12 @@ def verify(
 
 
 def _verify_tables(records, only_case):
-    from collections import Counter
-
     from rich.console import Console
+    from rich.markup import escape
     from rich.table import Table
 
     from catalogue.load import load_catalogue
-    from solvers.verify.table import MARKS, table_marks
+    from solvers.verify.table import MARKS, cell_notes, table_marks
 
     con = Console(width=max(Console().width, 160))
     cat = load_catalogue()
@@ -206,8 +205,9 @@ def _verify_tables(records, only_case):
         cases = [c for c in table.cases if only_case in (None, c.id)]
         if not cases:
             continue
-        marks = table_marks(table, records)
-        tab = Table(title=f"Table {table.number}: {table.caption_plain}", show_lines=True)
+        marks, notes = table_marks(table, records), cell_notes(table, records)
+        tab = Table(title=f"Table {table.number}: {table.caption_plain} "
+                    "(cells: the property each states)", show_lines=True)
         tab.add_column("row")
         for c in cases:
             tab.add_column(c.id.split("/", 1)[1], overflow="fold")
@@ -217,20 +217,109 @@ def _verify_tables(records, only_case):
                 cell = c.cells[row.key]
                 mark = MARKS[marks[c.id][row.key.value]]
                 text = cell.plain if len(cell.plain) < 60 else cell.plain[:57] + "..."
-                cells.append(f"{mark} {text}" if mark else text)
+                note = "".join(f" ({n})" for n in notes[c.id][row.key.value])
+                cells.append(escape(f"{mark} {text}{note}" if mark else text))
             tab.add_row(row.plain, *cells)
         con.print(tab)
-    counts = Counter(r["verdict"] for r in records)
-    con.print("claims: " + str(len(records)) + "  " +
-              "  ".join(f"{MARKS[v]} {v}: {counts.get(v, 0)}"
-                        for v in ("verified", "fails", "evidence", "unchecked")))
-    for r in records:
+    _verify_summary(con, records)
+
+
+def _verify_summary(con, records):
+    from collections import Counter
+
+    from solvers.verify.table import MARKS
+
+    for level in ("cell", "formula"):
+        recs = [r for r in records if r.get("level", "formula") == level]
+        counts = Counter(r["verdict"] for r in recs)
+        name = "cells: " if level == "cell" else "claims: "
+        what = " (properties of table cells)" if level == "cell" else " (printed formulas)"
+        con.print(f"{name}{len(recs)}{what}  " + "  ".join(
+            f"{MARKS[v]} {v}: {counts.get(v, 0)}"
+            for v in ("verified", "fails", "evidence", "unchecked")))
+    quals = Counter(r.get("qualifier") for r in records if r.get("qualifier"))
+    if quals:
+        con.print("formula qualifiers: " + ", ".join(f"{k}: {v}" for k, v in sorted(
+            quals.items())))
+    cells = [r for r in records if r.get("level") == "cell"]
+    for r in cells:
         if r["verdict"] == "fails":
+            con.print(f"✗ cell {r['claim']}: {r['message']}", markup=False)
+    noted = [r for r in cells if r.get("notes")]
+    if noted:
+        con.print("cells whose property holds while a printed formula under them does not:")
+    for r in noted:
+        con.print(f"✓ cell {r['claim']}: {'; '.join(r['notes'])} (rests on "
+                  f"{', '.join(r['rests_on'])})", markup=False)
+    con.print("formula records that do not hold as printed (errata: `rolling errata`):")
+    for r in records:
+        if r.get("level", "formula") != "formula":
+            continue
+        if r["verdict"] == "fails" or r.get("qualifier") == "convention":
             res = "n/a" if r["residual"] is None else f"{r['residual']:.2e}"
             from catalogue.numbering import cite, printed
 
             num = printed(r["label"]) or r["label"] or ""
-            con.print(f"✗ {r['claim']} ({num}): residual {res} — {cite(r['message'])}")
+            kind = r.get("qualifier") or "fails"
+            extra = f" (inherits {r['inherits']})" if r.get("inherits") else ""
+            mark = "✓" if r["verdict"] == "verified" else "✗"
+            con.print(f"{mark} [{kind}]{extra} {r['claim']} ({num}): "
+                      f"residual {res} — {cite(r['message'])}", markup=False)
+
+
+@cli.command()
+def errata(
+    as_json: Annotated[bool, typer.Option("--json", help="print errata, conventions and "
+                                          "findings as one JSON object")] = False,
+    workers: Annotated[int, typer.Option(help="worker processes (0: one per core)")] = 0,
+):
+    """List the paper's misprints (printed vs corrected form, residuals, exact witness,
+    the command that reproduces each), the conventions and the findings."""
+    from catalogue.load import load_catalogue
+    from solvers.verify import errata as er
+    from solvers.verify.parallel import verify_parallel
+
+    cat = load_catalogue()
+    records = verify_parallel(workers=workers)
+    out = {"errata": er.errata(records, cat), "conventions": er.conventions(records, cat),
+           "findings": er.findings(records, cat)}
+    if as_json:
+        _write_json(out)
+        return
+    from rich.console import Console
+
+    con = Console(width=max(Console().width, 140))
+
+    def res(x):
+        return "n/a" if x is None else f"{x:.2e}"
+
+    con.print(f"[bold]Errata[/bold]: {len(out['errata'])} printed formulas fail; "
+              "the project's correction of each holds")
+    for e in out["errata"]:
+        where = e["label"] or e["where"] or ""
+        inh = f" (inherits {e['inherits']})" if e["inherits"] else ""
+        con.print(f"✗ [{e['kind']}]{inh} {e['claim']} — {where}"
+                  f"{', ' + e['section'] if e['section'] else ''}", markup=False)
+        con.print(f"   printed:   {' '.join(e['printed'].split())[:200]}", markup=False)
+        con.print(f"   corrected: {e['corrected']}", markup=False)
+        con.print(f"   residual printed {res(e['residual_printed'])}, corrected "
+                  f"{res(e['residual_corrected'])}", markup=False)
+        ex = e.get("exact")
+        if ex and ex.get("witness") is not None:
+            con.print(f"   exact witness: {ex['witness']}", markup=False)
+        con.print(f"   reproduce: {e['reproduce']}", markup=False)
+    con.print(f"[bold]Conventions[/bold]: {len(out['conventions'])} printed forms hold "
+              "under another convention")
+    for e in out["conventions"]:
+        con.print(f"✓ {e['claim']} ({e['label']}): {e['convention']}", markup=False)
+        con.print(f"   residual under it {res(e['residual_under_convention'])}, with ours "
+                  f"{res(e['residual_printed'])}; reproduce: {e['reproduce']}", markup=False)
+    con.print(f"[bold]Findings the paper does not have[/bold]: {len(out['findings'])}")
+    for e in out["findings"]:
+        con.print(f"• [{e['kind']}] {e['title']}", markup=False)
+        con.print(f"   {e['finding']}", markup=False)
+        con.print(f"   claim {e['claim']} ({e['label']}); reproduce: {e['reproduce']}",
+                  markup=False)
 
 
 @cli.command()

@@ -5,6 +5,7 @@ from fastapi import APIRouter
 from app.api.routes import (
     cases,
     catalogue,
+    errata,
     health,
     poincare,
     reader,
@@ -21,6 +22,6 @@ from app.schemas.common import GUARD_RESPONSES, PROBLEM_RESPONSES
 # (and 400, which the Host allow-list answers to any request)
 api_router = APIRouter(prefix="/api", responses={**PROBLEM_RESPONSES,
                                                  400: GUARD_RESPONSES[400]})
-for module in (health, reader, cases, tables, simulate, verify, catalogue, poincare, scenes,
+for module in (health, reader, cases, tables, simulate, verify, errata, catalogue, poincare, scenes,
                work_precision):
     api_router.include_router(module.router)

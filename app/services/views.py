@@ -39,7 +39,8 @@ def table_of(case_id: str) -> Table:
     return cat.plane if case_id.startswith("plane/") else cat.sphere
 
 
-def cell(row_label: str, row: str, c: Cell, by_claim: dict[str, dict]) -> dict:
+def cell(row_label: str, row: str, c: Cell, by_claim: dict[str, dict],
+         cases: list[str] | None = None) -> dict:
     # labels stay as data; what a reader sees carries the printed numbers (catalogue/numbering)
     return {"row": row, "row_label": row_label, "printed": cite_latex(c.printed),
             "plain": cite(c.plain), "shade": c.shade.value, "shade_note": cite(c.shade_note),
@@ -48,7 +49,7 @@ def cell(row_label: str, row: str, c: Cell, by_claim: dict[str, dict]) -> dict:
             "merged": list(c.merged), "colspan": c.colspan,
             "subrow": c.subrow.model_dump() if c.subrow else None, "subrow_case": None,
             "claims": list(c.claims), "convention_note": cite(c.convention_note),
-            "verdict": summary(list(c.claims), by_claim)}
+            "verdict": summary(list(c.claims), by_claim, row, cases or list(c.merged))}
 
 
 def table(table_id: str, by_claim: dict[str, dict]) -> dict:
@@ -62,7 +63,7 @@ def table(table_id: str, by_claim: dict[str, dict]) -> dict:
                 continue
             c = case.cells[row.key]
             skip.update(c.merged)
-            d = cell(labels[row.key], row.key.value, c, by_claim)
+            d = cell(labels[row.key], row.key.value, c, by_claim, list(c.merged) or [case.id])
             d["merged"] = list(c.merged) or [case.id]
             # a second line under one column of a merged cell (Table 2: a = 2R)
             for cid in d["merged"]:
@@ -113,7 +114,8 @@ def corrected_forms() -> dict[str, str]:
 
 def record(rec: dict) -> dict:
     keys = ("claim", "verdict", "residual", "message", "check", "origin", "corrects",
-            "evidence", "seconds", "printed", "computed_at", "version")
+            "evidence", "seconds", "printed", "computed_at", "version", "level", "qualifier",
+            "convention", "inherits", "finding", "row", "rests_on", "notes", "exact")
     out = {k: rec.get(k) for k in keys if rec.get(k) is not None}
     if "message" in out:
         out["message"] = cite(out["message"])
@@ -186,7 +188,7 @@ def case_detail(case_id: str, by_claim: dict[str, dict], corrections: dict[str, 
             "model": {**_cited_model(case),
                       "equation_numbers": [printed(x) or x for x in case.model.equations]},
             "remarks": [cite(r) for r in case.remarks],
-            "cells": [cell(labels[r.key], r.key.value, case.cells[r.key], by_claim)
+            "cells": [cell(labels[r.key], r.key.value, case.cells[r.key], by_claim, [case_id])
                       for r in t.rows],
             "claims": claims,
             "runnable": runnable(registry()[case_id]),

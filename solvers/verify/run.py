@@ -68,20 +68,30 @@ def _run_claim(catalogue, case, claim) -> list[Record]:
 
 
 def verify(case: str | None = None, claim: str | None = None) -> list[dict]:
-    """Records for every claim (of one case, or one claim), as JSON-ready dicts with at
-    least case, claim, kind, verdict, residual, printed."""
+    """Records for every claim (of one case, or one record id: a claim, its correction
+    `<claim>/corrected` or a table cell `<case>/cell/<row>`), as JSON-ready dicts with at
+    least case, claim, kind, verdict, residual, printed, level ("formula" or "cell") and
+    qualifier (solvers.verify.levels)."""
+    from solvers.verify import levels
+
     cat = load_catalogue()
-    cases = cat.cases()
-    if case is not None:
-        known = [c.id for c in cases]
-        if case not in known:
-            from solvers.errors import InputError
-            raise InputError(f"unknown case {case!r}; known cases: {', '.join(known)}")
-        cases = [c for c in cases if c.id == case]
-    out = []
-    for c in cases:
-        for cl in c.claims:
-            if claim is not None and cl.id != claim:
-                continue
-            out.extend(r.to_json() for r in _run_claim(cat, c, cl))
-    return out
+    ids, keep, cell_cases = resolve(cat, case, claim)
+    owner = {cl.id: c for c in cat.cases() for cl in c.claims}
+    raw = [r.to_json() for cid in ids for r in _run_claim(cat, owner[cid], owner[cid].claim(cid))]
+    return levels.finish(raw, cat, keep, cell_cases)
+
+
+def resolve(cat, case: str | None, claim: str | None):
+    """levels.plan with clear errors for an unknown case or record id."""
+    from solvers.errors import InputError
+    from solvers.verify import levels
+
+    known = [c.id for c in cat.cases()]
+    if case is not None and case not in known:
+        raise InputError(f"unknown case {case!r}; known cases: {', '.join(known)}")
+    try:
+        return levels.plan(cat, case, claim)
+    except KeyError:
+        where = f" in case {case!r}" if case else ""
+        raise InputError(f"unknown record id {claim!r}{where}: give a claim id, "
+                         "<claim>/corrected or <case>/cell/<row>") from None

@@ -1,4 +1,4 @@
-"""The explorer's pages: / (Tables 1 and 2) and /case/{id} (a permalink per case), and
+"""The explorer's pages: / (Tables 1 and 2), /case/{id} (a permalink per case), /errata, and
 plotly.js served from the installed plotly package (not copied into the repository)."""
 
 from functools import cache
@@ -46,6 +46,11 @@ async def case_page(case_id: str, settings: SettingsDep, verdicts: VerdictsDep):
                                verdicts.case_state(case_id))
     template = (settings.static_dir / "case.html").read_text()
     return HTMLResponse(render_page(ssr.case_page(template, detail), "case.html"))
+
+
+@router.get("/errata")
+async def errata_page(settings: SettingsDep) -> FileResponse:
+    return FileResponse(settings.static_dir / "errata.html", media_type="text/html")
 
 
 @router.get("/vendor/plotly.min.js")

@@ -4,7 +4,7 @@
 
 import { api, ApiError, download, escapeHtml, fmt, VERDICT_ICON } from "./api.js";
 import { mathHtml, printedHtml, textHtml } from "./latex.js";
-import { badgeHtml, markHtml } from "./marks.js";
+import { badgeHtml, markHtml, qualifierHtml } from "./marks.js";
 import { plotDrift, plotGamma, plotState } from "./plots.js";
 import { applyRunQuery, runQuery, setQuery } from "./permalink.js";
 import { csvOf } from "./run_csv.js";
@@ -90,9 +90,14 @@ function showCells() {
       ? `<div class="claimrefs">claims: ${c.claims.map(claimLink).join(", ")}</div>` : "";
     const merged = c.merged.length > 1 ? `<div class="claimrefs">merged cell: spans ${c.merged.length} columns</div>` : "";
     const sub = c.subrow ? `<div>${textHtml(c.subrow.printed)}</div>` : "";
+    const cm = c.verdict && c.verdict.marks && c.verdict.marks.length ? c.verdict.marks[0] : null;
+    const prop = cm && cm.mark !== "pending"
+      ? `<div class="claimrefs cellverdict">the cell's property: <strong>${escapeHtml(cm.mark)}</strong> — ` +
+        `${escapeHtml(cm.message)}${cm.rests_on.length ? `; rests on ${cm.rests_on.map(claimLink).join(", ")}` : ""}</div>`
+      : (cm ? `<div class="claimrefs cellverdict">the cell's property: checking…</div>` : "");
     const note = c.shade_note ? ` title="${escapeHtml(c.shade_note)}"` : "";
     return `<tr id="row-${c.row}"><th scope="row">${escapeHtml(c.row_label)}</th>` +
-      `<td class="shade-${c.shade}"${note}>${textHtml(c.printed)}${sub}${att}${refs}${merged}${mark}</td></tr>`;
+      `<td class="shade-${c.shade}"${note}>${textHtml(c.printed)}${sub}${att}${refs}${merged}${prop}${mark}</td></tr>`;
   });
   $("cells").innerHTML = `<table class="cells"><tbody>${rows.join("")}</tbody></table>`;
 }
@@ -175,7 +180,7 @@ function claimHtml(c) {
     `<header><span class="kind">${escapeHtml(c.kind)}</span>${c.number ? `<span class="label">${escapeHtml(c.number)}</span>` : ""}` +
     `${badgeHtml(v.verdict)}</header>` +
     `<div class="printed">${printedHtml(c.printed)}</div>` +
-    `<p class="plain">${escapeHtml(c.plain)}</p>${sentence(c)}<dl>${dl}</dl>${verdictLine(v)}` +
+    `<p class="plain">${escapeHtml(c.plain)}</p>${sentence(c)}<dl>${dl}</dl>${verdictLine(v)}${qualifierHtml(v)}` +
     `<details class="dev"><summary>Details</summary><dl>${dev}</dl>${notes}</details>${corr}</article>`;
 }
 

@@ -325,6 +325,7 @@ def check_negative_measure(catalogue, case, claim, *, n_points=N_POINTS_NEG,
                f"to round-off (normal {worst_n:.1e}, circulation {worst_c:.1e})")
         if found:
             msg += f"; it is {found[0]} (Liouville residual {cand[found[0]]:.1e})"
+            ev["found density"] = found[0]
         others = [f"{n}: {r:.2e}" for n, r in cand.items() if r > TOL]
         if others:
             msg += "; fails: " + ", ".join(others)
