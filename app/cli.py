@@ -173,10 +173,25 @@ def _verify_tables(records, only_case):
     con.print("claims: " + str(len(records)) + "  " +
               "  ".join(f"{MARKS[v]} {v}: {counts.get(v, 0)}"
                         for v in ("verified", "fails", "evidence", "unchecked")))
+    con.print(_exact_summary(records))
     for r in records:
         if r["verdict"] == "fails":
             res = "n/a" if r["residual"] is None else f"{r['residual']:.2e}"
             con.print(f"✗ {r['claim']} ({r['label'] or ''}): residual {res} — {r['message']}")
+
+
+def _exact_summary(records) -> str:
+    """One line: how many verified records carry an exact certificate that holds
+    (solvers/verify/exact), and how many failing ones an exact rational witness."""
+    verified = [r for r in records if r["verdict"] == "verified"]
+    certified = [r for r in verified if (r.get("exact") or {}).get("holds") is True
+                 and not r["exact"].get("negative")]
+    fails = [r for r in records if r["verdict"] == "fails"]
+    witnessed = [r for r in fails if (r.get("exact") or {}).get("holds") is False]
+    share = 100.0 * len(certified) / len(verified) if verified else 0.0
+    return (f"exact: {len(certified)} of {len(verified)} verified records certified exactly "
+            f"({share:.0f}%); {len(witnessed)} of {len(fails)} failing records have an exact "
+            "rational witness")
 
 
 @cli.command()
