@@ -85,6 +85,35 @@ def exact_linalg():
 
     np.linalg.solve, np.linalg.inv, np.linalg.det = _solve, _inv, _det
     try:
-        yield
+        with _exact_bodies():
+            yield
     finally:
         np.linalg.solve, np.linalg.inv, np.linalg.det = orig
+
+
+@contextmanager
+def _exact_bodies():
+    """Profile / RevBody (solvers/models) read their numbers with float(p[...]); from an
+    object array of jets they keep the exact numbers instead (same fields, same checks)."""
+    from solvers.kernels import layout as L
+    from solvers.models.reduced import RevBody
+    from solvers.models.revolution import Profile, check_revolution
+
+    prof0, rev0 = Profile.__dict__["from_params"], RevBody.__dict__["from_params"]
+
+    def prof(cls, p):
+        if not _is_exact(p):
+            return prof0.__get__(None, cls)(p)
+        check_revolution(p)
+        return cls(p[L.B11], p[L.B33], p[L.BALL_C], p[L.DISK_D], p[L.A3])
+
+    def rev(cls, p):
+        if not _is_exact(p):
+            return rev0.__get__(None, cls)(p)
+        return cls(p[L.I1], p[L.I3], p[L.MASS], p[L.CURV], p[L.S3], Profile.from_params(p))
+
+    Profile.from_params, RevBody.from_params = classmethod(prof), classmethod(rev)
+    try:
+        yield
+    finally:
+        Profile.from_params, RevBody.from_params = prof0, rev0

@@ -1,6 +1,7 @@
 """Which checks have an exact certifier, and why the others stay numeric."""
 
 from solvers.verify.exact import checks as X
+from solvers.verify.exact import structure as S
 from solvers.verify.exact.certify import Unsupported, run_points
 from solvers.verify.exact.jet import NotRational
 
@@ -12,6 +13,9 @@ CERTIFIERS = {
     "measure_fails": (X.measure, True),
     "identity": (X.identity, False),
     "reduced_agrees": (X.reduced, False),
+    "jacobi": (S.jacobi, False),
+    "jacobi_fails": (S.jacobi, True),
+    "hamiltonian_field": (S.hamiltonian, False),
 }
 
 # Why the other checks stay numeric (issue 10: say why where no exact test applies).
@@ -24,10 +28,6 @@ NUMERIC = {
     "permanent_rotations": "a statement about trajectories (stationary motions), checked "
                            "by integration",
     "linear_integrals": "recurrence of K1, K2 along long trajectories: trajectory evidence",
-    "hamiltonian_field": "no exact certifier yet (bracket times gradient of H against the "
-                         "field); stays complex-step",
-    "jacobi": "no exact certifier yet (Jacobi identity of a bracket); stays complex-step",
-    "jacobi_fails": "no exact certifier yet",
     "casimir": "no exact certifier yet",
     "bracket_rank": "a rank, not an identity",
     "functionally_dependent": "a rank statement about gradients",
