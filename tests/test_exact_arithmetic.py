@@ -55,8 +55,14 @@ def test_radical_derivatives():
     assert q.c.g[0] == -X0 * Y0 / (2 + X0 ** 2) ** 2
     assert (r * r).v == 2 + X0 ** 2                               # back in Q
     assert np.log(r ** 3).g[0] == 3 * X0 / (2 + X0 ** 2)
+    s = 1 + r                                                    # in Q(sqrt r)
+    t = (s * s - 2 * s).value()                                  # = R - 1, rational again
+    assert not isinstance(t, Radical) and t.v == 1 + X0 ** 2
+    assert (1 / s * s).v == 1
+    assert (r - r).v == 0 and (r > 0) and (-r < 0)
+    other = np.sqrt(3 + y * y)                                   # an independent root
     with pytest.raises(NotRational):
-        r + 1
+        r + other
 
 
 def test_degree_bounds_follow_the_rules():

@@ -25,7 +25,7 @@ K_POINTS = 2          # points per certificate: the bound below is stated for th
 METHOD = ("exact rational arithmetic (python-flint fmpq) with forward-mode derivatives "
           "(first-order jets over Q) at random rational points; gamma rational on |gamma| = 1 "
           "(Pythagorean angles), the ellipsoid's and the disk's square roots made rational "
-          "(B33 solved, g1^2+g2^2 a square), other roots kept as c sqrt(R) with c, R in Q")
+          "(B33 solved, g1^2+g2^2 a square), other roots computed in Q(sqrt r)")
 
 SLOT_NAMES = {L.I1: "I1", L.I2: "I2", L.I3: "I3", L.MASS: "m", L.CURV: "k", L.S1: "S1",
               L.S2: "S2", L.S3: "S3", L.GRAV: "g", L.BRUN: "eps", L.B11: "B11", L.B22: "B22",
@@ -91,13 +91,15 @@ def run_points(seed_key, Pf_draw, residual_fn, k=K_POINTS):
         except ZeroDivisionError as e:
             raise Unsupported(f"singular at a rational point: {e}") from e
         for r in res:
-            c = r.coefficient() if isinstance(r, Radical) else r
-            c._known()
-            deg = max(deg, c.n)
-            if c.v != 0:
-                text = q_str(c) + (f" * sqrt({q_str(r.R)})" if isinstance(r, Radical) else "")
+            parts = r.parts() if isinstance(r, Radical) else (r,)
+            for c in parts:
+                c._known()
+                deg = max(deg, c.n)
+            if any(c.v != 0 for c in parts):
+                text = q_str(r.a) + " + " + q_str(r.c) + f" * sqrt({q_str(r.r)})" \
+                    if isinstance(r, Radical) else q_str(r)
                 return {"holds": False, "points": 1, "method": METHOD,
-                        "bound": "exact: a nonzero rational residual disproves the identity",
+                        "bound": "exact: a nonzero residual disproves the identity",
                         "witness": {"point": point_json(P, y), "residual": text}}
     N = 2 ** BITS
     p = (deg / N) ** k

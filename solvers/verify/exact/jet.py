@@ -205,7 +205,9 @@ class Jet:
     # --- NumPy object-array protocol and comparisons ----------------------------------
     @property
     def real(self):
-        return self
+        # as Re of a complex-step number: the value without its infinitesimal part (the
+        # formulas use np.real to hold a quantity constant, e.g. rem-*1's lambda)
+        return self.value()
 
     @property
     def imag(self):

@@ -112,8 +112,18 @@ def _exact_bodies():
             return rev0.__get__(None, cls)(p)
         return cls(p[L.I1], p[L.I3], p[L.MASS], p[L.CURV], p[L.S3], Profile.from_params(p))
 
+    import solvers.verify.variables as V
+    from solvers.verify.exact.model import to_reduced
+
+    red0 = V.to_reduced
+
+    def red(p, y):
+        return to_reduced(p, y) if _is_exact(p) else red0(p, y)
+
     Profile.from_params, RevBody.from_params = classmethod(prof), classmethod(rev)
+    V.to_reduced = red
     try:
         yield
     finally:
         Profile.from_params, RevBody.from_params = prof0, rev0
+        V.to_reduced = red0

@@ -116,3 +116,21 @@ def field(P: ExactParams, y):
 
 def jet_const(x):
     return Jet.const(x)
+
+
+def to_reduced(p, y):
+    """(M, gamma) -> (gamma3, K1, K2, K3) of solvers.models.reduced.to_reduced (eq2.4 /
+    eq3.2-1), with this module's exact support function in place of the compiled one."""
+    from solvers.models.reduced import _body, profile, rho0
+    from solvers.verify.exact.linalg import solve
+    b = _body(p)
+    M, g = np.asarray(y[:3], dtype=object), np.asarray(y[3:6], dtype=object)
+    u = g[2]
+    r, _ = support(p, g)
+    f1 = profile(b.prof, u)[0]
+    IQ = np.diag([b.I1, b.I1, b.I3]) + b.m * ((r @ r) * E3 - np.outer(r, r))
+    w = solve(IQ, M)
+    K1 = (M @ r) * (1 - b.k * f1) / f1
+    K2 = w[2] / rho0(b, u)
+    K3 = (M[1] * g[0] - M[0] * g[1]) / np.sqrt((1 - u * u) * (b.I1 + b.m * (r @ r)))
+    return np.array([u, K1, K2, K3], dtype=object)
