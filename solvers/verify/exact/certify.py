@@ -38,8 +38,16 @@ class Unsupported(Exception):
 
 
 def seeded(y):
+    """The point y with d y_i / d y_j = delta_ij; a coordinate in Q(sqrt r) (a + c sqrt r,
+    e.g. K = rho M of eq2b-*3) is seeded in its rational part."""
     n = len(y)
-    return np.array([Jet.seed(v, j, n) for j, v in enumerate(y)], dtype=object)
+    out = []
+    for j, v in enumerate(y):
+        if isinstance(v, Radical):
+            out.append(Radical(Jet.seed(v.a.value(), j, n), v.c.value(), v.r))
+        else:
+            out.append(Jet.seed(v, j, n))
+    return np.array(out, dtype=object)
 
 
 def plain(y):

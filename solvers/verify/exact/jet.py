@@ -191,6 +191,16 @@ class Jet:
         h = (self.n + self.d + 1) // 2      # deg of the polynomial P with P^2 = N Q
         return Jet(s, g, self.n + self.d, self.d + h)
 
+    def arccos(self):
+        from solvers.verify.exact.angle import Angle
+        self._known()
+        return Angle.arccos_of(self)
+
+    def sin(self):
+        raise NotRational("sin of a variable that is not an angle of ours")
+
+    cos = tan = arctan = arcsin = exp = sinh = cosh = sin
+
     def log(self):
         self._known()
         if self.v <= 0:
