@@ -187,11 +187,13 @@ def _exact_summary(records) -> str:
     certified = [r for r in verified if (r.get("exact") or {}).get("holds") is True
                  and not r["exact"].get("negative")]
     fails = [r for r in records if r["verdict"] == "fails"]
-    witnessed = [r for r in fails if (r.get("exact") or {}).get("holds") is False]
+    # a witness (the residual is nonzero at a rational point), or for a refuted negative
+    # claim the exactly certified object that refutes it
+    witnessed = [r for r in fails if r.get("exact") is not None]
     share = 100.0 * len(certified) / len(verified) if verified else 0.0
     return (f"exact: {len(certified)} of {len(verified)} verified records certified exactly "
-            f"({share:.0f}%); {len(witnessed)} of {len(fails)} failing records have an exact "
-            "rational witness")
+            f"({share:.0f}%); {len(witnessed)} of {len(fails)} failing records settled exactly "
+            "(rational witness or certified counter-object)")
 
 
 @cli.command()

@@ -19,7 +19,7 @@ def records():
 def _agrees(rec):
     """The exact verdict read as the complex-step verdict of the same residual."""
     ex = rec["exact"]
-    negative = rec["check"] in ("integral_fails", "measure_fails")
+    negative = rec["check"] in ("integral_fails", "measure_fails", "negative_measure")
     if negative:                         # the claim: the identity does NOT hold
         return ex["holds"] == (rec["verdict"] == "fails")
     return ex["holds"] == (rec["verdict"] == "verified")
@@ -58,6 +58,19 @@ def _claim(cid):
             if cl.id == cid:
                 return c, cl
     raise KeyError(cid)
+
+
+def test_the_spherical_inertia_measure_on_a_sphere_is_certified(records):
+    """Item 6: the position-only density the paper doubts exists is certified exactly."""
+    rec = records["plane/spherical-inertia/negative/sphere-generalization"]
+    assert rec["verdict"] == "fails" and rec["exact"]["holds"] is True
+    assert "det(E - k J)" in rec["exact"]["object"]
+
+
+def test_the_borisov_fedorov_map_has_an_exact_witness(records):
+    rec = records["sphere/borisov-fedorov/reduction/to-chaplygin"]
+    assert rec["verdict"] == "fails" and rec["exact"]["holds"] is False
+    assert rec["exact"]["witness"]["residual"] != "0"
 
 
 def test_a_wrong_coefficient_is_caught_exactly(monkeypatch):

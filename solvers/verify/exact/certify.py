@@ -21,7 +21,7 @@ from solvers.verify.exact.linalg import exact_linalg
 from solvers.verify.exact.points import BITS, GridRng, rational_state
 from solvers.verify.exact.radical import Radical
 
-K_POINTS = 2          # points per certificate: the bound below is stated for this k
+K_POINTS = 3          # points per certificate: the bound below is stated for this k
 METHOD = ("exact rational arithmetic (python-flint fmpq) with forward-mode derivatives "
           "(first-order jets over Q) at random rational points; gamma rational on |gamma| = 1 "
           "(Pythagorean angles), the ellipsoid's and the disk's square roots made rational "

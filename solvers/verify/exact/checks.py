@@ -106,3 +106,21 @@ def transform(catalogue, claim, use_corrected):
 
 
 ALTERNATE = ALTERNATE_VARIABLES
+
+
+def found_density(catalogue, claim, use_corrected, case_id):
+    """The density the project found where the paper doubts one (negative_measure with a
+    candidate, checks/negative.CANDIDATES: on a sphere, (mu + m r^2)^-1/2 det(E - k J) for
+    the body with spherical inertia, eq2.19's generalisation): its Liouville residual
+    d/dt ln rho + div v in (M, gamma), exactly."""
+    from solvers.verify.checks.negative import CANDIDATES
+    name, rho = CANDIDATES[case_id][-1]
+
+    def res(P, y):
+        ys = seeded(y)
+        v = field(P, ys)
+        dln = directional(np.log(rho(P, ys)), v)[0]
+        div = sum((v[j].partial(j) for j in range(len(y))), Jet(0))
+        return [dln + div]
+    res.density = name
+    return res

@@ -17,7 +17,7 @@ from solvers.kernels import layout as L
 from solvers.verify.exact.jet import Jet, NotRational, q_of
 from solvers.verify.exact.model import ExactParams
 
-BITS = 40
+BITS = 64
 N_GRID = 2 ** BITS
 
 

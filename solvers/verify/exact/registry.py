@@ -40,6 +40,30 @@ NUMERIC = {
 _REASONS: dict[str, str] = {}
 
 
+def _candidates():
+    from solvers.verify.checks.negative import CANDIDATES
+    return CANDIDATES
+
+
+def _found_density(catalogue, case, claim, key):
+    """Item 6: the object that refutes the paper's doubt, certified exactly. `holds` is
+    about the found density (it IS invariant), `refutes` says what that means for the
+    negative claim."""
+    from solvers.verify.checks.negative import case_params
+    res = X.found_density(catalogue, claim, False, case.id)
+    try:
+        out = run_points(key, lambda rng: case_params(case, claim, rng), res)
+    except (Unsupported, NotRational) as e:
+        _REASONS[key] = f"not algebraic at our rational points: {e}"
+        return None
+    out["negative"] = True
+    out["object"] = f"invariant density {res.density} in (M, gamma)"
+    if out["holds"]:
+        out["refutes"] = ("the paper's 'probably this generalization does not exist': the "
+                          "density above satisfies the Liouville equation exactly")
+    return out
+
+
 def _second_order(catalogue, claim):
     from solvers.verify.checks.ode import _is_jet
     return _is_jet(catalogue, claim)
@@ -67,6 +91,8 @@ def exact_for(catalogue, case, claim, corrected=False):
         return None
     elif name in CERTIFIERS:
         build, negative = CERTIFIERS[name]
+    elif name == "negative_measure" and case.id in _candidates():
+        return _found_density(catalogue, case, claim, key)
     else:
         _REASONS[key] = NUMERIC.get(name, f"no exact certifier for check {name}")
         return None
