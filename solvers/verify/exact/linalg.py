@@ -1,5 +1,5 @@
 """Exact linear algebra on object arrays of jets, and a context in which the formulas'
-np.linalg.solve / inv / det accept them.
+np.linalg.solve / inv / det (and np.result_type) accept them.
 
 The formulas of solvers/verify/formulas are written with NumPy so that complex states give
 complex-step derivatives; the same code then runs on object arrays of `Jet`s, except for
@@ -83,12 +83,22 @@ def exact_linalg():
     def _det(A):
         return det(A) if _is_exact(A) else orig[2](A)
 
+    result_type = np.result_type
+
+    def _result_type(*args):
+        # a formula that sizes its arrays by np.result_type(x, ...) gets object arrays
+        if any(type(a).__name__ in ("Jet", "Radical", "Angle") for a in args):
+            return np.dtype(object)
+        return result_type(*args)
+
     np.linalg.solve, np.linalg.inv, np.linalg.det = _solve, _inv, _det
+    np.result_type = _result_type
     try:
         with _exact_bodies():
             yield
     finally:
         np.linalg.solve, np.linalg.inv, np.linalg.det = orig
+        np.result_type = result_type
 
 
 @contextmanager

@@ -119,7 +119,30 @@ def exact_params(Pf, gamma, rng: GridRng) -> ExactParams:
     elif case.body == "ellipsoid" and "mu" in extra and "lambda" in extra:
         for i, b in ((L.I1, L.B11), (L.I2, L.B22), (L.I3, L.B33)):
             p[i] = extra["mu"] + extra["lambda"] * p[L.MASS] * p[b]     # eq2.29
+    if gamma is not None and case.symmetry == "axial":
+        axial_radicand(p, pf, gamma, rng)
     return ExactParams(Pf.model, p, extra)
+
+
+def axial_radicand(p, pf, gamma, rng: GridRng):
+    """Make sqrt(I1 + m r^2) rational (K3 of eq2.4 divides by sqrt((1 - g3^2)(I1 + m r^2)),
+    and 1 - g3^2 = sin^2 th is already a square): draw q near its float value and solve
+    I1 = I2 = q^2 - m r^2 (a relative change ~2^-20; I3 = I1 or I3 = 2 I1 kept where drawn so),
+    so that the reduced variables need one irrational root (rho0's) only."""
+    from solvers.verify.exact.model import support
+    r, _ = support(p, np.asarray(gamma, dtype=object))
+    mr2 = p[L.MASS] * (r @ r)
+    q0 = (pf[L.I1] + mr2.to_float()) ** 0.5
+    q = free(q_of(Fraction(q0).limit_denominator(2 ** 20))
+             * (1 + rng.grid(0, Fraction(1, 2 ** 20))))
+    I1 = q * q - mr2
+    if I1.v <= 0:
+        return
+    if pf[L.I3] == pf[L.I1]:             # spherical inertia (I1 = I2 = I3) kept
+        p[L.I3] = I1
+    elif pf[L.I3] == 2 * pf[L.I1]:
+        p[L.I3] = 2 * I1
+    p[L.I1] = p[L.I2] = I1
 
 
 def rational_state(Pf, rng: GridRng):
