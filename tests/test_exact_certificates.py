@@ -50,7 +50,7 @@ def test_summary_counts(records):
 
 def test_certified_kinds_are_the_pointwise_ones(records):
     kinds = {r["check"] for r in records.values() if r["exact"] is not None}
-    assert kinds <= set(CERTIFIERS)
+    assert kinds <= set(CERTIFIERS) | {"negative_measure"}     # + the found density (item 6)
 
 
 def _claim(cid):
