@@ -130,6 +130,8 @@ class Jet:
         o = _lift(o)
         if o is NotImplemented:
             return o
+        if _is_zero_const(o) or _is_zero_const(self):
+            return Jet(ZERO)          # 0 * theta: a formula's broadcast, not a use of theta
         self._known()
         o._known()
         g = _comb(self.g, o.v, o.g, self.v)
@@ -279,12 +281,16 @@ class Jet:
 def _lift(o):
     if isinstance(o, Jet):
         return o
-    if isinstance(o, (np.ndarray, list, tuple)) or type(o).__name__ == "Radical":
+    if isinstance(o, (np.ndarray, list, tuple)) or type(o).__name__ in ("Radical", "T2"):
         return NotImplemented      # let NumPy broadcast / the radical combine
     try:
         return Jet(q_of(o))
     except (TypeError, ValueError):
         return NotImplemented
+
+
+def _is_zero_const(x):
+    return not x.unknown and x.v == 0 and x.g is None
 
 
 def _comb(ga, ca, gb, cb):
