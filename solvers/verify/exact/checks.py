@@ -124,3 +124,22 @@ def found_density(catalogue, claim, use_corrected, case_id):
         return [dln + div]
     res.density = name
     return res
+
+
+def rate_identity(catalogue, claim, use_corrected):
+    """An identity whose printed form needs d s/dt of its first variable (the energies after
+    eq3.3 and eq-***3, checks/ode.rate_identity_residual): x = (to_vars(V), ds/dt)."""
+    fid, other = claim.check_args.formula, claim.check_args.against
+    f = implementation(fid, use_corrected)
+    g = implementation(other)
+    V, W = _vars(catalogue, fid), _vars(catalogue, other)
+
+    def res(P, y):
+        v = field(P, plain(y))
+        X = np.atleast_1d(to_vars(V, P, seeded(y)))
+        sd = directional(X[0], v)[0]
+        x = np.array([*(Jet.const(c).value() for c in X), sd], dtype=object)
+        lhs = np.atleast_1d(np.asarray(f(P, x), dtype=object)).ravel()
+        rhs = np.atleast_1d(np.asarray(g(P, to_vars(W, P, plain(y))), dtype=object)).ravel()
+        return residual_vector(lhs - rhs)
+    return res

@@ -64,6 +64,11 @@ def _found_density(catalogue, case, claim, key):
     return out
 
 
+def _rate_formulas():
+    from solvers.verify.checks.ode import RATE_FORMULAS
+    return RATE_FORMULAS
+
+
 def _second_order(catalogue, claim):
     from solvers.verify.checks.ode import _is_jet
     return _is_jet(catalogue, claim)
@@ -87,6 +92,8 @@ def exact_for(catalogue, case, claim, corrected=False):
     elif name == "reduced_agrees" and _second_order(catalogue, claim):
         from solvers.verify.exact.taylor import second_order  # eq2.9, eq2.21, eq3.4
         build, negative = second_order, False
+    elif name == "identity" and args.formula in _rate_formulas():
+        build, negative = X.rate_identity, False
     elif name in CERTIFIERS:
         build, negative = CERTIFIERS[name]
     elif name == "negative_measure" and case.id in _candidates():
