@@ -237,6 +237,7 @@ def _verify_summary(con, records):
         con.print(f"{name}{len(recs)}{what}  " + "  ".join(
             f"{MARKS[v]} {v}: {counts.get(v, 0)}"
             for v in ("verified", "fails", "evidence", "unchecked")))
+    con.print(_exact_summary(records))
     quals = Counter(r.get("qualifier") for r in records if r.get("qualifier"))
     if quals:
         con.print("formula qualifiers: " + ", ".join(f"{k}: {v}" for k, v in sorted(
@@ -320,6 +321,22 @@ def errata(
         con.print(f"   {e['finding']}", markup=False)
         con.print(f"   claim {e['claim']} ({e['label']}); reproduce: {e['reproduce']}",
                   markup=False)
+
+
+def _exact_summary(records) -> str:
+    """One line: how many verified records carry an exact certificate that holds
+    (solvers/verify/exact), and how many failing ones an exact rational witness."""
+    verified = [r for r in records if r["verdict"] == "verified"]
+    certified = [r for r in verified if (r.get("exact") or {}).get("holds") is True
+                 and not r["exact"].get("negative")]
+    fails = [r for r in records if r["verdict"] == "fails"]
+    # a witness (the residual is nonzero at a rational point), or for a refuted negative
+    # claim the exactly certified object that refutes it
+    witnessed = [r for r in fails if r.get("exact") is not None]
+    share = 100.0 * len(certified) / len(verified) if verified else 0.0
+    return (f"exact: {len(certified)} of {len(verified)} verified records certified exactly "
+            f"({share:.0f}%); {len(witnessed)} of {len(fails)} failing records settled exactly "
+            "(rational witness or certified counter-object)")
 
 
 @cli.command()

@@ -10,6 +10,7 @@ from solvers.verify import (
     checks,  # noqa: F401  (registers the checks)
     formulas,  # noqa: F401  (registers the formulas)
 )
+from solvers.verify.exact import exact_for
 from solvers.verify.registry import CHECKS, CORRECTED, CORRECTION_NOTES, Outcome
 
 VERDICTS = ("verified", "fails", "evidence", "unchecked")
@@ -30,6 +31,7 @@ class Record:
     corrects: str | None = None        # for a correction: the claim it corrects
     evidence: dict | None = None
     seconds: float = 0.0
+    exact: dict | None = None          # exact certificate or witness (solvers/verify/exact)
 
     def to_json(self) -> dict:
         d = asdict(self)
@@ -51,6 +53,7 @@ def _run_claim(catalogue, case, claim) -> list[Record]:
     rec = Record(case.id, claim.id, claim.kind.value, out.verdict, out.residual, claim.printed,
                  claim.label, claim.check.value, out.message, evidence=out.evidence or None,
                  seconds=time.perf_counter() - t0)
+    rec.exact = exact_for(catalogue, case, claim)
     records = [rec]
     args = claim.check_args          # the corrected object: the first with a correction
     fid = next((f for f in (args.formula, args.system, args.bracket) if f in CORRECTED), None)
@@ -63,7 +66,8 @@ def _run_claim(catalogue, case, claim) -> list[Record]:
             f"[project's correction of {fid}] {CORRECTION_NOTES[fid]}", claim.label,
             claim.check.value,
             f"corrected form: max normalised residual {out.corrected_residual:.2e}",
-            origin="project-correction", corrects=claim.id))
+            origin="project-correction", corrects=claim.id,
+            exact=exact_for(catalogue, case, claim, corrected=True)))
     return records
 
 
