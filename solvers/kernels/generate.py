@@ -344,10 +344,40 @@ def generated(model: int, p, fold: bool = False):
         tmp = path.with_suffix(f".{os.getpid()}.tmp")
         tmp.write_text(numba_source(model, p, fold))
         os.replace(tmp, path)   # atomic: a concurrent process sees all of it or nothing
-    spec = importlib.util.spec_from_file_location(f"solvers_generated.{name}", path)
+    mod = _load(name, path)
+    _LOADED[name] = mod
+    return mod
+
+
+def _load(name, path):
+    spec = importlib.util.spec_from_file_location(name, path)
     mod = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = mod
+    sys.modules[name] = mod      # importable by name: the integrator copy imports it
     spec.loader.exec_module(mod)
+    return mod
+
+
+def generated_integrator(model: int, p, fold: bool = False):
+    """solvers/kernels/rk.py compiled against the case's generated field instead of the
+    general `fields.rhs`: the same source (tableau as data, dense output, projection,
+    sections, statuses), written next to the generated field with only its `rhs` import
+    changed, so every stage call is the lean field, inlined. One numba compile per
+    structure (~10-20 s), then numba's on-disk cache."""
+    field_mod = generated(model, p, fold)
+    name = "rk" + field_mod.__name__[3:]
+    mod = _LOADED.get(name)
+    if mod is not None:
+        return mod
+    path = cache_dir() / f"{name}.py"
+    if not path.exists():
+        src = (Path(__file__).resolve().parent / "rk.py").read_text()
+        old = "from solvers.kernels.fields import rhs\n"
+        assert old in src
+        src = src.replace(old, f"from {field_mod.__name__} import rhs\n")
+        tmp = path.with_suffix(f".{os.getpid()}.tmp")
+        tmp.write_text(src)
+        os.replace(tmp, path)
+    mod = _load(name, path)
     _LOADED[name] = mod
     return mod
 
