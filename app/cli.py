@@ -264,7 +264,8 @@ def _verify_summary(con, records):
             kind = r.get("qualifier") or "fails"
             extra = f" (inherits {r['inherits']})" if r.get("inherits") else ""
             mark = "✓" if r["verdict"] == "verified" else "✗"
-            con.print(f"{mark} [{kind}]{extra} {r['claim']} ({num}): "
+            where = f" ({num})" if num else ""
+            con.print(f"{mark} [{kind}]{extra} {r['claim']}{where}: "
                       f"residual {res} — {cite(r['message'])}", markup=False)
 
 
