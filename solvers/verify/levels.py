@@ -75,6 +75,11 @@ def annotate(records: list[dict], cat: Catalogue) -> list[dict]:
             r["message"] = (f"holds under the convention: {cl.holds_under} (residual "
                             f"{corr['residual']:.1e}); read with the project's convention: "
                             + r["message"])
+            # the exact certificate follows the verdict: the printed form read under the
+            # convention is the correction's reading; the witness against our reading stays
+            if r.get("exact") is not None and corr.get("exact") is not None:
+                r["exact"] = {**corr["exact"], "under": "the convention above",
+                              "read_with_project_convention": r["exact"]}
         elif r["verdict"] == "fails" and cl.hedged:
             r["qualifier"] = "refuted-conjecture"
             r["finding"] = (r.get("evidence") or {}).get("found density") or r["message"]
