@@ -174,7 +174,9 @@ def cell_records(records: list[dict], cat: Catalogue, case_ids=None) -> list[dic
                     "evidence": {"basis": bases} if bases else None, "seconds": 0.0,
                     "level": "cell", "row": row.value, "row_label": rows[row],
                     "rests_on": rests, "notes": notes, "qualifier": None,
-                    "convention": None, "inherits": None, "finding": None})
+                    "convention": None, "inherits": None, "finding": None,
+                    # a cell's exact certificates are those of the records it rests on
+                    "exact": None})
     return out
 
 
