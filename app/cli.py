@@ -1,11 +1,15 @@
 """The `rolling` command line: one entry point per job.
 
 Errors in the input print one line `error: ...` on stderr and exit with code 2 (no
-traceback); a run that reaches a singularity prints what it computed and exits with 3.
+traceback, whatever fails); a run that reaches a singularity or its step budget prints what
+it computed and exits with 3, and so does a run stopped by --timeout. --json output is
+strict JSON: a non-finite number is written as null (as the API does).
 """
 
-import json
+import contextlib
+import os
 import sys
+import threading
 from typing import Annotated
 
 import typer
@@ -20,6 +24,41 @@ EXIT_SINGULAR = 3
 def _fail(message: str, code: int = EXIT_INPUT):
     typer.echo(f"error: {message}", err=True)
     raise typer.Exit(code)
+
+
+def _write_json(obj) -> None:
+    from app.services.jobs import dumps
+
+    sys.stdout.write(dumps(obj).decode() + "\n")
+
+
+TimeoutOpt = Annotated[float | None, typer.Option(
+    "--timeout", help="stop after this many seconds of wall time (exit 3)")]
+
+
+@contextlib.contextmanager
+def _timeout(seconds: float | None):
+    """Stop the whole process when `seconds` have passed: the compiled kernels run without
+    returning to Python, so a watchdog thread ends the process (exit 3) from outside."""
+    if seconds is None:
+        yield
+        return
+    if not seconds > 0 or seconds != seconds or seconds == float("inf"):
+        _fail(f"--timeout {seconds!r}: must be a positive number of seconds")
+    done = threading.Event()
+
+    def watch():
+        if not done.wait(seconds):
+            sys.stdout.flush()
+            sys.stderr.write(f"error: stopped by --timeout after {seconds:g} s\n")
+            sys.stderr.flush()
+            os._exit(EXIT_SINGULAR)
+
+    threading.Thread(target=watch, daemon=True).start()
+    try:
+        yield
+    finally:
+        done.set()
 
 
 def _parse_sets(items: list[str]) -> dict[str, str]:
@@ -66,11 +105,12 @@ def simulate(
     allow_any_inertia: Annotated[bool, typer.Option("--allow-any-inertia", help="accept "
                                  "moments violating the triangle inequality")] = False,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
+    timeout: TimeoutOpt = None,
 ):
     """Integrate one case and report the state, the invariants and the cost."""
+    from solvers import simulate as sim
     from solvers.errors import InputError
     from solvers.models.cases import get_case
-    from solvers.simulate import simulate as run
 
     try:
         spec = get_case(case)
@@ -82,13 +122,14 @@ def simulate(
             if not example:
                 _fail("--t-end is required")
             t_end = 100.0
-        res = run(case, params, y0, t_end, method=method, rtol=rtol, atol=atol,
-                  samples=samples, project=project, allow_any_inertia=allow_any_inertia,
-                  step=step)
+        with _timeout(timeout):
+            res = sim.simulate(case, params, y0, t_end, method=method, rtol=rtol, atol=atol,
+                               samples=samples, project=project,
+                               allow_any_inertia=allow_any_inertia, step=step)
     except InputError as e:
         _fail(str(e))
     if as_json:
-        sys.stdout.write(json.dumps(res.to_json(), allow_nan=False) + "\n")
+        _write_json(res.to_json())
     else:
         _summary(res)
     if not res.ok:
@@ -125,29 +166,38 @@ def verify(
     claim: Annotated[str | None, typer.Option(help="only this claim id")] = None,
     as_json: Annotated[bool, typer.Option("--json", help="print a JSON list of records")] = False,
     workers: Annotated[int, typer.Option(help="worker processes (0: one per core)")] = 0,
+    timeout: TimeoutOpt = None,
 ):
     """Check every claim of Tables 1-2 and the text; print the tables with verdict marks."""
+    from catalogue.load import load_catalogue
     from solvers.errors import InputError
     from solvers.verify.parallel import verify_parallel
 
+    if claim is not None:
+        known = {cl.id for c in load_catalogue().cases() if case in (None, c.id)
+                 for cl in c.claims}
+        if claim not in known:
+            where = f" of case {case}" if case else ""
+            _fail(f"--claim {claim!r}: no such claim{where} (the claim ids: rolling "
+                  "verify --json, or GET /api/cases/{id})")
     try:
-        records = verify_parallel(case=case, claim=claim, workers=workers)
+        with _timeout(timeout):
+            records = verify_parallel(case=case, claim=claim, workers=workers)
     except InputError as e:
         _fail(str(e))
     if as_json:
-        sys.stdout.write(json.dumps(records, allow_nan=False) + "\n")
+        _write_json(records)
         return
     _verify_tables(records, case)
 
 
 def _verify_tables(records, only_case):
-    from collections import Counter
-
     from rich.console import Console
+    from rich.markup import escape
     from rich.table import Table
 
     from catalogue.load import load_catalogue
-    from solvers.verify.table import MARKS, table_marks
+    from solvers.verify.table import MARKS, cell_notes, table_marks
 
     con = Console(width=max(Console().width, 160))
     cat = load_catalogue()
@@ -155,8 +205,9 @@ def _verify_tables(records, only_case):
         cases = [c for c in table.cases if only_case in (None, c.id)]
         if not cases:
             continue
-        marks = table_marks(table, records)
-        tab = Table(title=f"Table {table.number}: {table.caption_plain}", show_lines=True)
+        marks, notes = table_marks(table, records), cell_notes(table, records)
+        tab = Table(title=f"Table {table.number}: {table.caption_plain} "
+                    "(cells: the property each states)", show_lines=True)
         tab.add_column("row")
         for c in cases:
             tab.add_column(c.id.split("/", 1)[1], overflow="fold")
@@ -166,17 +217,127 @@ def _verify_tables(records, only_case):
                 cell = c.cells[row.key]
                 mark = MARKS[marks[c.id][row.key.value]]
                 text = cell.plain if len(cell.plain) < 60 else cell.plain[:57] + "..."
-                cells.append(f"{mark} {text}" if mark else text)
+                note = "".join(f" ({n})" for n in notes[c.id][row.key.value])
+                cells.append(escape(f"{mark} {text}{note}" if mark else text))
             tab.add_row(row.plain, *cells)
         con.print(tab)
-    counts = Counter(r["verdict"] for r in records)
-    con.print("claims: " + str(len(records)) + "  " +
-              "  ".join(f"{MARKS[v]} {v}: {counts.get(v, 0)}"
-                        for v in ("verified", "fails", "evidence", "unchecked")))
-    for r in records:
+    _verify_summary(con, records)
+
+
+def _verify_summary(con, records):
+    from collections import Counter
+
+    from solvers.verify.table import MARKS
+
+    for level in ("cell", "formula"):
+        recs = [r for r in records if r.get("level", "formula") == level]
+        counts = Counter(r["verdict"] for r in recs)
+        name = "cells: " if level == "cell" else "claims: "
+        what = " (properties of table cells)" if level == "cell" else " (printed formulas)"
+        con.print(f"{name}{len(recs)}{what}  " + "  ".join(
+            f"{MARKS[v]} {v}: {counts.get(v, 0)}"
+            for v in ("verified", "fails", "evidence", "unchecked")))
+    con.print(_exact_summary(records))
+    quals = Counter(r.get("qualifier") for r in records if r.get("qualifier"))
+    if quals:
+        con.print("formula qualifiers: " + ", ".join(f"{k}: {v}" for k, v in sorted(
+            quals.items())))
+    cells = [r for r in records if r.get("level") == "cell"]
+    for r in cells:
         if r["verdict"] == "fails":
+            con.print(f"✗ cell {r['claim']}: {r['message']}", markup=False)
+    noted = [r for r in cells if r.get("notes")]
+    if noted:
+        con.print("cells whose property holds while a printed formula under them does not:")
+    for r in noted:
+        con.print(f"✓ cell {r['claim']}: {'; '.join(r['notes'])} (rests on "
+                  f"{', '.join(r['rests_on'])})", markup=False)
+    con.print("formula records that do not hold as printed (errata: `rolling errata`):")
+    for r in records:
+        if r.get("level", "formula") != "formula":
+            continue
+        if r["verdict"] == "fails" or r.get("qualifier") == "convention":
             res = "n/a" if r["residual"] is None else f"{r['residual']:.2e}"
-            con.print(f"✗ {r['claim']} ({r['label'] or ''}): residual {res} — {r['message']}")
+            from catalogue.numbering import cite, printed
+
+            num = printed(r["label"]) or r["label"] or ""
+            kind = r.get("qualifier") or "fails"
+            extra = f" (inherits {r['inherits']})" if r.get("inherits") else ""
+            mark = "✓" if r["verdict"] == "verified" else "✗"
+            where = f" ({num})" if num else ""
+            con.print(f"{mark} [{kind}]{extra} {r['claim']}{where}: "
+                      f"residual {res} — {cite(r['message'])}", markup=False)
+
+
+@cli.command()
+def errata(
+    as_json: Annotated[bool, typer.Option("--json", help="print errata, conventions and "
+                                          "findings as one JSON object")] = False,
+    workers: Annotated[int, typer.Option(help="worker processes (0: one per core)")] = 0,
+):
+    """List the paper's misprints (printed vs corrected form, residuals, exact witness,
+    the command that reproduces each), the conventions and the findings."""
+    from catalogue.load import load_catalogue
+    from solvers.verify import errata as er
+    from solvers.verify.parallel import verify_parallel
+
+    cat = load_catalogue()
+    records = verify_parallel(workers=workers)
+    out = {"errata": er.errata(records, cat), "conventions": er.conventions(records, cat),
+           "findings": er.findings(records, cat)}
+    if as_json:
+        _write_json(out)
+        return
+    from rich.console import Console
+
+    con = Console(width=max(Console().width, 140))
+
+    def res(x):
+        return "n/a" if x is None else f"{x:.2e}"
+
+    con.print(f"[bold]Errata[/bold]: {len(out['errata'])} printed formulas fail; "
+              "the project's correction of each holds")
+    for e in out["errata"]:
+        where = e["label"] or e["where"] or ""
+        inh = f" (inherits {e['inherits']})" if e["inherits"] else ""
+        con.print(f"✗ [{e['kind']}]{inh} {e['claim']} — {where}"
+                  f"{', ' + e['section'] if e['section'] else ''}", markup=False)
+        con.print(f"   printed:   {' '.join(e['printed'].split())[:200]}", markup=False)
+        con.print(f"   corrected: {e['corrected']}", markup=False)
+        con.print(f"   residual printed {res(e['residual_printed'])}, corrected "
+                  f"{res(e['residual_corrected'])}", markup=False)
+        ex = e.get("exact")
+        if ex and ex.get("witness") is not None:
+            con.print(f"   exact witness: {ex['witness']}", markup=False)
+        con.print(f"   reproduce: {e['reproduce']}", markup=False)
+    con.print(f"[bold]Conventions[/bold]: {len(out['conventions'])} printed forms hold "
+              "under another convention")
+    for e in out["conventions"]:
+        con.print(f"✓ {e['claim']} ({e['label']}): {e['convention']}", markup=False)
+        con.print(f"   residual under it {res(e['residual_under_convention'])}, with ours "
+                  f"{res(e['residual_printed'])}; reproduce: {e['reproduce']}", markup=False)
+    con.print(f"[bold]Findings the paper does not have[/bold]: {len(out['findings'])}")
+    for e in out["findings"]:
+        con.print(f"• [{e['kind']}] {e['title']}", markup=False)
+        con.print(f"   {e['finding']}", markup=False)
+        con.print(f"   claim {e['claim']} ({e['label']}); reproduce: {e['reproduce']}",
+                  markup=False)
+
+
+def _exact_summary(records) -> str:
+    """One line: how many verified records carry an exact certificate that holds
+    (solvers/verify/exact), and how many failing ones an exact rational witness."""
+    verified = [r for r in records if r["verdict"] == "verified"]
+    certified = [r for r in verified if (r.get("exact") or {}).get("holds") is True
+                 and not r["exact"].get("negative")]
+    fails = [r for r in records if r["verdict"] == "fails"]
+    # a witness (the residual is nonzero at a rational point), or for a refuted negative
+    # claim the exactly certified object that refutes it
+    witnessed = [r for r in fails if r.get("exact") is not None]
+    share = 100.0 * len(certified) / len(verified) if verified else 0.0
+    return (f"exact: {len(certified)} of {len(verified)} verified records certified exactly "
+            f"({share:.0f}%); {len(witnessed)} of {len(fails)} failing records settled exactly "
+            "(rational witness or certified counter-object)")
 
 
 @cli.command()
@@ -212,6 +373,8 @@ def serve(
 
     if workers is not None:
         os.environ["ROLLING_WORKERS"] = str(workers)
+    if host is not None:   # the app derives its Host allow-list from the address it serves
+        os.environ["ROLLING_HOST"] = host
     from app.core.config import get_settings
 
     s = get_settings()
@@ -251,6 +414,7 @@ def poincare(
                                           "(--set overrides)")] = False,
     allow_any_inertia: Annotated[bool, typer.Option("--allow-any-inertia")] = False,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
+    timeout: TimeoutOpt = None,
 ):
     """3D Poincare map in Andoyer-Deprit variables (L/G, H/G, l) on the level E = E0."""
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TimeElapsedColumn
@@ -269,9 +433,10 @@ def poincare(
         starts = [[float(v) for v in _parse_state(s)] for s in initial] or None
         spec = MapSpec(energy=energy, g0=_parse_section(section), direction=direction,
                        points=points, method=method, rtol=rtol, atol=atol)
-        with Progress("[progress.description]{task.description}", BarColumn(),
-                      MofNCompleteColumn(), TimeElapsedColumn(),
-                      console=_stderr_console(), transient=as_json) as bar:
+        with _timeout(timeout), Progress(
+                "[progress.description]{task.description}", BarColumn(),
+                MofNCompleteColumn(), TimeElapsedColumn(),
+                console=_stderr_console(), transient=as_json) as bar:
             task = bar.add_task("trajectories", total=len(starts) if starts else trajectories)
             res = run(case, params, spec, trajectories=trajectories, initial=starts,
                       seed=seed, allow_any_inertia=allow_any_inertia,
@@ -283,7 +448,7 @@ def poincare(
         _fail(str(e))
     out = res.to_json()
     if as_json:
-        sys.stdout.write(json.dumps(out, allow_nan=False) + "\n")
+        _write_json(out)
     else:
         _poincare_summary(out)
     if any(t["status"] not in ("ok", "no-return") for t in out["trajectories"]):
@@ -346,7 +511,7 @@ def sweep(
     except (InputError, ValueError) as e:
         _fail(str(e))
     if as_json:
-        sys.stdout.write(json.dumps(res.to_json(), allow_nan=False) + "\n")
+        _write_json(res.to_json())
         return
     from rich.console import Console
     from rich.table import Table
@@ -417,8 +582,17 @@ def bench(
         sys.argv = saved
 
 
-def main():
-    cli()
+def main(argv: list[str] | None = None):
+    """The entry point: whatever fails ends as one line on stderr and exit code 2."""
+    try:
+        cli(args=argv)
+    except KeyboardInterrupt:
+        sys.stderr.write("error: interrupted\n")
+        sys.exit(130)
+    except Exception as exc:
+        text = " ".join(str(exc).split())[:300] or type(exc).__name__
+        sys.stderr.write(f"error: {type(exc).__name__}: {text}\n")
+        sys.exit(EXIT_INPUT)
 
 
 if __name__ == "__main__":

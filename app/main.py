@@ -19,12 +19,14 @@ from fastapi import FastAPI
 from fastapi.openapi.docs import get_swagger_ui_html
 from fastapi.responses import HTMLResponse
 from fastapi.staticfiles import StaticFiles
+from starlette.middleware.trustedhost import TrustedHostMiddleware
 
 from app import __version__
 from app.api.main import api_router
-from app.api.routes import pages, poincare, scenes, work_precision
+from app.api.routes import pages, poincare, reader, scenes, work_precision
 from app.core import errors
 from app.core.config import Settings, get_settings
+from app.core.guards import CSP, HeadAsGet, RequestGuard, SecurityHeaders
 from app.core.pool import WorkerPool
 from app.services import jobs
 from app.services.verdicts import VerdictStore
@@ -109,19 +111,31 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     errors.install(app)
     app.include_router(api_router)
     app.include_router(pages.router)
+    app.include_router(reader.pages)
     app.include_router(poincare.pages)
     app.include_router(scenes.pages)
     app.include_router(work_precision.pages)
     app.mount("/static", StaticFiles(directory=Path(settings.static_dir)), name="static")
+    # outermost last: headers on every answer (the guards' own included), then the Host
+    # allow-list, HEAD as GET, and the checks of state-changing requests
+    app.add_middleware(RequestGuard, max_body=settings.max_body_bytes,
+                       allowed_origins=tuple(settings.allowed_origins))
+    app.add_middleware(HeadAsGet)
+    app.add_middleware(TrustedHostMiddleware, allowed_hosts=settings.trusted_hosts())
+    app.add_middleware(SecurityHeaders)
 
     @app.get("/docs", include_in_schema=False)
     async def docs() -> HTMLResponse:
-        return get_swagger_ui_html(
+        page = get_swagger_ui_html(
             openapi_url=app.openapi_url, title=f"{app.title} — API",
             swagger_js_url="/static/vendor/swagger-ui/swagger-ui-bundle.js",
             swagger_css_url="/static/vendor/swagger-ui/swagger-ui.css",
             swagger_favicon_url="/static/favicon.svg",
             swagger_ui_parameters={"validatorUrl": None, "defaultModelsExpandDepth": 0})
+        # Swagger UI starts from an inline script: allowed on this page only
+        page.headers["content-security-policy"] = CSP.replace(
+            "script-src 'self'", "script-src 'self' 'unsafe-inline'")
+        return page
 
     return app
 

@@ -5,6 +5,7 @@ gets its own port from the kernel)."""
 from __future__ import annotations
 
 import contextlib
+import json
 import os
 import socket
 import subprocess
@@ -19,8 +20,10 @@ import httpx
 from app.core.config import Settings
 
 # quiet, quick defaults for tests: no background verification, no disk cache
+# ("testserver" is the Host of Starlette's TestClient)
 TEST_SETTINGS = {"verify_on_start": False, "use_verdict_cache": False, "workers": 2,
-                 "deadline_s": 20.0, "log_level": "warning"}
+                 "deadline_s": 20.0, "log_level": "warning",
+                 "allowed_hosts": ["127.0.0.1", "localhost", "::1", "testserver"]}
 
 
 def settings_for_tests(**overrides) -> Settings:
@@ -39,8 +42,10 @@ def live_server(timeout: float = 60.0, **settings) -> Iterator[str]:
     """Start `uvicorn app.main:app` on 127.0.0.1 and a free port with ROLLING_* settings;
     yield its base URL once /api/health answers; stop it (SIGTERM, then SIGKILL)."""
     port = free_port()
-    env = {**os.environ, **{f"ROLLING_{k.upper()}": str(v)
-                           for k, v in {**TEST_SETTINGS, **settings}.items()}}
+    # pydantic-settings reads a list or dict from the environment as JSON
+    env = {**os.environ, **{f"ROLLING_{k.upper()}":
+                            json.dumps(v) if isinstance(v, list | dict) else str(v)
+                            for k, v in {**TEST_SETTINGS, **settings}.items()}}
     env.setdefault("ROLLING_CACHE_DIR",
                    str(Path(tempfile.gettempdir()) / "rolling-hierarchy-test-cache"))
     log = tempfile.TemporaryFile()  # a file, not a pipe: a chatty server never blocks

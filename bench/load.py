@@ -1,14 +1,19 @@
-"""Load test of the explorer on loopback: N concurrent users POST /api/simulate for a fixed
-time while a prober measures GET /api/health. Bounded in users and time; it stops itself.
+"""Load test of the explorer on loopback: N concurrent users for a fixed time while a
+prober measures GET /api/health. Bounded in users and time; it stops itself.
 
     python bench/load.py                         # 20 users, 60 s, its own server
     python bench/load.py --users 4 --duration 5 --json
     python bench/load.py --url http://127.0.0.1:8000   # an explorer already running
 
-Each user sends the demo run of a case of Tables 1-2 (t_end 100, 201 samples), cycling
-through the cases, and honours Retry-After on 503 (the designed answer of a full queue).
-Reported: latency p50/p99 of the runs, p50/p99/max of the health probe, answers by status,
-and the unplanned 5xx (every 5xx except 503), which must be zero.
+The users (issue 9: simulate, pages and a 50 MB body): one user in four browses the pages
+(the home page, a case page and the scripts and data they load, plotly.js included); one
+user sends 50 MB bodies to POST /api/simulate, by turns with Content-Length and streamed
+(chunked), reading the answer while it sends, as a browser does; the others send the demo
+run of a case of Tables 1-2 (t_end 100, 201 samples), cycling through the cases, and
+honour Retry-After on 503 (the designed answer of a full queue).
+Reported: latency p50/p99 of the runs and of the pages, the answers to the big bodies and
+how fast they came, p50/p99/max of the health probe, and the unplanned 5xx (every 5xx
+except 503), which must be zero.
 """
 
 from __future__ import annotations
@@ -60,6 +65,71 @@ async def user(client: httpx.AsyncClient, cases: list[str], k: int, stop: float,
             errors.append(f"{r.status_code}: {r.text[:200]}")
 
 
+PAGES = ["/", "/static/js/home.js", "/static/css/app.css", "/api/tables/plane",
+         "/case/plane/chaplygin-ball", "/static/js/case.js", "/vendor/plotly.min.js",
+         "/api/cases/plane/chaplygin-ball", "/static/vendor/katex/katex.min.js"]
+BIG = 50 * 2**20
+
+
+async def browser(client: httpx.AsyncClient, stop: float, lat: list[float],
+                  status: dict[int, int], errors: list[str]) -> None:
+    i = 0
+    while time.monotonic() < stop:
+        path = PAGES[i % len(PAGES)]
+        i += 1
+        t0 = time.perf_counter()
+        try:
+            r = await client.get(path)
+        except httpx.HTTPError as exc:
+            errors.append(f"GET {path}: {type(exc).__name__}: {exc}")
+            status[0] = status.get(0, 0) + 1
+            continue
+        status[r.status_code] = status.get(r.status_code, 0) + 1
+        if r.status_code == 200:
+            lat.append(time.perf_counter() - t0)
+        elif r.status_code >= 500:
+            errors.append(f"GET {path}: {r.status_code}")
+
+
+async def big_bodies(url: str, stop: float, out: dict) -> None:
+    """POST 50 MB bodies over a raw connection: send in 1 MB chunks while reading the
+    answer, stop sending once it has come (what a browser's fetch does)."""
+    host, port = url.split("//", 1)[1].split(":")
+    chunk = b"[" + b"0," * (2**19 - 1) + b"0"    # 1 MB of a JSON array
+    k = 0
+    while time.monotonic() < stop:
+        chunked = k % 2 == 1
+        k += 1
+        reader, writer = await asyncio.open_connection(host, int(port))
+        head = (f"POST /api/simulate HTTP/1.1\r\nHost: {host}:{port}\r\n"
+                "Content-Type: application/json\r\n"
+                + ("Transfer-Encoding: chunked\r\n" if chunked else f"Content-Length: {BIG}\r\n")
+                + "\r\n").encode()
+        t0 = time.perf_counter()
+        answer = asyncio.create_task(reader.readuntil(b"\r\n\r\n"))
+        sent = 0
+        try:
+            writer.write(head)
+            while sent < BIG and not answer.done():
+                piece = chunk[:BIG - sent]
+                writer.write(b"%x\r\n%s\r\n" % (len(piece), piece) if chunked else piece)
+                await writer.drain()
+                sent += len(piece)
+            raw = await asyncio.wait_for(answer, 60)
+            code = int(raw.split(b" ", 2)[1])
+        except (TimeoutError, ConnectionError, asyncio.IncompleteReadError) as exc:
+            code = 0
+            out["errors"].append(f"{type(exc).__name__} after {sent} bytes")
+        finally:
+            answer.cancel()
+            writer.close()
+        key = f"{'chunked' if chunked else 'length'}:{code}"
+        out["status"][key] = out["status"].get(key, 0) + 1
+        out["answer_ms"].append(1e3 * (time.perf_counter() - t0))
+        out["sent_mb"].append(sent / 2**20)
+        await asyncio.sleep(0.2)
+
+
 def prober(url: str, duration: float, out) -> None:
     """GET /api/health every 0.1 s from a process of its own, so that the latency measured
     is the server's, not that of the load generator's busy event loop."""
@@ -78,7 +148,8 @@ def prober(url: str, duration: float, out) -> None:
     out.put((lat, status))
 
 
-async def load(url: str, users: int, duration: float) -> dict:
+async def load(url: str, users: int, duration: float, pages: int | None = None,
+               big: int | None = None) -> dict:
     load0 = os.getloadavg()[0]
     limits = httpx.Limits(max_connections=users + 2, max_keepalive_connections=users + 2)
     timeout = httpx.Timeout(120.0)
@@ -93,17 +164,37 @@ async def load(url: str, users: int, duration: float) -> dict:
         probe.start()
         t0 = time.monotonic()
         stop = t0 + duration
+        page_lat: list[float] = []
+        page_status: dict[int, int] = {}
+        n_pages = users // 4 if pages is None else pages
+        n_big = (1 if users >= 4 else 0) if big is None else big
+        big = {"status": {}, "answer_ms": [], "sent_mb": [], "errors": []}
         async with asyncio.TaskGroup() as tg:
-            for k in range(users):
+            for k in range(users - n_pages - n_big):
                 tg.create_task(user(client, cases, k, stop, sim_lat, sim_status, errors))
+            for _ in range(n_pages):
+                tg.create_task(browser(client, stop, page_lat, page_status, errors))
+            for _ in range(n_big):
+                tg.create_task(big_bodies(url, stop, big))
         wall = time.monotonic() - t0
         health_lat, health_status = await asyncio.to_thread(queue.get, True, duration + 60)
         probe.join(10)
         pool = (await client.get("/api/health")).json()["pool"]
-    unplanned = sum(n for s, n in {**sim_status, **health_status}.items()
-                    if s >= 500 and s != 503) + sim_status.get(0, 0) + health_status.get(0, 0)
+    unplanned = sum(n for s, n in [*sim_status.items(), *health_status.items(),
+                                   *page_status.items()] if s >= 500 and s != 503)
+    unplanned += sim_status.get(0, 0) + health_status.get(0, 0) + page_status.get(0, 0)
+    unplanned += sum(n for k, n in big["status"].items() if not k.endswith(":413"))
     return {
         "users": users, "duration_s": duration, "wall_s": wall, "loadavg_before": load0,
+        "mix": {"simulate": users - n_pages - n_big, "pages": n_pages, "big_body": n_big},
+        "pages": {"ok": len(page_lat), "p50_ms": 1e3 * pct(page_lat, 50),
+                  "p99_ms": 1e3 * pct(page_lat, 99),
+                  "status": {str(k): v for k, v in sorted(page_status.items())}},
+        "big_body": {"sent": len(big["answer_ms"]), "status": big["status"],
+                     "answer_p50_ms": pct(big["answer_ms"], 50),
+                     "answer_max_ms": max(big["answer_ms"], default=float("nan")),
+                     "max_sent_mb": max(big["sent_mb"], default=0.0),
+                     "errors": big["errors"][:5]},
         "simulate": {"ok": len(sim_lat), "throughput_per_s": len(sim_lat) / wall,
                      "p50_ms": 1e3 * pct(sim_lat, 50), "p99_ms": 1e3 * pct(sim_lat, 99),
                      "mean_ms": 1e3 * statistics.fmean(sim_lat) if sim_lat else None,
@@ -126,15 +217,24 @@ def report(r: dict, settings: dict) -> str:
         f"{platform.python_version()}, {platform.system()}; load average before the run "
         f"{r['loadavg_before']:.2f} (other jobs on the machine share the cores)",
         f"server: uvicorn app.main:app, {settings}",
-        f"load: {r['users']} concurrent users for {r['duration_s']:g} s, each POST /api/simulate "
-        "(demo run of a case of Tables 1-2, t_end 100, 201 samples), Retry-After honoured",
+        f"load: {r['users']} concurrent users for {r['duration_s']:g} s: {r['mix']['simulate']} "
+        "POST /api/simulate (demo run of a case of Tables 1-2, t_end 100, 201 samples, "
+        f"Retry-After honoured), {r['mix']['pages']} browsing pages and their assets, "
+        f"{r['mix']['big_body']} sending 50 MB bodies (Content-Length and chunked by turns)",
         "",
         f"simulate: {s['ok']} runs answered 200 ({s['throughput_per_s']:.1f}/s); "
         f"latency p50 {s['p50_ms']:.0f} ms, p99 {s['p99_ms']:.0f} ms",
         f"          answers by status: {s['status']}",
+        f"pages:    {r['pages']['ok']} answered 200; latency p50 {r['pages']['p50_ms']:.0f} ms, "
+        f"p99 {r['pages']['p99_ms']:.0f} ms; by status {r['pages']['status']}",
+        f"50 MB:    {r['big_body']['sent']} bodies; answers {r['big_body']['status']}; "
+        f"answer after p50 {r['big_body']['answer_p50_ms']:.1f} ms, max "
+        f"{r['big_body']['answer_max_ms']:.1f} ms; at most {r['big_body']['max_sent_mb']:.0f} MB "
+        "sent before the answer",
         f"health:   {h['probes']} probes every 0.1 s; p50 {h['p50_ms']:.1f} ms, "
         f"p99 {h['p99_ms']:.1f} ms, max {h['max_ms']:.1f} ms (goal p99 < 100 ms)",
-        f"unplanned 5xx (5xx other than 503, or no answer): {r['unplanned_5xx']}",
+        "unplanned 5xx (5xx other than 503, no answer, or a big body not refused with 413): "
+        f"{r['unplanned_5xx']}",
         f"server pool afterwards: {r['server_pool']}",
     ]
     if r["errors"]:
@@ -147,14 +247,19 @@ def main(argv=None) -> int:
     ap.add_argument("--users", type=int, default=20)
     ap.add_argument("--duration", type=float, default=60.0)
     ap.add_argument("--url", help="an explorer already running (default: start one)")
+    ap.add_argument("--pages", type=int, help="users browsing pages (default users // 4)")
+    ap.add_argument("--big", type=int, help="users sending 50 MB bodies (default 1)")
     ap.add_argument("--json", action="store_true", help="print the figures as JSON")
     ap.add_argument("--out", help="also write the report to this file")
     args = ap.parse_args(argv)
     if not (1 <= args.users <= 200 and 0 < args.duration <= 600):
         ap.error("users in [1, 200], duration in (0, 600] s")
+    if (args.pages or 0) + (args.big or 0) > args.users or min(args.pages or 0,
+                                                               args.big or 0) < 0:
+        ap.error("--pages and --big are parts of --users")
 
     def run(url: str, settings: dict) -> dict:
-        r = asyncio.run(load(url, args.users, args.duration))
+        r = asyncio.run(load(url, args.users, args.duration, args.pages, args.big))
         text = report(r, settings)
         print(json.dumps(r, indent=1) if args.json else text, end="" if not args.json else "\n")
         if args.out:

@@ -25,7 +25,8 @@ absolute time is asserted anywhere: the ratios are read side by side.
 
     .venv/bin/python bench/work_precision.py [--quick]       (or: rolling bench work-precision)
 
-Writes bench/results/work_precision.json (every run) and work_precision.txt (the table);
+Writes solvers/integrate/data/work_precision.json (every run; package data the explorer serves)
+and bench/results/work_precision.txt (the table);
 solvers/integrate/workprecision.py summarises them for the explorer (GET /api/work-precision).
 """
 
@@ -261,7 +262,10 @@ def main(argv=None):
     say(f"\ntotal {time.perf_counter() - t0:.0f} s")
     OUT.mkdir(exist_ok=True)
     suffix = "_quick" if args.quick else ""
-    (OUT / f"work_precision{suffix}.json").write_text(json.dumps(data, indent=1) + "\n")
+    # the full run is what the explorer serves: package data next to its reader
+    # (solvers.integrate.workprecision.RESULTS), so that an installed wheel carries it
+    json_out = OUT / "work_precision_quick.json" if args.quick else wp.RESULTS
+    json_out.write_text(json.dumps(data, indent=1) + "\n")
     (OUT / f"work_precision{suffix}.txt").write_text("\n".join(lines) + "\n")
     return 0
 

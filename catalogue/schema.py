@@ -113,6 +113,9 @@ class CheckName(StrEnum):
     JACOBI_FAILS = "jacobi_fails"  # the printed tensor does NOT satisfy Jacobi
     NEGATIVE_MEASURE = "negative_measure"  # evidence of no smooth measure (attractors, ...)
     NEGATIVE_INTEGRAL = "negative_integral"  # evidence of no further integral (3D maps)
+    # formula-free: a property tested without any printed formula (issue 10, item 2)
+    LINEAR_INTEGRALS_RETURN = "linear_integrals_return"  # two integrals linear in M: (M, gamma)
+    # and M3 return to the same values at every crossing of one level of gamma3
     # nothing to compute; recorded so the catalogue lists them
     OPEN_PROBLEM = "open_problem"  # the paper says it is unknown
     FORMULA_NOT_PRINTED = "formula_not_printed"  # asserted, but the paper prints no formula
@@ -149,6 +152,7 @@ REQUIRED_ARGS: dict[CheckName, tuple[str, ...]] = {
     CheckName.JACOBI_FAILS: ("bracket",),
     CheckName.NEGATIVE_MEASURE: (),
     CheckName.NEGATIVE_INTEGRAL: (),
+    CheckName.LINEAR_INTEGRALS_RETURN: (),
     CheckName.OPEN_PROBLEM: (),
     CheckName.FORMULA_NOT_PRINTED: (),
     CheckName.NOT_CHECKABLE: (),
@@ -358,6 +362,11 @@ class Claim(Strict):
     check_args: CheckArgs = CheckArgs()
     convention_note: str | None = None
     remarks: str | None = None
+    # verdict layer (issue 10): how this record relates to others of its case
+    establishes: list[str] = []  # a formula-free test of the property these claims state
+    inherits: str | None = None  # fails only through this (failing) claim's formula
+    holds_under: str | None = None  # the convention under which the printed form holds
+    hedged: bool = False  # the paper hedges ("probably", "we were unable"): a conjecture
 
     @field_validator("id")
     @classmethod
@@ -420,6 +429,11 @@ class Case(Strict):
             if claim.id in seen:
                 raise ValueError(f"duplicate claim id {claim.id}")
             seen.add(claim.id)
+        for claim in self.claims:   # links of the verdict layer stay inside the case
+            for other in [*claim.establishes, *([claim.inherits] if claim.inherits else [])]:
+                if other not in seen or other == claim.id:
+                    raise ValueError(f"claim {claim.id}: links to {other!r}, not another "
+                                     f"claim of {self.id}")
         for row, cell in self.cells.items():
             if row in DESCRIPTIVE_ROWS and cell.shade is not Shade.NONE:
                 raise ValueError(f"{self.id}: row {row} describes the case; shade must be none")

@@ -1,3 +1,6 @@
+import os
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -75,3 +78,27 @@ def patient_client():
     with TestClient(create_app(settings_for_tests(warm_workers=False,
                                                   deadline_s=120.0))) as c:
         yield c
+
+
+# The paper's text (the LaTeX of Borisov & Mamaev 2002) is found through the setting
+# ROLLING_SEED; by default the seed checked out next to the repository. Missing, the tests
+# that need it skip and say which setting to set; with ROLLING_REQUIRE_SEED=1 (.ci/run)
+# they fail instead.
+DEFAULT_SEED = (Path(__file__).resolve().parents[2] / "shared" / "seeds"
+                / "000_c616a4a5e747ad23.txt")
+
+
+def seed_path() -> Path:
+    return Path(os.environ.get("ROLLING_SEED") or DEFAULT_SEED)
+
+
+@pytest.fixture(scope="session")
+def paper_text() -> str:
+    path = seed_path()
+    if not path.is_file():
+        why = (f"the paper's text is not at {path}: set ROLLING_SEED to the seed file "
+               "000_c616a4a5e747ad23.txt")
+        if os.environ.get("ROLLING_REQUIRE_SEED") == "1":
+            pytest.fail(f"{why} (ROLLING_REQUIRE_SEED=1: required here)")
+        pytest.skip(why)
+    return path.read_text(encoding="utf-8")

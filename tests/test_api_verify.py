@@ -48,13 +48,25 @@ def test_unknown_case_is_404(client):
 
 
 def test_summary_rules():
-    by = {"a": {"verdict": "verified"}, "b": {"verdict": "fails"}, "c": {"verdict": "evidence"}}
-    assert summary([], by) is None
-    assert summary(["a"], by)["mark"] == "verified"
-    assert summary(["a", "b"], by)["mark"] == "fails"
-    assert summary(["a", "c"], by)["mark"] == "evidence"
-    assert summary(["a", "zz"], by) == {"mark": "unchecked", "claims": ["a", "zz"],
-                                        "counts": {"verified": 1, "unchecked": 1}}
+    """A cell's mark is the verdict of its property per spanned case (the cell records of
+    solvers.verify.levels), not of its printed formulas (changed with issue 10)."""
+    a, b, c = "sphere/body-of-revolution", "sphere/round-disk", "sphere/routh-ball"
+
+    def rec(case, verdict, notes=()):
+        return {f"{case}/cell/measure": {"claim": f"{case}/cell/measure", "verdict": verdict,
+                                          "notes": list(notes), "message": "m"}}
+    assert summary([], {}, "measure", [a]) is None
+    s = summary(["x"], {**rec(a, "verified", ["holds; printed formula corrected"]),
+                        **rec(b, "verified"), **rec(c, "verified")}, "measure", [a, b, c])
+    assert s["mark"] == "verified" and [m["column"] for m in s["marks"]] == [6, 7, 8]
+    assert s["notes"] == ["holds; printed formula corrected"]
+    assert summary(["x"], {**rec(a, "verified"), **rec(b, "fails")}, "measure",
+                   [a, b])["mark"] == "fails"
+    assert summary(["x"], {**rec(a, "verified"), **rec(b, "evidence")}, "measure",
+                   [a, b])["mark"] == "evidence"
+    s = summary(["x"], rec(a, "verified"), "measure", [a, b])   # b not computed yet
+    assert s["mark"] == "unchecked" and [m["mark"] for m in s["marks"]] == ["verified",
+                                                                            "pending"]
 
 
 def test_store_cache_round_trip(tmp_path):

@@ -10,7 +10,6 @@ from __future__ import annotations
 import copy
 import re
 import shutil
-from pathlib import Path
 
 import pydantic
 import pytest
@@ -27,10 +26,6 @@ from catalogue.schema import (
     RowKey,
     Shade,
 )
-
-REPO_ROOT = Path(__file__).resolve().parents[1]
-# CI checks the seed out next to the repository: <parent>/shared/seeds/...
-SEED = REPO_ROOT.parent / "shared" / "seeds" / "000_c616a4a5e747ad23.txt"
 
 PLANE_IDS = [
     "plane/chaplygin-ball",
@@ -71,9 +66,8 @@ def raw() -> dict:
 
 
 @pytest.fixture(scope="module")
-def seed() -> str:
-    assert SEED.is_file(), f"seed paper not found at {SEED}"
-    return SEED.read_text(encoding="utf-8")
+def seed(paper_text: str) -> str:
+    return paper_text
 
 
 @pytest.fixture(scope="module")

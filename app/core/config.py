@@ -40,8 +40,25 @@ class Settings(BaseSettings):
     cache_dir: Path = Path.home() / ".cache" / "rolling-hierarchy"
     use_verdict_cache: bool = True
     warm_workers: bool = True         # start the worker processes (numba caches) at start
+    # request bodies above this many bytes get 413 before anything parses them
+    max_body_bytes: int = Field(1 << 20, ge=1024)
+    # Host header allow-list (DNS rebinding): None = the loopback names when bound to a
+    # loopback address, any host otherwise; a list (JSON in ROLLING_ALLOWED_HOSTS) replaces it
+    allowed_hosts: list[str] | None = None
+    # origins besides the server's own whose pages may POST (JSON in ROLLING_ALLOWED_ORIGINS)
+    allowed_origins: list[str] = Field(default_factory=list)
     static_dir: Path = Path(__file__).resolve().parents[1] / "static"   # inside the package
     log_level: str = "info"
+
+    def trusted_hosts(self) -> list[str]:
+        if self.allowed_hosts is not None:
+            return list(self.allowed_hosts)
+        if self.host in LOOPBACK:
+            return sorted(LOOPBACK)
+        return ["*"]
+
+
+LOOPBACK = {"127.0.0.1", "localhost", "::1", "[::1]"}
 
 
 @cache

@@ -58,8 +58,16 @@ def _safe(value, depth: int = 0):
     return value
 
 
+def _part(p) -> str | int:
+    """A piece of an error's location; a dict key comes from the input: cut it short."""
+    if isinstance(p, int):
+        return p
+    text = str(p)
+    return text if len(text) <= 40 else text[:37] + "..."
+
+
 def _field(loc) -> str:
-    parts = [str(p) for p in loc if p not in ("body", "path", "query")]
+    parts = [str(_part(p)) for p in loc if p not in ("body", "path", "query")]
     out = ""
     for p in parts:
         out += f"[{p}]" if p.isdigit() else (f".{p}" if out else p)
@@ -95,14 +103,15 @@ async def _validation(request: Request, exc: RequestValidationError) -> JSONResp
     errs = list(exc.errors())
     sentences = [_sentence(e) for e in errs]
     detail = "; ".join(sentences[:3]) + (f" (and {len(errs) - 3} more)" if len(errs) > 3 else "")
-    items = [FieldError(loc=[str(p) if not isinstance(p, int) else p for p in e.get("loc", ())],
+    items = [FieldError(loc=[_part(p) for p in e.get("loc", ())],
                         msg=s, type=str(e.get("type", "invalid")))
              for e, s in zip(errs, sentences, strict=True)]
     return problem(422, detail or "invalid request", items)
 
 
 _NAMED = re.compile(r"^\|?([A-Za-z_][A-Za-z0-9_]*)\|? = ")
-_RUN_FIELDS = {"t_end", "rtol", "atol", "samples", "method", "project", "frames", "state"}
+_RUN_FIELDS = {"t_end", "rtol", "atol", "samples", "method", "project", "frames", "state",
+               "step", "energy", "direction", "points", "trajectories", "initial", "seed"}
 _STATE = {"M1", "M2", "M3", "g1", "g2", "g3", "r1", "r2", "gamma"}
 
 
@@ -114,6 +123,8 @@ def _input_loc(msg: str) -> list[str | int]:
     name = m.group(1)
     if name in _RUN_FIELDS:
         return ["body", name]
+    if name == "g0":
+        return ["body", "section"]
     if name in _STATE:
         return ["body", "state"]
     return ["body", "params", name]
@@ -129,7 +140,8 @@ async def _input(request: Request, exc: InputError) -> JSONResponse:
 
 
 async def _deadline(request: Request, exc: DeadlineExceeded) -> JSONResponse:
-    return problem(422, str(exc), [FieldError(loc=["body"], msg=str(exc), type="deadline")])
+    # a limit of this server, not bad input: 504, documented as such (DEADLINE_RESPONSES)
+    return problem(504, str(exc))
 
 
 async def _busy(request: Request, exc: QueueFull) -> JSONResponse:
@@ -150,7 +162,9 @@ def not_found_page(static_dir: Path, heading: str, message: str) -> HTMLResponse
     text = (Path(static_dir) / "404.html").read_text()
     text = text.replace("{{heading}}", html.escape(heading)).replace(
         "{{message}}", html.escape(message))
-    return HTMLResponse(text, status_code=404)
+    from app.services.reader_pages import render_page  # the site's navigation, lazily
+
+    return HTMLResponse(render_page(text, "404.html"), status_code=404)
 
 
 def _is_api(path: str) -> bool:
@@ -166,8 +180,15 @@ async def _http(request: Request, exc: StarletteHTTPException) -> Response:
         return not_found_page(request.app.state.settings.static_dir, "Page not found",
                               f"Nothing lives at {request.url.path}.")
     if exc.status_code == 400 and "parsing the body" in detail:
-        # FastAPI's answer to a body that is not even text: bad input like any other
-        msg = "the body is not valid JSON (it is not UTF-8 text)"
+        # FastAPI's answer to a body json.loads could not take: bad input like any other,
+        # said as what it is (the cause FastAPI chained)
+        cause = exc.__cause__
+        if isinstance(cause, RecursionError):
+            msg = "the body is not valid JSON here: it is nested too deeply"
+        elif isinstance(cause, UnicodeError):
+            msg = "the body is not valid JSON (it is not UTF-8 text)"
+        else:
+            msg = f"the body is not valid JSON ({type(cause).__name__ if cause else 'error'})"
         return problem(422, msg, [FieldError(loc=["body"], msg=msg, type="json_invalid")])
     return problem(exc.status_code, detail, headers=exc.headers)
 

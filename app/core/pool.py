@@ -7,6 +7,10 @@ call raises `QueueFull` at once (the route answers 503 with Retry-After). The de
 counts from the moment a worker takes the job: when it passes, or when the caller is
 cancelled (the client went away), anyio kills that worker process (SIGKILL) and starts a
 fresh one for the next job. The event loop never runs the work itself.
+
+Idle workers are kept alive: anyio's pool kills a worker idle for 5 minutes, after which the
+next request would pay a cold start (a new process, the compiled kernels loaded again, about
+2 s). The number of processes is bounded by `workers` anyway, so keeping them costs nothing.
 """
 
 from __future__ import annotations
@@ -32,10 +36,10 @@ class QueueFull(Exception):
 class DeadlineExceeded(Exception):
     """The job ran longer than its deadline; its worker was killed."""
 
-    def __init__(self, deadline: float):
+    def __init__(self, deadline: float,
+                 hint: str = "shorten t_end, loosen rtol or use fewer samples"):
         super().__init__(f"the computation needed more than the {deadline:g} s one request "
-                         "may take and was stopped; shorten t_end, loosen rtol or use fewer "
-                         "samples")
+                         f"may take and was stopped; {hint}")
         self.deadline = deadline
 
 
@@ -59,6 +63,8 @@ class PoolStats:
 class WorkerPool:
     def __init__(self, workers: int, queue_size: int, retry_after: int = 2,
                  warm: Callable | None = None):
+        # anyio reads this module global whenever it hands out a worker (see module doc)
+        to_process.WORKER_MAX_IDLE_TIME = math.inf
         self.workers = workers
         # run in a fresh worker after one was killed, so that the next job does not spend
         # its deadline starting a process and loading the compiled kernels

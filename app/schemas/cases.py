@@ -57,7 +57,10 @@ class CellPublic(BaseModel):
     plain: str
     shade: str
     shade_note: str | None = None
-    labels: list[str] = Field(default_factory=list)
+    labels: list[str] = Field(default_factory=list, description="the seed's equation labels "
+                              "(data; a reader sees `numbers`)")
+    numbers: list[str] = Field(default_factory=list, description="the same equations as the "
+                               "printed paper numbers them, e.g. (2.24)")
     attribution: list[AttributionPublic] = Field(default_factory=list)
     merged: list[str] = Field(default_factory=list)
     colspan: int = 1
@@ -74,7 +77,9 @@ class ClaimPublic(BaseModel):
     kind: str
     printed: str
     plain: str
-    label: str | None
+    label: str | None = Field(description="the seed's LaTeX label (data, not for display)")
+    number: str | None = Field(None, description="the equation's number in the printed paper, "
+                               "e.g. (2.24) (docs/equation-numbers.md)")
     where: str | None = None
     attribution: list[AttributionPublic] = Field(default_factory=list)
     conditions: dict[str, str] = Field(default_factory=dict)

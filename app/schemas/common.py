@@ -26,6 +26,21 @@ PROBLEM_RESPONSES: dict[int | str, dict] = {
     422: {"model": Problem, "description": "bad input: the message names the field, the "
           "value and why (nothing was computed or changed)"},
 }
+# what app.core.guards answers to a request with a body, before any route sees it
+GUARD_RESPONSES: dict[int | str, dict] = {
+    400: {"model": Problem, "description": "a malformed request (Content-Length not a "
+          "number, a Host not served here)"},
+    403: {"model": Problem, "description": "the Origin of the request is another site"},
+    413: {"model": Problem, "description": "the body is larger than the server's limit "
+          "(1 MB by default)"},
+    415: {"model": Problem, "description": "the body is not JSON (Content-Type must be "
+          "application/json)"},
+}
+DEADLINE_RESPONSES: dict[int | str, dict] = {
+    504: {"model": Problem, "description": "a limit of this server: the computation needed "
+          "more than the deadline of one request and was stopped (not bad input; a "
+          "smaller request fits)"},
+}
 BUSY_RESPONSES: dict[int | str, dict] = {
     503: {"model": Problem, "description": "every worker is busy and the queue is full: "
           "retry after the number of seconds in the Retry-After header",

@@ -1,14 +1,17 @@
 """Request and response of POST /api/poincare (the 3D point map, as `rolling poincare`)."""
 
+import math
 from typing import Annotated, Any, Literal
 
-from pydantic import BaseModel, ConfigDict, Field
+from pydantic import BaseModel, ConfigDict, Field, field_validator
 
 from app.schemas.common import FiniteFloat
 from app.schemas.simulate import CaseId
 
 MAX_TRAJECTORIES = 32
 MAX_POINTS = 5000
+# g = a decimal number (the grammar of a JSON number, with an optional sign)
+SECTION = r"^\s*g\s*=\s*[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?\s*$"
 
 EXAMPLE = {"case": "plane/chaplygin-ball", "params": {"I1": 1, "I2": 2, "I3": 3, "m": 1, "R": 1},
            "energy": 1.0, "section": "g=0", "trajectories": 4, "points": 200}
@@ -27,7 +30,7 @@ class PoincareRequest(BaseModel):
                       Field(max_length=32)] = Field(default_factory=dict)
     example: bool = Field(False, description="start from the case's demo parameters")
     energy: FiniteFloat = Field(1.0, description="energy level E0")
-    section: str = Field("g=0", max_length=40, pattern=r"^\s*g\s*=\s*[-+0-9.eE]+\s*$",
+    section: str = Field("g=0", max_length=40, pattern=SECTION,
                          description="the section g=g0 (radians)")
     # an int in [-1, 1] rather than Literal[-1, 0, 1]: a Literal accepts false for 0
     direction: int = Field(1, ge=-1, le=1, description="+1: g increasing, -1: "
@@ -42,6 +45,14 @@ class PoincareRequest(BaseModel):
     rtol: FiniteFloat = Field(1e-10, ge=1e-14, le=1e-3)
     atol: FiniteFloat = Field(1e-12, gt=0, le=1.0)
     allow_any_inertia: bool = False
+
+    @field_validator("section")
+    @classmethod
+    def _section_angle(cls, v: str) -> str:
+        # the pattern admits only numbers; one so large that it is infinite is refused here
+        if not math.isfinite(float(v.split("=", 1)[1])):
+            raise ValueError("the angle g0 must be a finite number of radians")
+        return v
 
     @property
     def g0(self) -> float:

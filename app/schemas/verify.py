@@ -19,14 +19,50 @@ class VerdictPublic(BaseModel):
     evidence: dict[str, Any] | None = None
     seconds: float | None = None
     printed: str | None = None
+    printed_tex: str | None = Field(None, description="a correction's formula (TeX)")
+    computed_at: str | None = Field(None, description="when the verdict was computed (UTC)")
+    version: str | None = Field(None, description="the project version that computed it")
+    level: Literal["cell", "formula"] = Field(
+        "formula", description="formula: one printed expression (or the project's "
+        "correction of it); cell: the property a table cell states (solvers.verify.levels)")
+    qualifier: str | None = Field(
+        None, description="what kind of verdict: convention | misprint | inherited | "
+        "refuted-conjecture | refuted | formula-free (null: nothing to qualify)")
+    convention: str | None = Field(None, description="the convention under which the "
+                                   "printed form holds (qualifier convention)")
+    inherits: str | None = Field(None, description="the failing claim this one fails "
+                                 "through (qualifier inherited)")
+    finding: str | None = Field(None, description="what the project found (qualifier "
+                                "refuted-conjecture)")
+    row: str | None = Field(None, description="cell records: the row of the table")
+    rests_on: list[str] | None = Field(None, description="cell records: the formula "
+                                       "records the cell's verdict rests on")
+    notes: list[str] | None = Field(None, description="cell records: e.g. 'holds; printed "
+                                    "formula corrected'")
+    exact: dict[str, Any] | None = Field(None, description="exact certificate in rational "
+                                         "arithmetic, when one applies")
+
+
+class CellMark(BaseModel):
+    """The verdict of a cell's property for one case (body) the cell spans."""
+
+    case: str
+    column: int
+    mark: Verdict | Literal["pending"] = Field(description="pending: not computed yet")
+    notes: list[str] = Field(default_factory=list)
+    message: str = ""
+    rests_on: list[str] = Field(default_factory=list)
 
 
 class VerdictSummary(BaseModel):
-    """The verdict mark of a table cell from the verdicts of its claims."""
+    """The verdict of a table cell: the property it states, per case it spans."""
 
     mark: Verdict
-    counts: dict[str, int]
+    counts: dict[str, int] = Field(description="number of spanned cases per verdict")
     claims: list[str]
+    marks: list[CellMark] = Field(default_factory=list, description="one per case the "
+                                  "cell spans, in column order")
+    notes: list[str] = Field(default_factory=list)
 
 
 class VerifyPublic(BaseModel):

@@ -77,6 +77,9 @@ class VerdictStore:
 
     def put(self, case_id: str, records: list[dict]) -> None:
         now = time.time()
+        # every verdict says when and by which version of the project it was computed
+        stamp = time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime(now))
+        records = [{"computed_at": stamp, "version": __version__, **r} for r in records]
         self.records[case_id] = records
         self.computed[case_id] = {"computed_at": now, "version": __version__}
         self.updated = now
@@ -150,19 +153,40 @@ async def verify_case(pool: WorkerPool, case_id: str, deadline: float) -> list[d
     return await pool.run(jobs.verify_case, case_id, deadline=deadline)
 
 
-def summary(claim_ids: list[str], by_claim: dict[str, dict]) -> dict | None:
-    """Verdict mark of a cell: fails if any claim fails, verified if all are, evidence if
-    all are verified or evidence, else unchecked."""
+def summary(claim_ids: list[str], by_claim: dict[str, dict], row: str,
+            case_ids: list[str]) -> dict | None:
+    """Verdict of a table cell: the cell record (solvers.verify.levels) of each case it
+    spans, in column order; the overall mark is fails if any case's property fails, else
+    verified if all are, evidence if all are verified or evidence, else unchecked."""
     if not claim_ids:
         return None
-    verdicts = [by_claim.get(c, {}).get("verdict", "unchecked") for c in claim_ids]
-    counts = {v: verdicts.count(v) for v in VERDICTS if v in verdicts}
+    from catalogue.load import load_catalogue
+
+    cat = load_catalogue()
+    marks, notes = [], []
+    for cid in case_ids:
+        rec = by_claim.get(f"{cid}/cell/{row}")
+        case = cat.case(cid)
+        marks.append({"case": cid, "column": case.column,
+                      "mark": rec["verdict"] if rec else "pending",
+                      "notes": list(rec.get("notes") or []) if rec else [],
+                      "message": rec.get("message", "") if rec else "",
+                      "rests_on": list(rec.get("rests_on") or []) if rec else []})
+        for n in marks[-1]["notes"]:
+            if n not in notes:
+                notes.append(n)
+    done = [m["mark"] for m in marks if m["mark"] != "pending"]
+    counts = {v: done.count(v) for v in VERDICTS if v in done}
+    pending = len(done) < len(marks)      # a spanned case not computed yet
     if "fails" in counts:
         mark = "fails"
-    elif set(counts) == {"verified"}:
+    elif pending:
+        mark = "unchecked"
+    elif done and set(counts) == {"verified"}:
         mark = "verified"
-    elif set(counts) <= {"verified", "evidence"}:
+    elif done and set(counts) <= {"verified", "evidence"}:
         mark = "evidence"
     else:
         mark = "unchecked"
-    return {"mark": mark, "counts": counts, "claims": claim_ids}
+    return {"mark": mark, "counts": counts, "claims": claim_ids, "marks": marks,
+            "notes": notes}

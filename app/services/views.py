@@ -4,10 +4,13 @@ verdicts. Pure functions of (catalogue, registry, verdicts); cheap enough for th
 
 from __future__ import annotations
 
+import re
 from functools import cache
+from pathlib import Path
 
 from app.services.verdicts import VERDICTS, summary
 from catalogue.load import load_catalogue
+from catalogue.numbering import cite, cite_latex, printed
 from catalogue.schema import Attribution, Case, Cell, Claim, Table
 from solvers.models.bodies import STATE_LABELS
 from solvers.models.cases import CaseSpec, registry
@@ -26,7 +29,7 @@ def _references() -> dict:
 
 def attribution(a: Attribution) -> dict:
     ref = _references().get(a.ref)
-    return {"ref": a.ref, "authors": a.authors, "year": a.year, "note": a.note,
+    return {"ref": a.ref, "authors": a.authors, "year": a.year, "note": cite(a.note),
             "reference_authors": list(ref.authors) if ref else [],
             "reference_title": ref.title if ref else None}
 
@@ -36,14 +39,17 @@ def table_of(case_id: str) -> Table:
     return cat.plane if case_id.startswith("plane/") else cat.sphere
 
 
-def cell(row_label: str, row: str, c: Cell, by_claim: dict[str, dict]) -> dict:
-    return {"row": row, "row_label": row_label, "printed": c.printed, "plain": c.plain,
-            "shade": c.shade.value, "shade_note": c.shade_note, "labels": list(c.labels),
+def cell(row_label: str, row: str, c: Cell, by_claim: dict[str, dict],
+         cases: list[str] | None = None) -> dict:
+    # labels stay as data; what a reader sees carries the printed numbers (catalogue/numbering)
+    return {"row": row, "row_label": row_label, "printed": cite_latex(c.printed),
+            "plain": cite(c.plain), "shade": c.shade.value, "shade_note": cite(c.shade_note),
+            "labels": list(c.labels), "numbers": [printed(x) or x for x in c.labels],
             "attribution": [attribution(a) for a in c.attribution],
             "merged": list(c.merged), "colspan": c.colspan,
             "subrow": c.subrow.model_dump() if c.subrow else None, "subrow_case": None,
-            "claims": list(c.claims), "convention_note": c.convention_note,
-            "verdict": summary(list(c.claims), by_claim)}
+            "claims": list(c.claims), "convention_note": cite(c.convention_note),
+            "verdict": summary(list(c.claims), by_claim, row, cases or list(c.merged))}
 
 
 def table(table_id: str, by_claim: dict[str, dict]) -> dict:
@@ -57,7 +63,7 @@ def table(table_id: str, by_claim: dict[str, dict]) -> dict:
                 continue
             c = case.cells[row.key]
             skip.update(c.merged)
-            d = cell(labels[row.key], row.key.value, c, by_claim)
+            d = cell(labels[row.key], row.key.value, c, by_claim, list(c.merged) or [case.id])
             d["merged"] = list(c.merged) or [case.id]
             # a second line under one column of a merged cell (Table 2: a = 2R)
             for cid in d["merged"]:
@@ -81,24 +87,64 @@ def _verdict(claim: Claim, rec: dict | None) -> dict:
     return record(rec)
 
 
+def _cite_all(x):
+    """Every string inside x (evidence: nested dicts and lists) with printed numbers."""
+    if isinstance(x, str):
+        return cite(x)
+    if isinstance(x, dict):
+        return {k: _cite_all(v) for k, v in x.items()}
+    if isinstance(x, list):
+        return [_cite_all(v) for v in x]
+    return x
+
+
+_CORRECTION_OF = re.compile(r"\[project's correction of (\w+)\]\s*")
+
+
+@cache
+def corrected_forms() -> dict[str, str]:
+    """fid -> the TeX of the project's corrected form (catalogue/corrected_forms.yaml)."""
+    import yaml
+
+    import catalogue
+
+    path = Path(catalogue.__file__).with_name("corrected_forms.yaml")
+    return yaml.safe_load(path.read_text(encoding="utf-8"))
+
+
 def record(rec: dict) -> dict:
     keys = ("claim", "verdict", "residual", "message", "check", "origin", "corrects",
-            "evidence", "seconds", "printed")
+            "evidence", "seconds", "printed", "computed_at", "version", "level", "qualifier",
+            "convention", "inherits", "finding", "row", "rests_on", "notes", "exact")
     out = {k: rec.get(k) for k in keys if rec.get(k) is not None}
+    if "message" in out:
+        out["message"] = cite(out["message"])
+    if "evidence" in out:
+        out["evidence"] = _cite_all(out["evidence"])
+    if "printed" in out:
+        m = _CORRECTION_OF.match(out["printed"])
+        if m and m[1] in corrected_forms():
+            # a correction: its formula as TeX, the registered note as words
+            out["printed_tex"] = corrected_forms()[m[1]]
+            out["printed"] = cite(out["printed"][m.end():])
+        else:
+            out["printed"] = cite_latex(out["printed"])
     if out.get("verdict") not in VERDICTS:
         out["verdict"] = "unchecked"
     return out
 
 
 def claim(c: Claim, by_claim: dict[str, dict], corrections: dict[str, list[dict]]) -> dict:
-    return {"id": c.id, "kind": c.kind.value, "printed": c.printed, "plain": c.plain,
-            "label": c.label, "where": c.where,
+    return {"id": c.id, "kind": c.kind.value, "printed": cite_latex(c.printed),
+            "plain": cite(c.plain), "label": c.label, "number": printed(c.label),
+            "where": cite(c.where),
             "attribution": [attribution(a) for a in c.attribution],
-            "conditions": {k: str(v) for k, v in c.conditions.model_dump(
+            "conditions": {k: cite(str(v)) for k, v in c.conditions.model_dump(
                 mode="json", by_alias=True).items() if v is not None},
             "variables": c.variables.value, "check": c.check.value,
-            "check_args": c.check_args.model_dump(mode="json", exclude_defaults=True),
-            "convention_note": c.convention_note, "remarks": c.remarks,
+            "check_args": {k: cite(v) if isinstance(v, str) else v for k, v in
+                           c.check_args.model_dump(mode="json", exclude_defaults=True).items()},
+            "convention_note": cite(c.convention_note), "remarks": cite(c.remarks),
             "verdict": _verdict(c, by_claim.get(c.id)),
             "corrections": [record(r) for r in corrections.get(c.id, [])]}
 
@@ -120,7 +166,15 @@ def case_summary(case: Case) -> dict:
     spec = registry()[case.id]
     return {"id": case.id, "title": case.title, "table": table_of(case.id).number,
             "column": case.column, "surface": spec.surface, "body": spec.body,
-            "model_title": spec.title, "href": case_href(case.id), "claims": len(case.claims)}
+            "model_title": cite(spec.title), "href": case_href(case.id),
+            "claims": len(case.claims)}
+
+
+def _cited_model(case: Case) -> dict:
+    m = case.model.model_dump(mode="json", by_alias=True)
+    conds = m.get("conditions") or {}
+    return {**m, "conditions": {k: cite(v) if isinstance(v, str) else v
+                                for k, v in conds.items()}}
 
 
 def case_detail(case_id: str, by_claim: dict[str, dict], corrections: dict[str, list[dict]],
@@ -131,9 +185,10 @@ def case_detail(case_id: str, by_claim: dict[str, dict], corrections: dict[str, 
     claims = [claim(c, by_claim, corrections) for c in case.claims]
     verdicts = [c["verdict"]["verdict"] for c in claims]
     return {**case_summary(case),
-            "model": case.model.model_dump(mode="json", by_alias=True),
-            "remarks": list(case.remarks),
-            "cells": [cell(labels[r.key], r.key.value, case.cells[r.key], by_claim)
+            "model": {**_cited_model(case),
+                      "equation_numbers": [printed(x) or x for x in case.model.equations]},
+            "remarks": [cite(r) for r in case.remarks],
+            "cells": [cell(labels[r.key], r.key.value, case.cells[r.key], by_claim, [case_id])
                       for r in t.rows],
             "claims": claims,
             "runnable": runnable(registry()[case_id]),

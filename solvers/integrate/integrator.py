@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from solvers.integrate import collocation, tableaux
-from solvers.kernels import gauss, rk
+from solvers.kernels import gauss, generate, rk
 from solvers.kernels import layout as L
 from solvers.kernels.fields import rhs
 
@@ -108,7 +108,8 @@ def initial_integrals(model, p, y0, codes) -> np.ndarray:
 def integrate(model, p, y0, t_out, *, method="dop853", rtol=1e-10, atol=1e-12,
               max_steps=10_000_000, compensated=False, project_codes=(), project_values=None,
               project_every=1, section=None, max_crossings=100_000, h_fixed=None,
-              dense_output=True, control=StepControl()) -> IntegrationResult:
+              dense_output=True, control=StepControl(),
+              generated=False) -> IntegrationResult:
     """Integrate `model` from (t_out[0], y0) and return the states at the times t_out.
 
     rtol/atol: scaled RMS error per step (atol may be a vector); h_fixed: run with this
@@ -118,6 +119,8 @@ def integrate(model, p, y0, t_out, *, method="dop853", rtol=1e-10, atol=1e-12,
     step. section: record up to max_crossings crossings; the run stops at that number.
     dense_output=False: clip the steps to land on every output time instead of
     interpolating (the states are then step endpoints; it costs steps).
+    generated: run the same kernel compiled against the case's generated field
+    (solvers/kernels/generate.py) for the models that have one.
     """
     # fresh writable C arrays: a read-only or strided input would be another numba
     # specialization (another ~12 s compile)
@@ -159,7 +162,10 @@ def integrate(model, p, y0, t_out, *, method="dop853", rtol=1e-10, atol=1e-12,
     y_stop = np.empty(n)
     stats = np.zeros(5, dtype=np.int64)
     t0 = time.perf_counter()
-    status, t_stop = rk.rk_integrate(int(model), p, y0, t_out, A, c, b, E, P, meth, iopt,
+    kern = rk.rk_integrate
+    if generated and model in generate.GENERATED_MODELS:
+        kern = generate.generated_integrator(model, p).rk_integrate
+    status, t_stop = kern(int(model), p, y0, t_out, A, c, b, E, P, meth, iopt,
                                      fopt, atol_v, codes, vals, sec.packed(n), Y, cross_t,
                                      cross_y, y_stop, stats)
     wall = time.perf_counter() - t0

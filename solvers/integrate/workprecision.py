@@ -2,7 +2,8 @@
 ratios at equal error, each case's default method and what a tolerance buys.
 
 The measurements come from `bench/work_precision.py` (also `rolling bench
-work-precision`), written to bench/results/work_precision.json: one record per (case,
+work-precision`), written to solvers/integrate/data/work_precision.json (package data: an
+installed explorer serves it; the table stays in bench/results/): one record per (case,
 method, tolerance) with the error against a high-precision reference and the cost. This
 module only reads and summarises them (the explorer's GET /api/work-precision serves
 `load_results()`); it runs nothing.
@@ -19,7 +20,7 @@ import math
 from functools import cache
 from pathlib import Path
 
-RESULTS = Path(__file__).resolve().parents[2] / "bench" / "results" / "work_precision.json"
+RESULTS = Path(__file__).resolve().parent / "data" / "work_precision.json"
 LEVELS = (1e-4, 1e-6, 1e-8, 1e-10, 1e-12)
 
 # method keys of the benchmark; OURS are the compiled kernels of this project

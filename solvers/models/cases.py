@@ -163,4 +163,33 @@ def initial_state(model: Model, state) -> np.ndarray:
                          f"{len(labels)}: {', '.join(labels)}")
     y0 = np.array([_finite(n, v) for n, v in zip(labels, values, strict=True)])
     check_state(model.model, model.p, y0, shell=model.case.fixed_k is not None)
+    check_derived(model, y0)
     return y0
+
+
+def check_derived(model: Model, y0: np.ndarray, blame: str | None = None) -> None:
+    """Finite inputs can still overflow what the run derives from them (m = 1e308 makes
+    the contact inertia m R^2 infinite): the field and the energy at the start must be
+    finite numbers. `blame`: what to name in the error ('name = value'); by default the
+    parameter or state value of largest magnitude."""
+    from solvers.kernels.fields import rhs
+
+    y = np.ascontiguousarray(y0, dtype=float)
+    dydt = np.empty_like(y)
+    with np.errstate(all="ignore"):
+        ok = bool(np.all(np.isfinite(y)))
+        if ok:
+            st = rhs(model.model, 0.0, y, model.p, dydt)
+            energy = Q.integral(Q.ENERGY, model.model, y, model.p)
+            # SING_NONFINITE: the kernel met inf or NaN; the other statuses are geometric
+            # singularities that check_state reports in its own words
+            ok = (st != L.SING_NONFINITE and (st != L.OK or bool(np.all(np.isfinite(dydt))))
+                  and math.isfinite(energy))
+    if ok:
+        return
+    if blame is None:
+        named = [*model.params.items(), *zip(model.state_labels, y0.tolist(), strict=True)]
+        name, value = max(named, key=lambda kv: abs(kv[1]) if math.isfinite(kv[1]) else 0.0)
+        blame = f"{name} = {value!r}"
+    raise InputError(f"{blame}: too large: the velocities or the energy this run derives "
+                     "from it overflow double precision")

@@ -10,6 +10,7 @@ from solvers.verify import (
     checks,  # noqa: F401  (registers the checks)
     formulas,  # noqa: F401  (registers the formulas)
 )
+from solvers.verify.exact import exact_for
 from solvers.verify.registry import CHECKS, CORRECTED, CORRECTION_NOTES, Outcome
 
 VERDICTS = ("verified", "fails", "evidence", "unchecked")
@@ -30,6 +31,7 @@ class Record:
     corrects: str | None = None        # for a correction: the claim it corrects
     evidence: dict | None = None
     seconds: float = 0.0
+    exact: dict | None = None          # exact certificate or witness (solvers/verify/exact)
 
     def to_json(self) -> dict:
         d = asdict(self)
@@ -51,6 +53,7 @@ def _run_claim(catalogue, case, claim) -> list[Record]:
     rec = Record(case.id, claim.id, claim.kind.value, out.verdict, out.residual, claim.printed,
                  claim.label, claim.check.value, out.message, evidence=out.evidence or None,
                  seconds=time.perf_counter() - t0)
+    rec.exact = exact_for(catalogue, case, claim)
     records = [rec]
     args = claim.check_args          # the corrected object: the first with a correction
     fid = next((f for f in (args.formula, args.system, args.bracket) if f in CORRECTED), None)
@@ -63,25 +66,36 @@ def _run_claim(catalogue, case, claim) -> list[Record]:
             f"[project's correction of {fid}] {CORRECTION_NOTES[fid]}", claim.label,
             claim.check.value,
             f"corrected form: max normalised residual {out.corrected_residual:.2e}",
-            origin="project-correction", corrects=claim.id))
+            origin="project-correction", corrects=claim.id,
+            exact=exact_for(catalogue, case, claim, corrected=True)))
     return records
 
 
 def verify(case: str | None = None, claim: str | None = None) -> list[dict]:
-    """Records for every claim (of one case, or one claim), as JSON-ready dicts with at
-    least case, claim, kind, verdict, residual, printed."""
+    """Records for every claim (of one case, or one record id: a claim, its correction
+    `<claim>/corrected` or a table cell `<case>/cell/<row>`), as JSON-ready dicts with at
+    least case, claim, kind, verdict, residual, printed, level ("formula" or "cell") and
+    qualifier (solvers.verify.levels)."""
+    from solvers.verify import levels
+
     cat = load_catalogue()
-    cases = cat.cases()
-    if case is not None:
-        known = [c.id for c in cases]
-        if case not in known:
-            from solvers.errors import InputError
-            raise InputError(f"unknown case {case!r}; known cases: {', '.join(known)}")
-        cases = [c for c in cases if c.id == case]
-    out = []
-    for c in cases:
-        for cl in c.claims:
-            if claim is not None and cl.id != claim:
-                continue
-            out.extend(r.to_json() for r in _run_claim(cat, c, cl))
-    return out
+    ids, keep, cell_cases = resolve(cat, case, claim)
+    owner = {cl.id: c for c in cat.cases() for cl in c.claims}
+    raw = [r.to_json() for cid in ids for r in _run_claim(cat, owner[cid], owner[cid].claim(cid))]
+    return levels.finish(raw, cat, keep, cell_cases)
+
+
+def resolve(cat, case: str | None, claim: str | None):
+    """levels.plan with clear errors for an unknown case or record id."""
+    from solvers.errors import InputError
+    from solvers.verify import levels
+
+    known = [c.id for c in cat.cases()]
+    if case is not None and case not in known:
+        raise InputError(f"unknown case {case!r}; known cases: {', '.join(known)}")
+    try:
+        return levels.plan(cat, case, claim)
+    except KeyError:
+        where = f" in case {case!r}" if case else ""
+        raise InputError(f"unknown record id {claim!r}{where}: give a claim id, "
+                         "<claim>/corrected or <case>/cell/<row>") from None

@@ -11,7 +11,7 @@ from catalogue.load import load_catalogue
 
 
 def ready(page):
-    page.wait_for_function("document.body?.dataset.ready === '1'")
+    page.locator("body[data-ready='1']").wait_for(state="attached")
 
 
 def unstick(page):
@@ -57,10 +57,12 @@ def test_case_page_verify_simulate_and_plot(page, server, artifacts):
     ready(page)
     claims = page.locator("#claimlist article.claim")
     expect(claims).to_have_count(len(load_catalogue().case("plane/routh-ball").claims))
-    # every claim shows its printed formula, its source and a verdict
+    # every claim shows its printed formula, where it is in the paper (printed number), what
+    # was checked in one sentence, and a verdict (issue 11: "source" became "in the paper")
     first = claims.first
     expect(first.locator(".printed .katex")).not_to_have_count(0)
-    expect(first.locator("dl")).to_contain_text("source")
+    expect(first.locator("dl").first).to_contain_text("in the paper")
+    expect(first.locator("p.checked")).to_contain_text("We checked")
     page.click("#reverify")
     expect(page.locator("#reverify-msg")).to_contain_text("Done", timeout=120_000)
     expect(page.locator("#claimlist .badge.verified").first).to_be_visible()
@@ -72,7 +74,7 @@ def test_case_page_verify_simulate_and_plot(page, server, artifacts):
     expect(page.locator("#formmsg")).to_contain_text("valid")
     page.fill("#f-t_end", "50")
     page.click("#run")
-    page.wait_for_function("document.body?.dataset.run === '1'")
+    page.locator("body[data-run='1']").wait_for(state="attached")
     expect(page.locator("#runinfo")).to_contain_text("ok")
     for plot in ("#plot-state", "#plot-drift", "#plot-gamma"):
         expect(page.locator(f"{plot} .main-svg").first).to_be_visible()
@@ -115,7 +117,7 @@ def test_symmetric_method_takes_a_step_instead_of_tolerances(page, server, artif
     page.fill("#f-samples", "201")
     expect(page.locator("#formmsg")).to_contain_text("valid")
     page.click("#run")
-    page.wait_for_function("document.body?.dataset.run === '1'")
+    page.locator("body[data-run='1']").wait_for(state="attached")
     expect(page.locator("#runinfo")).to_contain_text("gauss8 · step 0.25")
     unstick(page)
     page.locator("#simform").screenshot(path=str(artifacts / "symmetric-method.png"))
@@ -148,9 +150,9 @@ def test_3d_scene_of_the_rolling_body(page, server, artifacts):
     ready(page)
     page.fill("#f-t_end", "20")
     page.click("#run")
-    page.wait_for_function("document.body?.dataset.run === '1'")
+    page.locator("body[data-run='1']").wait_for(state="attached")
     page.click("#scene-btn")
-    page.wait_for_function("document.body?.dataset.scene === '1'")
+    page.locator("body[data-scene='1']").wait_for(state="attached")
     expect(page.locator("#scene-msg")).to_contain_text("checks")
     expect(page.locator("#plot-scene .gl-container canvas").first).to_be_visible()
     page.fill("#scrub", "120")

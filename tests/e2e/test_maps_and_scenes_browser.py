@@ -16,7 +16,7 @@ def test_every_scene_opens_from_the_home_page_and_plays(page, server, scene_id):
     link.click()
     # body?. : the predicate may run while the scenes page is still loading (no body yet)
     page.wait_for_url(f"**/scenes#{scene_id}")
-    page.wait_for_function(f"document.body?.dataset.playing === '{scene_id}'",
+    page.locator(f"body[data-playing='{scene_id}']").wait_for(state="attached",
                            timeout=90_000)
     expect(page.locator("#scene-plot .gl-container canvas").first).to_be_visible()
     first = page.locator("#scene-time").inner_text()

@@ -26,7 +26,7 @@ def settle(page, path):
     """Open a page and wait until its scripts have drawn it (or, for the 404, loaded)."""
     page.goto(path)
     if path.startswith("/case/") or path == "/":
-        page.wait_for_function("document.body?.dataset.ready === '1'")
+        page.locator("body[data-ready='1']").wait_for(state="attached")
     else:
         page.wait_for_load_state("load")
     page.wait_for_timeout(300)
@@ -39,12 +39,12 @@ def last_state(page) -> list:
 
 def test_a_runs_permalink_reproduces_it(page, server, context):
     page.goto(f"{server}/case/{CASE}")
-    page.wait_for_function("document.body?.dataset.ready === '1'")
+    page.locator("body[data-ready='1']").wait_for(state="attached")
     page.fill("#f-t_end", "7.5")
     page.fill("#f-samples", "151")
     page.fill("#f-s-M1", "0.25")
     page.click("#run")
-    page.wait_for_function("document.body.dataset.run === '1'")
+    page.locator("body[data-run='1']").wait_for(state="attached")
     url = page.url
     assert "run=1" in url and "t_end=7.5" in url and "samples=151" in url
     assert page.locator("#permalink").get_attribute("href") == url
@@ -58,7 +58,7 @@ def test_a_runs_permalink_reproduces_it(page, server, context):
     # the link opened in a new page runs the same run again
     other = context.new_page()
     other.goto(url)
-    other.wait_for_function("document.body?.dataset.run === '1'", timeout=60_000)
+    other.locator("body[data-run='1']").wait_for(state="attached", timeout=60_000)
     assert other.input_value("#f-t_end") == "7.5" and other.input_value("#f-s-M1") == "0.25"
     assert last_state(other) == first
     other.close()
@@ -66,13 +66,13 @@ def test_a_runs_permalink_reproduces_it(page, server, context):
 
 def test_a_maps_permalink_reproduces_it(page, server, context):
     page.goto(f"{server}/poincare")
-    page.wait_for_function("document.querySelectorAll('#case option').length > 1")
+    page.locator("#case option").nth(1).wait_for(state="attached")
     page.select_option("#case", "plane/chaplygin-ball")
     page.fill("input[name=trajectories]", "2")
     page.fill("input[name=points]", "15")
     page.fill("input[name=seed]", "3")
     page.click("#run")
-    page.wait_for_function("document.body.dataset.map === '1'", timeout=120_000)
+    page.locator("body[data-map='1']").wait_for(state="attached", timeout=120_000)
     url = page.url
     assert "run=1" in url and "points=15" in url
     pts = page.evaluate("() => document.getElementById('map-plot').data.map(t => t.x)")
@@ -83,7 +83,7 @@ def test_a_maps_permalink_reproduces_it(page, server, context):
     assert len(rows) - 1 == sum(len(x) for x in pts)
     other = context.new_page()
     other.goto(url)
-    other.wait_for_function("document.body?.dataset.map === '1'", timeout=120_000)
+    other.locator("body[data-map='1']").wait_for(state="attached", timeout=120_000)
     assert other.evaluate("() => document.getElementById('map-plot').data.map(t => t.x)") == pts
     other.close()
 

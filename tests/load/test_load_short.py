@@ -1,5 +1,6 @@
 """A few seconds of bench/load.py (the full bench is 20 users for 60 s, kept out of the
-test run): a handful of users, zero unplanned 5xx, /api/health answering meanwhile."""
+test run): a handful of users (simulate, pages, 50 MB bodies), zero unplanned 5xx, every
+big body refused with 413, /api/health answering meanwhile."""
 
 import json
 import subprocess
@@ -19,5 +20,8 @@ def test_short_load_has_no_unplanned_5xx_and_a_responsive_health():
     assert r["simulate"]["ok"] > 20
     assert set(r["simulate"]["status"]) <= {"200", "503"}
     assert r["health"]["probes"] >= 20
+    assert r["pages"]["ok"] > 0 and set(r["pages"]["status"]) == {"200"}
+    big = r["big_body"]
+    assert big["sent"] > 0 and all(k.endswith(":413") for k in big["status"]), big
     # generous for a loaded CI machine (the bench's goal is p99 < 100 ms)
     assert r["health"]["p99_ms"] < 500, r["health"]

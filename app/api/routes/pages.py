@@ -1,4 +1,4 @@
-"""The explorer's pages: / (Tables 1 and 2) and /case/{id} (a permalink per case), and
+"""The explorer's pages: / (Tables 1 and 2), /case/{id} (a permalink per case), /errata, and
 plotly.js served from the installed plotly package (not copied into the repository)."""
 
 from functools import cache
@@ -10,6 +10,7 @@ from fastapi.responses import FileResponse, HTMLResponse
 from app.api.deps import SettingsDep, VerdictsDep
 from app.core.errors import not_found_page
 from app.services import ssr, views
+from app.services.reader_pages import render_page
 from catalogue.load import load_catalogue
 
 router = APIRouter(include_in_schema=False)
@@ -30,7 +31,7 @@ async def home(settings: SettingsDep, verdicts: VerdictsDep) -> HTMLResponse:
     by_claim = verdicts.by_claim()
     tables = {tid: views.table(tid, by_claim) for tid in ("plane", "sphere")}
     template = (settings.static_dir / "index.html").read_text()
-    return HTMLResponse(ssr.home_page(template, tables))
+    return HTMLResponse(render_page(ssr.home_page(template, tables), "index.html"))
 
 
 @router.get("/case/{case_id:path}")
@@ -44,7 +45,12 @@ async def case_page(case_id: str, settings: SettingsDep, verdicts: VerdictsDep):
     detail = views.case_detail(case_id, verdicts.by_claim(), verdicts.corrections(),
                                verdicts.case_state(case_id))
     template = (settings.static_dir / "case.html").read_text()
-    return HTMLResponse(ssr.case_page(template, detail))
+    return HTMLResponse(render_page(ssr.case_page(template, detail), "case.html"))
+
+
+@router.get("/errata")
+async def errata_page(settings: SettingsDep) -> FileResponse:
+    return FileResponse(settings.static_dir / "errata.html", media_type="text/html")
 
 
 @router.get("/vendor/plotly.min.js")

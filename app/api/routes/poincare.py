@@ -7,6 +7,10 @@ trajectory is one job of the worker pool, `workers` at a time. With ?stream=true
 is NDJSON: {"event": "progress", "done": k, "total": n} after each batch, then
 {"event": "result", "result": {...}} (or {"event": "error", "detail": ...}); without it,
 one JSON object {"trajectories": [...], ...} when all are done.
+
+One deadline (Settings.deadline_s) holds for the whole request: every trajectory gets the
+time that is left, and when none is left the answer is 504 (in a stream: an error event
+with "status": 504).
 """
 
 from __future__ import annotations
@@ -15,14 +19,22 @@ import json
 
 import anyio
 from fastapi import APIRouter, Query, Request
-from fastapi.responses import FileResponse, Response, StreamingResponse
+from fastapi.responses import HTMLResponse, Response, StreamingResponse
 
 from app.api.deps import PoolDep, SettingsDep
 from app.core.disconnect import cancel_on_disconnect
-from app.schemas.common import BUSY_RESPONSES, PROBLEM_RESPONSES
+from app.core.pool import DeadlineExceeded
+from app.schemas.common import (
+    BUSY_RESPONSES,
+    DEADLINE_RESPONSES,
+    GUARD_RESPONSES,
+    PROBLEM_RESPONSES,
+)
 from app.schemas.poincare import PoincarePublic, PoincareRequest
 from app.services import poincare_jobs
 from app.services.jobs import dumps
+from app.services.reader_pages import static_page
+from solvers.errors import InputError
 
 router = APIRouter(tags=["poincare"])
 pages = APIRouter(include_in_schema=False)
@@ -44,6 +56,10 @@ def resolve(req: PoincareRequest, max_steps: int) -> tuple[dict, dict, list[list
     model = map_model(req.case, params, allow_any_inertia=req.allow_any_inertia)
     starts = starts_for(model, spec, trajectories=req.trajectories, initial=req.initial,
                         seed=req.seed)
+    from solvers.models.cases import check_derived
+
+    for s in starts:   # a level so high that its starts overflow (energy = 1e308)
+        check_derived(model, s, blame=f"energy = {req.energy!r}")
     header = {"case": req.case, "params": model.params, "energy": spec.energy,
               "section": {"g0": spec.g0, "direction": spec.direction},
               "coordinates": ["L/G", "H/G", "l"], "points": spec.points,
@@ -53,10 +69,20 @@ def resolve(req: PoincareRequest, max_steps: int) -> tuple[dict, dict, list[list
     return header, job, [s.tolist() for s in starts]
 
 
-async def _batch(pool, settings, job, starts, results, lo, hi):
+_HINT = "ask for fewer trajectories or points, or loosen rtol"
+
+
+async def _batch(pool, settings, job, starts, results, lo, hi, end):
+    """Trajectories lo..hi-1, each with the time left until `end` (anyio clock)."""
     async def one(i):
-        results[i] = await pool.run(poincare_jobs.trajectory, job, starts[i],
-                                    deadline=settings.deadline_s)
+        left = end - anyio.current_time()
+        if left <= 0:
+            raise DeadlineExceeded(settings.deadline_s, _HINT)
+        try:
+            results[i] = await pool.run(poincare_jobs.trajectory, job, starts[i],
+                                        deadline=left)
+        except DeadlineExceeded:
+            raise DeadlineExceeded(settings.deadline_s, _HINT) from None
 
     try:
         async with anyio.create_task_group() as tg:
@@ -67,7 +93,8 @@ async def _batch(pool, settings, job, starts, results, lo, hi):
 
 
 @router.post("/poincare", response_model=PoincarePublic,
-             responses={**PROBLEM_RESPONSES, **BUSY_RESPONSES,
+             responses={**PROBLEM_RESPONSES, **BUSY_RESPONSES, **GUARD_RESPONSES,
+                        **DEADLINE_RESPONSES,
                         200: {"content": {"application/x-ndjson": {}},
                               "description": "the map (JSON), or with stream=true NDJSON "
                               "progress events and the result"}})
@@ -79,13 +106,15 @@ async def poincare(req: PoincareRequest, request: Request, pool: PoolDep,
     header, job, starts = await anyio.to_thread.run_sync(resolve, req, settings.max_steps,
                                                          limiter=_threads)
     n = len(starts)
+    end = anyio.current_time() + settings.deadline_s
     width = max(1, settings.workers)
     results: list[dict | None] = [None] * n
 
     if not stream:
         async def work():
             for lo in range(0, n, width):
-                await _batch(pool, settings, job, starts, results, lo, min(n, lo + width))
+                await _batch(pool, settings, job, starts, results, lo, min(n, lo + width),
+                             end)
 
         await cancel_on_disconnect(request, work)
         return Response(dumps({**header, "trajectories": results}),
@@ -96,10 +125,12 @@ async def poincare(req: PoincareRequest, request: Request, pool: PoolDep,
         for lo in range(0, n, width):
             hi = min(n, lo + width)
             try:
-                await _batch(pool, settings, job, starts, results, lo, hi)
+                await _batch(pool, settings, job, starts, results, lo, hi, end)
             except Exception as exc:   # a Problem for the page, then stop
-                detail = str(exc)
-                yield json.dumps({"event": "error", "detail": detail}) + "\n"
+                status = (504 if isinstance(exc, DeadlineExceeded) else
+                          422 if isinstance(exc, InputError) else 503)
+                yield json.dumps({"event": "error", "status": status,
+                                  "detail": str(exc)}) + "\n"
                 return
             yield json.dumps({"event": "progress", "done": hi, "total": n}) + "\n"
         yield (b'{"event":"result","result":' + dumps({**header, "trajectories": results})
@@ -109,5 +140,5 @@ async def poincare(req: PoincareRequest, request: Request, pool: PoolDep,
 
 
 @pages.get("/poincare")
-async def poincare_page(settings: SettingsDep) -> FileResponse:
-    return FileResponse(settings.static_dir / "poincare.html", media_type="text/html")
+async def poincare_page(settings: SettingsDep) -> HTMLResponse:
+    return HTMLResponse(static_page(settings.static_dir / "poincare.html"))

@@ -8,10 +8,11 @@ from __future__ import annotations
 from typing import Any
 
 from fastapi import APIRouter, HTTPException
-from fastapi.responses import FileResponse
+from fastapi.responses import HTMLResponse
 from pydantic import BaseModel, Field
 
 from app.api.deps import SettingsDep
+from app.services.reader_pages import static_page
 
 router = APIRouter(tags=["scenes"])
 pages = APIRouter(include_in_schema=False)
@@ -23,6 +24,8 @@ class ScenePreset(BaseModel):
     explanation: str
     claim: str
     paper: list[str]
+    paper_numbers: list[str] = Field(default_factory=list, description="`paper` as the "
+                                     "printed paper numbers it: (2.24), Fig. 3")
     scene: dict[str, Any] = Field(description="the run as the scene planner declares it "
                                   "(solvers/scenes/scenes.py): case, params, state, t_end, shows, "
                                   "samples (the frames of the animation)")
@@ -32,7 +35,12 @@ class ScenePreset(BaseModel):
 
 
 def _public(s) -> dict:
-    return s.model_dump(mode="json")
+    from catalogue.numbering import cite, printed
+
+    # what a reader sees carries the paper's printed numbers; the labels stay as data
+    d = s.model_dump(mode="json")
+    return {**d, "title": cite(d["title"]), "explanation": cite(d["explanation"]),
+            "claim": cite(d["claim"]), "paper_numbers": [printed(x) or x for x in d["paper"]]}
 
 
 @router.get("/scenes", response_model=list[ScenePreset])
@@ -56,5 +64,5 @@ async def scene_preset(scene_id: str) -> dict:
 
 
 @pages.get("/scenes")
-async def scenes_page(settings: SettingsDep) -> FileResponse:
-    return FileResponse(settings.static_dir / "scenes.html", media_type="text/html")
+async def scenes_page(settings: SettingsDep) -> HTMLResponse:
+    return HTMLResponse(static_page(settings.static_dir / "scenes.html"))

@@ -15,7 +15,12 @@ from fastapi.responses import Response
 
 from app.api.deps import PoolDep, SettingsDep
 from app.core.disconnect import cancel_on_disconnect
-from app.schemas.common import BUSY_RESPONSES, PROBLEM_RESPONSES
+from app.schemas.common import (
+    BUSY_RESPONSES,
+    DEADLINE_RESPONSES,
+    GUARD_RESPONSES,
+    PROBLEM_RESPONSES,
+)
 from app.schemas.simulate import (
     MethodPublic,
     ScenePublic,
@@ -80,7 +85,8 @@ def _filename(case: str, ext: str) -> str:
 
 
 @router.post("/simulate", response_model=SimulateResponse,
-             responses={**PROBLEM_RESPONSES, **BUSY_RESPONSES,
+             responses={**PROBLEM_RESPONSES, **BUSY_RESPONSES, **GUARD_RESPONSES,
+                        **DEADLINE_RESPONSES,
                         200: {"content": {"text/csv": {}},
                               "description": "the run: JSON (default) or CSV (format=csv)"}})
 async def simulate(req: SimulateRequest, request: Request, pool: PoolDep,
@@ -99,7 +105,8 @@ async def simulate(req: SimulateRequest, request: Request, pool: PoolDep,
     return Response(body, media_type="application/json")
 
 
-@router.post("/validate", response_model=ValidatePublic, responses=PROBLEM_RESPONSES)
+@router.post("/validate", response_model=ValidatePublic,
+             responses={**PROBLEM_RESPONSES, **GUARD_RESPONSES})
 async def validate(req: SimulateRequest, settings: SettingsDep) -> dict:
     """Check a run without running it (the explorer calls this as you type): 200 with the
     parameters it would use, or 422 naming the field, the value and why."""
@@ -110,7 +117,8 @@ async def validate(req: SimulateRequest, settings: SettingsDep) -> dict:
 
 
 @router.post("/scene", response_model=ScenePublic,
-             responses={**PROBLEM_RESPONSES, **BUSY_RESPONSES})
+             responses={**PROBLEM_RESPONSES, **BUSY_RESPONSES, **GUARD_RESPONSES,
+                        **DEADLINE_RESPONSES})
 async def scene(req: SceneRequest, request: Request, pool: PoolDep,
                 settings: SettingsDep) -> Response:
     """The 3D animation of a run: the body's rotation, its centre of mass and its contact

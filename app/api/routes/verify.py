@@ -6,7 +6,13 @@ from fastapi import APIRouter, HTTPException, Request
 
 from app.api.deps import PoolDep, SettingsDep, VerdictsDep
 from app.core.disconnect import cancel_on_disconnect
-from app.schemas.common import BUSY_RESPONSES, NOT_FOUND, Problem
+from app.schemas.common import (
+    BUSY_RESPONSES,
+    DEADLINE_RESPONSES,
+    GUARD_RESPONSES,
+    NOT_FOUND,
+    Problem,
+)
 from app.schemas.verify import VerdictPublic, VerifyPublic
 from app.services import verdicts as service
 from app.services import views
@@ -16,7 +22,7 @@ router = APIRouter(tags=["verify"])
 
 
 @router.post("/verify/{case_id:path}", response_model=VerifyPublic,
-             responses={**NOT_FOUND, **BUSY_RESPONSES,
+             responses={**NOT_FOUND, **BUSY_RESPONSES, **GUARD_RESPONSES, **DEADLINE_RESPONSES,
                         501: {"model": Problem, "description": "verification not installed"}})
 async def verify_case(case_id: str, request: Request, pool: PoolDep, settings: SettingsDep,
                       store: VerdictsDep) -> dict:

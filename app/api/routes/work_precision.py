@@ -1,5 +1,5 @@
 """GET /api/work-precision: the measured work-precision results (bench/work_precision.py,
-committed in bench/results/work_precision.json) with their summary, and the page
+committed in solvers/integrate/data/work_precision.json) with their summary, and the page
 /work-precision that draws the diagram and says what a tolerance buys."""
 
 from __future__ import annotations
@@ -7,10 +7,11 @@ from __future__ import annotations
 from typing import Any
 
 from fastapi import APIRouter, HTTPException
-from fastapi.responses import FileResponse
+from fastapi.responses import HTMLResponse
 from pydantic import BaseModel, Field
 
 from app.api.deps import SettingsDep
+from app.services.reader_pages import static_page
 
 router = APIRouter(tags=["work-precision"])
 pages = APIRouter(include_in_schema=False)
@@ -42,5 +43,5 @@ async def work_precision() -> dict:
 
 
 @pages.get("/work-precision")
-async def work_precision_page(settings: SettingsDep) -> FileResponse:
-    return FileResponse(settings.static_dir / "work-precision.html", media_type="text/html")
+async def work_precision_page(settings: SettingsDep) -> HTMLResponse:
+    return HTMLResponse(static_page(settings.static_dir / "work-precision.html"))

@@ -12,6 +12,10 @@ const CONFIG = { responsive: true, displaylogo: false };
 const PALETTE = ["#1f5f99", "#c2571a", "#2a8a3e", "#8e3ea8", "#b8860b", "#0f7f8a", "#c21c2c",
   "#5b6770", "#d6336c", "#3b5bdb", "#66a80f", "#e8590c"];
 const FIG_ORDER = ["ris-1", "ris-2", "ris-3", "ris-4"];
+// the paper's printed numbers (GET /api/printed-numbers): "ris-*1" -> "Fig. 3"
+let NUMBERS = {};
+const cite = (text) => Object.keys(NUMBERS).sort((a, b) => b.length - a.length)
+  .reduce((t, lab) => t.split(`Fig ${lab}`).join(NUMBERS[lab]).split(lab).join(NUMBERS[lab]), String(text));
 
 function layout3d(title) {
   return {
@@ -43,6 +47,7 @@ async function figures() {
   const grid = document.getElementById("fig-grid");
   let data;
   try {
+    NUMBERS = await api("/api/printed-numbers").catch(() => ({}));
     const res = await fetch("/static/data/paper_figures.json");
     if (!res.ok) throw new Error(`${res.status} ${res.statusText}`);
     data = await res.json();
@@ -60,11 +65,11 @@ async function figures() {
     card.id = `fig-${key}`;
     const params = Object.entries(f.params)
       .map(([k, v]) => `${k} = ${v}`).join(", ");
-    card.innerHTML = `<h3>Fig ${key.replace("ris-", "ris-*")}: ${escapeHtml(f.title)}</h3>
+    card.innerHTML = `<h3>${escapeHtml(NUMBERS[key.replace("ris-", "ris-*")] || "Fig.")}: ${escapeHtml(cite(f.title))}</h3>
       <p class="status">${escapeHtml(f.case)}; ${escapeHtml(params)}; E₀ = ${f.energy},
         section g = ${f.section.g0}</p>
       <div class="plot3d" data-testid="plot-${key}"></div>
-      <ul class="notes">${f.notes.map((n) => `<li>${escapeHtml(n)}</li>`).join("")}</ul>`;
+      <ul class="notes">${f.notes.map((n) => `<li>${escapeHtml(cite(n))}</li>`).join("")}</ul>`;
     grid.appendChild(card);
     const el = card.querySelector(".plot3d");
     await window.Plotly.newPlot(el, traces(f.trajectories), layout3d(""), CONFIG);

@@ -17,7 +17,7 @@ function card(s) {
   el.innerHTML = `<h3>${escapeHtml(s.title)}</h3>
     <p>${escapeHtml(s.explanation)}</p>
     <p><strong>Shows:</strong> ${escapeHtml(s.claim)}</p>
-    <p class="status">${escapeHtml(s.scene.case)} · t = 0 … ${s.scene.t_end} · ${escapeHtml(s.paper.join(", "))}</p>
+    <p class="status">${escapeHtml(s.scene.case)} · t = 0 … ${s.scene.t_end} · ${escapeHtml((s.paper_numbers || []).join(", "))}</p>
     <a class="button" href="#${s.id}" data-scene="${s.id}">Play</a>`;
   return el;
 }

@@ -1,3 +1,10 @@
 """Check functions, registered by name (catalogue.schema.CheckName) on import."""
 
-from solvers.verify.checks import negative, ode, pointwise, recorded, structure  # noqa: F401
+from solvers.verify.checks import (  # noqa: F401
+    formula_free,
+    negative,
+    ode,
+    pointwise,
+    recorded,
+    structure,
+)

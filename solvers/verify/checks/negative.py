@@ -81,7 +81,7 @@ MAP_CONTROLS = {
                                 "b1 = b2 = b3, a = 0: the integrable Chaplygin ball with "
                                 "spherical inertia"),
     "sphere/chaplygin-ball": ({"case": "sphere/borisov-fedorov"},
-                              "the Borisov-Fedorov ball (k = 2/R), third integral eq3.13"),
+                              "the Borisov–Fedorov ball (k = 2/R), third integral eq3.13"),
 }
 KNOWN_INTEGRALS = {"sphere/chaplygin-ball": 1}   # besides H (and gamma^2): M^2
 
@@ -325,6 +325,7 @@ def check_negative_measure(catalogue, case, claim, *, n_points=N_POINTS_NEG,
                f"to round-off (normal {worst_n:.1e}, circulation {worst_c:.1e})")
         if found:
             msg += f"; it is {found[0]} (Liouville residual {cand[found[0]]:.1e})"
+            ev["found density"] = found[0]
         others = [f"{n}: {r:.2e}" for n, r in cand.items() if r > TOL]
         if others:
             msg += "; fails: " + ", ".join(others)

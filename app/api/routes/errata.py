@@ -1,0 +1,44 @@
+"""GET /api/errata, /api/conventions, /api/findings: the paper's misprints with their
+corrections, the printed forms that hold under another convention, and what the project
+found that the paper does not have (solvers.verify.errata, from the verdicts computed so
+far: cases not yet verified contribute nothing, see /api/health)."""
+
+from fastapi import APIRouter
+
+from app.api.deps import VerdictsDep
+from app.schemas.errata import ConventionPublic, ErratumPublic, FindingPublic
+from catalogue.load import load_catalogue
+
+router = APIRouter(tags=["errata"])
+
+
+def _records(store) -> list[dict]:
+    return [r for recs in store.records.values() for r in recs]
+
+
+@router.get("/errata", response_model=list[ErratumPublic])
+async def get_errata(store: VerdictsDep) -> list[dict]:
+    """Every printed formula that fails where the project's correction holds (misprints,
+    and failures inherited from one), with both forms, both residuals, where it is printed,
+    the exact witness when there is one and the command that reproduces it."""
+    from solvers.verify import errata
+
+    return errata.errata(_records(store), load_catalogue())
+
+
+@router.get("/conventions", response_model=list[ConventionPublic])
+async def get_conventions(store: VerdictsDep) -> list[dict]:
+    """Printed forms that hold under another convention (e.g. the orientation of a
+    Poisson bracket), with the convention and the residuals under it and under ours."""
+    from solvers.verify import errata
+
+    return errata.conventions(_records(store), load_catalogue())
+
+
+@router.get("/findings", response_model=list[FindingPublic])
+async def get_findings(store: VerdictsDep) -> list[dict]:
+    """What the project found that the paper does not have: hedged claims answered and
+    printed statements refuted, with their evidence."""
+    from solvers.verify import errata
+
+    return errata.findings(_records(store), load_catalogue())

@@ -1,0 +1,107 @@
+"""For a reader: /how-we-check, /glossary, /bibliography, /search (server-rendered pages)
+and their data under /api: printed numbers, glossary, references, search, the check kinds."""
+
+from __future__ import annotations
+
+from html import escape
+
+from fastapi import APIRouter, Query
+from fastapi.responses import HTMLResponse
+
+from app.api.deps import VerdictsDep
+from app.services import howcheck, reader_pages
+from app.services.search import facets, search
+from catalogue.glossary import load_glossary
+from catalogue.load import load_catalogue
+from catalogue.numbering import printed, printed_numbers
+
+router = APIRouter(tags=["reader"])
+pages = APIRouter(include_in_schema=False)
+
+
+@router.get("/printed-numbers")
+async def printed_numbers_api() -> dict[str, str]:
+    """The seed's label -> the number the printed paper shows, e.g. "eq2.17": "(2.24)"."""
+    return printed_numbers()
+
+
+@router.get("/glossary")
+async def glossary_api() -> dict:
+    """Every parameter and state variable: meaning, range, where in the paper (numbers)."""
+    g = load_glossary()
+    return {"units": g.units,
+            "entries": [{**e.model_dump(), "paper_numbers": [printed(x) for x in e.paper]}
+                        for e in g.entries]}
+
+
+@router.get("/references")
+async def references_api() -> list[dict]:
+    """The bibliography: every reference key of the catalogue with its entry."""
+    return [r.model_dump(mode="json") for r in load_catalogue().references]
+
+
+@router.get("/how-we-check")
+async def how_we_check_api() -> dict:
+    """Each kind of check and the constants the checking code uses."""
+    kinds = [{**k, "checks": [str(n) for n in k["checks"]]} for k in howcheck.kinds()]
+    return {"constants": howcheck.constants(), "kinds": kinds,
+            "verdicts": [{"verdict": v, "mark": m, "meaning": t}
+                         for v, m, t in howcheck.VERDICTS]}
+
+
+@router.get("/search")
+async def search_api(verdicts: VerdictsDep, q: str = Query("", max_length=200),
+                     body: str = "", surface: str = "", kind: str = "",
+                     verdict: str = "") -> dict:
+    """Cases and claims matching every word of q, filtered by body, surface, kind, verdict."""
+    return search(q, body, surface, kind, verdict, verdicts.by_claim())
+
+
+@pages.get("/how-we-check", response_class=HTMLResponse)
+async def how_we_check_page() -> str:
+    return reader_pages.how_we_check()
+
+
+@pages.get("/glossary", response_class=HTMLResponse)
+async def glossary_page() -> str:
+    return reader_pages.glossary()
+
+
+@pages.get("/bibliography", response_class=HTMLResponse)
+async def bibliography_page() -> str:
+    return reader_pages.bibliography()
+
+
+def _select(name: str, options: list[str], value: str) -> str:
+    opts = "".join(f'<option value="{escape(o)}"{" selected" * (o == value)}>{escape(o)}'
+                   "</option>" for o in options)
+    return (f'<label><span>{name}</span><select name="{name}"><option value="">any</option>'
+            f"{opts}</select></label>")
+
+
+@pages.get("/search", response_class=HTMLResponse)
+async def search_page(verdicts: VerdictsDep, q: str = Query("", max_length=200),
+                      body: str = "", surface: str = "", kind: str = "",
+                      verdict: str = "") -> str:
+    r = search(q, body, surface, kind, verdict, verdicts.by_claim())
+    f = facets()
+    form = (f'<form class="searchform" role="search" action="/search" method="get">'
+            f'<label><span>text</span><input type="search" name="q" value="{escape(q)}" '
+            'placeholder="e.g. Chaplygin"></label>'
+            + "".join(_select(n, f[n], v) for n, v in (("body", body), ("surface", surface),
+                                                       ("kind", kind), ("verdict", verdict)))
+            + '<button type="submit">Search</button></form>')
+    cases = "".join(f'<li><a href="{escape(c["href"])}">{escape(c["title"])}</a> '
+                    f'<span class="hint">Table {c["table"]}, {escape(c["surface"])}, '
+                    f'{escape(c["body"])}</span></li>' for c in r["cases"])
+    claims = "".join(
+        f'<li><a href="{escape(c["href"])}">{escape(c["case_title"])}</a>: '
+        f'{escape(c["number"] + " " if c["number"] else "")}{escape(c["plain"] or "")} '
+        f'<span class="mark {c["verdict"]}">{escape(c["verdict"])}</span></li>'
+        for c in r["claims"][:200])
+    more = (f"<p>First 200 of {len(r['claims'])} claims.</p>" if len(r["claims"]) > 200 else "")
+    body_html = (form + f'<h2 id="cases">Cases ({len(r["cases"])})</h2>'
+                 f'<ul class="results" data-testid="case-results">{cases}</ul>'
+                 f'<h2 id="claims">Claims ({len(r["claims"])})</h2>{more}'
+                 f'<ul class="results" data-testid="claim-results">{claims}</ul>')
+    return reader_pages.layout("Search cases and claims", body_html)

@@ -1,0 +1,90 @@
+"""What the page /how-we-check says about each kind of check, with the numbers read from
+the checking code itself (solvers/verify/checks), so the page cannot drift from the code."""
+
+from __future__ import annotations
+
+from catalogue.schema import CheckName
+from solvers.verify.checks import common, negative
+
+
+def constants() -> dict[str, float]:
+    """The tolerances and sample sizes the checks use, as the code defines them."""
+    return {"TOL": common.TOL, "N_SETTINGS": common.N_SETTINGS, "N_POINTS": common.N_POINTS,
+            "H": common.H, "N_POINTS_NEG": negative.N_POINTS_NEG,
+            "N_SETTINGS_NEG": negative.N_SETTINGS_NEG, "T_MAP": negative.T_MAP,
+            "N_MAP_ORBITS": negative.N_MAP_ORBITS, "MIN_CROSSINGS": negative.MIN_CROSSINGS,
+            "T_LONG": negative.T_LONG}
+
+
+def kinds() -> list[dict]:
+    """Each kind of check: the check names it covers, what is computed, where, how strict."""
+    c = constants()
+    pts = f"{c['N_SETTINGS']} random parameter draws × {c['N_POINTS']} random phase points"
+    tol = f"relative residual ≤ {c['TOL']:g}"
+    cs = f"complex-step derivatives (step {c['H']:g}i, exact to round-off)"
+    return [
+        {"id": "integral", "title": "First integrals",
+         "checks": [CheckName.INTEGRAL, CheckName.FUNCTIONALLY_DEPENDENT],
+         "computed": f"dF/dt = grad F · v, the rate of change of the printed F along the "
+                     f"equations of motion v, by {cs}, divided by |grad F|·|v|.",
+         "points": pts, "tolerance": tol},
+        {"id": "measure", "title": "Invariant measures",
+         "checks": [CheckName.MEASURE],
+         "computed": f"div(ρ v), the Liouville equation of the printed density ρ, by {cs}, "
+                     "relative to the sum of the absolute values of its terms.",
+         "points": pts, "tolerance": tol},
+        {"id": "bracket", "title": "Poisson brackets and Hamiltonian form",
+         "checks": [CheckName.JACOBI, CheckName.CASIMIR, CheckName.BRACKET_RANK,
+                    CheckName.HAMILTONIAN_FIELD, CheckName.SYMMETRY],
+         "computed": "the Jacobi identity of the printed bracket, its Casimir functions, its "
+                     "rank, and that after the change of time the field equals {x, H}, by exact "
+                     "derivatives.", "points": pts, "tolerance": tol},
+        {"id": "reduced", "title": "Reduced systems and solutions",
+         "checks": [CheckName.REDUCED_AGREES, CheckName.IDENTITY, CheckName.SOLVES_ODE,
+                    CheckName.LINEAR_INTEGRALS, CheckName.PERMANENT_ROTATIONS],
+         "computed": "the printed reduced equations against the full field pushed forward to "
+                     "the reduced variables; printed identities and solutions substituted into "
+                     "their equations.", "points": pts, "tolerance": tol},
+        {"id": "negative", "title": "Negative claims (no measure, no further integral)",
+         "checks": [CheckName.MEASURE_FAILS, CheckName.INTEGRAL_FAILS, CheckName.JACOBI_FAILS,
+                    CheckName.NEGATIVE_MEASURE, CheckName.NEGATIVE_INTEGRAL],
+         "computed": "that the printed object fails where the paper says it does (a residual "
+                     f"above {c['TOL']:g}); for 'no measure' an obstruction to any density of "
+                     f"the position ({c['N_SETTINGS_NEG']} draws × {c['N_POINTS_NEG']} points) "
+                     "and orbits that settle on attractors in runs of "
+                     f"{c['T_LONG']:g} time units; for 'no further integral' 3D point maps of "
+                     f"up to {c['N_MAP_ORBITS']} orbits over {c['T_MAP']:g} time units "
+                     f"(at least {c['MIN_CROSSINGS']} crossings) whose points fill a layer "
+                     "instead of a surface. This is evidence, never proof.",
+         "points": f"{c['N_SETTINGS_NEG']} draws × {c['N_POINTS_NEG']} points, long runs",
+         "tolerance": f"obstruction: residual > {c['TOL']:g}"},
+        {"id": "exact", "title": "Exact certificates",
+         "checks": [],
+         "computed": "the residual of a polynomial (or rational) identity evaluated in exact "
+                     "rational arithmetic at random rational points: a nonzero value proves "
+                     "the identity false; zero at a random point of a set S means that a "
+                     "nonzero polynomial of degree d would vanish there with probability at "
+                     "most d/|S| (Schwartz–Zippel lemma), so several zeros make a wrong "
+                     "identity vanishingly unlikely.",
+         "points": "random rational points; the bound d/|S| per point",
+         "tolerance": "exactly zero (no floating point)"},
+        {"id": "recorded", "title": "Recorded, not computed",
+         "checks": [CheckName.OPEN_PROBLEM, CheckName.FORMULA_NOT_PRINTED,
+                    CheckName.NOT_CHECKABLE],
+         "computed": "nothing: the paper states an open problem, asserts a result without "
+                     "printing a formula, or says something a pointwise computation cannot "
+                     "decide ('only one integral').", "points": "—", "tolerance": "—"},
+    ]
+
+
+VERDICTS = [
+    ("verified", "✓", "the check ran and the printed statement holds to round-off "
+     "(residual at or below the tolerance at every point)."),
+    ("fails", "✗", "the check ran and the printed statement does not hold: the residual is far "
+     "above the tolerance. The printed form is kept; a correction the project found is shown "
+     "beside it as its own record."),
+    ("evidence", "≈", "a negative claim: evidence for it was found (numbers in the details), "
+     "which is not a proof."),
+    ("unchecked", "?", "not checkable: nothing can be computed (open problem, no formula "
+     "printed), or the check has not run yet."),
+]

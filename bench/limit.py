@@ -1,0 +1,365 @@
+"""How close to the compiled limit: time at matched error, side by side in one process.
+
+Competitors, each traced over a range of tolerances (a work-precision front), its time at
+a matched final-state error interpolated (log-log) on that front:
+  limit        a DOP853 written by hand in numba (scipy's coefficients, loops over constant
+               arrays), the field written by hand and inlined (inline='always');
+  lean-dop853  the same hand-written DOP853 on the generated field of the case
+               (solvers/kernels/generate.py): what the generated field alone buys;
+  ours         the project's integrate(): general rk_integrate kernel, general field;
+  ours-generated  integrate(generated=True): the same rk_integrate source compiled
+               against the case's generated field (solvers/kernels/generate.py);
+  heyoka-lean  heyoka's Taylor integrator on the generated lean expressions;
+  heyoka-gen   heyoka on the general expression system (solvers/integrate/taylor.py);
+  scipy-scalar scipy DOP853 on the best plain-Python scalar field (math.sqrt, tuples);
+  scipy-numpy  scipy DOP853 on the independent NumPy field (solvers/models/reference.py).
+Errors: max-norm of the state at T against heyoka in long double (tol 1e-18).
+
+    PYTHONPATH=$PWD .venv/bin/python bench/limit.py   # -> bench/results/limit.{txt,json}
+"""
+
+import itertools
+import json
+import math
+import sys
+import time
+from pathlib import Path
+
+import numba
+import numpy as np
+from scipy.integrate import solve_ivp
+from scipy.integrate._ivp import dop853_coefficients as DC
+
+from solvers.integrate.integrator import integrate
+from solvers.integrate.taylor import Taylor
+from solvers.kernels.generate import generated, heyoka_system
+from solvers.models.cases import build, registry
+from solvers.models.reference import field as ref_field
+
+OUT = Path(__file__).with_name("results")
+A = np.ascontiguousarray(DC.A[:12, :12])
+B = np.ascontiguousarray(DC.B)
+C = np.ascontiguousarray(DC.C[:12])
+E3 = np.ascontiguousarray(DC.E3)
+E5 = np.ascontiguousarray(DC.E5)
+
+
+# --- the hand-written fields --------------------------------------------------------------
+@numba.njit(inline="always")
+def ball_field(y, p, f):
+    """Chaplygin ball on the plane as a user writes it for |gamma| = 1: r = R gamma,
+    I_Q = I + m R^2 (E - gamma gamma^T), omega = I_Q^-1 M (Cramer), dgamma = gamma x omega,
+    dr = R dgamma, dM = M x omega + m dr x (omega x r)."""
+    I1, I2, I3, m, R = p[0], p[1], p[2], p[3], p[16]
+    M0, M1, M2, g0, g1, g2 = y[0], y[1], y[2], y[3], y[4], y[5]
+    mR2 = m * R * R
+    a00 = I1 + mR2 * (1.0 - g0 * g0)
+    a11 = I2 + mR2 * (1.0 - g1 * g1)
+    a22 = I3 + mR2 * (1.0 - g2 * g2)
+    a01 = -mR2 * g0 * g1
+    a02 = -mR2 * g0 * g2
+    a12 = -mR2 * g1 * g2
+    c00 = a11 * a22 - a12 * a12
+    c01 = a12 * a02 - a01 * a22
+    c02 = a01 * a12 - a11 * a02
+    inv = 1.0 / (a00 * c00 + a01 * c01 + a02 * c02)
+    c11 = a00 * a22 - a02 * a02
+    c12 = a01 * a02 - a00 * a12
+    c22 = a00 * a11 - a01 * a01
+    w0 = (c00 * M0 + c01 * M1 + c02 * M2) * inv
+    w1 = (c01 * M0 + c11 * M1 + c12 * M2) * inv
+    w2 = (c02 * M0 + c12 * M1 + c22 * M2) * inv
+    d0 = g1 * w2 - g2 * w1
+    d1 = g2 * w0 - g0 * w2
+    d2 = g0 * w1 - g1 * w0
+    r0, r1, r2 = R * g0, R * g1, R * g2
+    x0 = w1 * r2 - w2 * r1
+    x1 = w2 * r0 - w0 * r2
+    x2 = w0 * r1 - w1 * r0
+    mR = m * R
+    f[0] = M1 * w2 - M2 * w1 + mR * (d1 * x2 - d2 * x1)
+    f[1] = M2 * w0 - M0 * w2 + mR * (d2 * x0 - d0 * x2)
+    f[2] = M0 * w1 - M1 * w0 + mR * (d0 * x1 - d1 * x0)
+    f[3] = d0
+    f[4] = d1
+    f[5] = d2
+    return 0
+
+
+@numba.njit(inline="always")
+def disk_field(y, p, f):
+    """Round disk (radius R, centre of mass at the centre) on the plane with gravity:
+    r = R (g1, g2, 0)/s, s = sqrt(g1^2 + g2^2), J = R/s^3 [[g2^2, -g1 g2, 0], [-g1 g2,
+    g1^2, 0], [0, 0, 0]], dM = M x omega + m dr x (omega x r) + m g gamma x r."""
+    I1, I2, I3, m, grav, R = p[0], p[1], p[2], p[3], p[8], p[17]
+    M0, M1, M2, g0, g1, g2 = y[0], y[1], y[2], y[3], y[4], y[5]
+    s2 = g0 * g0 + g1 * g1
+    s = math.sqrt(s2)
+    Rs = R / s
+    r0, r1 = Rs * g0, Rs * g1
+    # I_Q = I + m (R^2 E - r r^T), r2 = 0
+    mR2 = m * R * R
+    a00 = I1 + mR2 - m * r0 * r0
+    a11 = I2 + mR2 - m * r1 * r1
+    a22 = I3 + mR2
+    a01 = -m * r0 * r1
+    det2 = a00 * a11 - a01 * a01
+    w0 = (a11 * M0 - a01 * M1) / det2
+    w1 = (a00 * M1 - a01 * M0) / det2
+    w2 = M2 / a22
+    d0 = g1 * w2 - g2 * w1
+    d1 = g2 * w0 - g0 * w2
+    d2 = g0 * w1 - g1 * w0
+    q = Rs / s2
+    rd0 = q * (g1 * g1 * d0 - g0 * g1 * d1)
+    rd1 = q * (g0 * g0 * d1 - g0 * g1 * d0)
+    x0 = -w2 * r1
+    x1 = w2 * r0
+    x2 = w0 * r1 - w1 * r0
+    mg = m * grav
+    f[0] = M1 * w2 - M2 * w1 + m * (rd1 * x2) + mg * (-g2 * r1)
+    f[1] = M2 * w0 - M0 * w2 + m * (-rd0 * x2) + mg * (g2 * r0)
+    f[2] = M0 * w1 - M1 * w0 + m * (rd0 * x1 - rd1 * x0) + mg * (g0 * r1 - g1 * r0)
+    f[3] = d0
+    f[4] = d1
+    f[5] = d2
+    return 0
+
+
+# --- a hand-written DOP853 (Hairer's error norm and step control) ------------------------
+def make_dop853(field):
+    @numba.njit(nogil=True)
+    def run(y0, p, T, rtol, atol):
+        n = y0.shape[0]
+        K = np.empty((13, n))
+        y = y0.copy()
+        yt = np.empty(n)
+        yn = np.empty(n)
+        t = 0.0
+        field(y, p, K[0])
+        h = 1e-3
+        nfev = 1
+        steps = 0
+        while t < T:
+            if t + h > T:
+                h = T - t
+            for i in range(1, 12):
+                for m in range(n):
+                    acc = 0.0
+                    for j in range(i):
+                        acc += A[i, j] * K[j, m]
+                    yt[m] = y[m] + h * acc
+                field(yt, p, K[i])
+            for m in range(n):
+                acc = 0.0
+                for j in range(12):
+                    acc += B[j] * K[j, m]
+                yn[m] = y[m] + h * acc
+            field(yn, p, K[12])
+            nfev += 12
+            e5 = 0.0
+            e3 = 0.0
+            for m in range(n):
+                sc = atol + rtol * max(abs(y[m]), abs(yn[m]))
+                a5 = 0.0
+                a3 = 0.0
+                for j in range(13):
+                    a5 += E5[j] * K[j, m]
+                    a3 += E3[j] * K[j, m]
+                e5 += (a5 / sc) ** 2
+                e3 += (a3 / sc) ** 2
+            den = e5 + 0.01 * e3
+            err = 0.0 if den == 0.0 else abs(h) * e5 / math.sqrt(den * n)
+            if err <= 1.0:
+                t += h
+                steps += 1
+                for m in range(n):
+                    y[m] = yn[m]
+                    K[0, m] = K[12, m]
+                fac = 10.0 if err == 0.0 else min(10.0, 0.9 * err ** (-1.0 / 8.0))
+            else:
+                fac = max(0.2, 0.9 * err ** (-1.0 / 8.0))
+            h *= fac
+        return y, steps, nfev
+
+    return run
+
+
+# --- plain-Python scalar fields for scipy ---------------------------------------------------
+def ball_scalar(p):
+    I1, I2, I3, m, R = (float(p[i]) for i in (0, 1, 2, 3, 16))
+    mR2, mR = m * R * R, m * R
+
+    def f(t, y):
+        M0, M1, M2, g0, g1, g2 = y
+        a00 = I1 + mR2 * (1.0 - g0 * g0)
+        a11 = I2 + mR2 * (1.0 - g1 * g1)
+        a22 = I3 + mR2 * (1.0 - g2 * g2)
+        a01, a02, a12 = -mR2 * g0 * g1, -mR2 * g0 * g2, -mR2 * g1 * g2
+        c00, c01, c02 = a11 * a22 - a12 * a12, a12 * a02 - a01 * a22, a01 * a12 - a11 * a02
+        inv = 1.0 / (a00 * c00 + a01 * c01 + a02 * c02)
+        c11, c12, c22 = a00 * a22 - a02 * a02, a01 * a02 - a00 * a12, a00 * a11 - a01 * a01
+        w0 = (c00 * M0 + c01 * M1 + c02 * M2) * inv
+        w1 = (c01 * M0 + c11 * M1 + c12 * M2) * inv
+        w2 = (c02 * M0 + c12 * M1 + c22 * M2) * inv
+        d0, d1, d2 = g1 * w2 - g2 * w1, g2 * w0 - g0 * w2, g0 * w1 - g1 * w0
+        x0 = R * (w1 * g2 - w2 * g1)
+        x1 = R * (w2 * g0 - w0 * g2)
+        x2 = R * (w0 * g1 - w1 * g0)
+        return [M1 * w2 - M2 * w1 + mR * (d1 * x2 - d2 * x1),
+                M2 * w0 - M0 * w2 + mR * (d2 * x0 - d0 * x2),
+                M0 * w1 - M1 * w0 + mR * (d0 * x1 - d1 * x0), d0, d1, d2]
+
+    return f
+
+
+def generic_scalar(model, p):
+    """Cases without a hand-written scalar field: the generated numba field called from
+    Python (a compiled scalar field; reported as such)."""
+    mod = generated(model, p)
+    pp = np.asarray(p, dtype=float)
+
+    def f(t, y):
+        d = np.empty_like(y)
+        mod.field(pp, y, d)
+        return d
+
+    return f
+
+
+# --- the front ------------------------------------------------------------------------------
+def best_of(fn, repeats):
+    best, out = math.inf, None
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        out = fn()
+        best = min(best, time.perf_counter() - t0)
+    return best, out
+
+
+def at_error(points, target):
+    """log-log interpolation of time at `target` error on the front [(err, time)]."""
+    pts = sorted((e, w) for e, w in points if e > 0 and math.isfinite(e))
+    for (e1, w1), (e2, w2) in itertools.pairwise(pts):
+        if e1 <= target <= e2:
+            if e1 == e2:
+                return min(w1, w2)
+            s = (math.log(target) - math.log(e1)) / (math.log(e2) - math.log(e1))
+            return math.exp(math.log(w1) + s * (math.log(w2) - math.log(w1)))
+    return None
+
+
+def front(case, params, y0, T, targets, limit_field, quick=False):
+    model = build(case, params)
+    p = np.array(model.p)
+    y0 = np.asarray(y0, dtype=float)
+    ref = Taylor(model.model, p, y0, tol=1e-18, fp="longdouble").run(y0, [0.0, T])[1][-1]
+    ref = np.asarray(ref, dtype=float)
+
+    def err(y):
+        return float(np.max(np.abs(np.asarray(y, dtype=float) - ref)))
+
+    rtols = [10.0 ** -k for k in (5, 6, 7, 8, 9, 10, 11)]
+    res = {}
+    runners = {}
+    lean = make_dop853(generated(model.model, p).field)
+    if limit_field is not None:
+        runners["limit"] = make_dop853(limit_field)
+    runners["lean-dop853"] = lean
+    for name, run in runners.items():
+        run(y0, p, 1.0, 1e-6, 1e-9)       # compile
+        pts = []
+        for rt in rtols:
+            w, (y, _, _) = best_of(lambda run=run, rt=rt: run(y0, p, T, rt, rt * 1e-3), 3)
+            pts.append((err(y), w))
+        res[name] = pts
+    for name, gen in (("ours", False), ("ours-generated", True)):
+        integrate(model.model, p, y0, [0.0, 1.0], generated=gen)
+        pts = []
+        for rt in rtols:
+            w, r = best_of(lambda rt=rt, gen=gen: integrate(
+                model.model, p, y0, [0.0, T], rtol=rt, atol=rt * 1e-3, generated=gen), 3)
+            pts.append((err(r.y[-1]), w))
+        res[name] = pts
+    for name, system in (("heyoka-lean", None), ("heyoka-gen", "general")):
+        pts = []
+        for tol in (1e-7, 1e-9, 1e-11, 1e-13, 1e-15):
+            if system is None:
+                import heyoka as hy
+
+                v, f, _ = heyoka_system(model.model, p, fold=True)
+                ta = hy.taylor_adaptive(list(zip(v, f, strict=True)), y0, tol=tol)
+
+                def go(ta=ta):
+                    ta.time = 0.0
+                    ta.state[:] = y0
+                    ta.propagate_until(T)
+                    return ta.state.copy()
+                w, y = best_of(go, 3)
+            else:
+                tay = Taylor(model.model, p, y0, tol=tol)
+                w, out = best_of(lambda tay=tay: tay.run(y0, [0.0, T]), 3)
+                y = out[0][-1]
+            pts.append((err(y), w))
+        res[name] = pts
+    scal = ball_scalar(p) if limit_field is ball_field else None
+    for name, fun in (("scipy-scalar", scal), ("scipy-numpy", None)):
+        if name == "scipy-scalar" and fun is None:
+            continue
+        if fun is None:
+            def fun(t, y):
+                return ref_field(model.model, p, y)
+        pts = []
+        for rt in ([1e-6, 1e-8, 1e-10] if not quick else [1e-7, 1e-9]):
+            w, sol = best_of(lambda rt=rt, fun=fun: solve_ivp(
+                fun, (0.0, T), y0, method="DOP853", rtol=rt, atol=rt * 1e-3), 1)
+            pts.append((err(sol.y[:, -1]), w))
+        res[name] = pts
+    table = {name: {f"{t:.0e}": at_error(pts, t) for t in targets} for name, pts in res.items()}
+    return res, table
+
+
+def main():
+    quick = "--quick" in sys.argv
+    cases = [
+        ("plane/chaplygin-ball", {"I1": 1.0, "I2": 2.0, "I3": 3.0, "m": 1.0, "R": 1.0},
+         [1.2, -0.7, 1.6, *(np.array([0.3, -0.5, 0.8]) / np.linalg.norm([0.3, -0.5, 0.8]))],
+         1000.0, (1e-6, 1e-8), ball_field),
+        ("plane/round-disk", registry()["plane/round-disk"].example,
+         registry()["plane/round-disk"].state, 1000.0, (1e-8,), disk_field),
+        ("sphere/flat-base", registry()["sphere/flat-base"].example,
+         registry()["sphere/flat-base"].state, 1000.0, (1e-8,), None),
+    ]
+    lines = ["bench/limit.py: time at matched final-state error (log-log interpolation on each "
+             "front), best of 3 (scipy: 1 run), one process; error vs heyoka long double tol "
+             "1e-18. Ratios: time / time of the limit (or of ours)."]
+    out = {}
+    for case, prm, y0, T, targets, lf in cases:
+        res, table = front(case, prm, y0, T, targets, lf, quick)
+        out[case] = {"T": T, "state": [float(v) for v in y0], "params": prm,
+                     "fronts": res, "at_error": table}
+        lines.append(f"\n{case}, T = {T:g}, y0 = {np.round(np.asarray(y0, float), 6).tolist()}")
+        for name, pts in res.items():
+            lines.append(f"  front {name:13s} " + "  ".join(f"({e:.1e}, {w * 1e3:.2f} ms)"
+                                                          for e, w in pts))
+        for t in targets:
+            key = f"{t:.0e}"
+            base = (table.get("limit") or {}).get(key) or table["ours"][key] or math.nan
+            ours = table["ours"][key]
+            lines.append(f"  at error {key}: time [ms], x limit (or x ours), ours / that")
+            for name in table:
+                v = table[name][key]
+                if v is None:
+                    lines.append(f"    {name:13s}  outside its front")
+                    continue
+                lines.append(f"    {name:13s} {v * 1e3:9.2f} ms  {v / base:7.2f} x base"
+                             + (f"  ours/this {ours / v:7.3f}" if ours else ""))
+        print("\n".join(lines[-40:]), flush=True)
+    text = "\n".join(lines) + "\n"
+    OUT.mkdir(exist_ok=True)
+    (OUT / "limit.txt").write_text(text)
+    (OUT / "limit.json").write_text(json.dumps(out, indent=1))
+
+
+if __name__ == "__main__":
+    main()

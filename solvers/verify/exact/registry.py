@@ -1,0 +1,123 @@
+"""Which checks have an exact certifier, and why the others stay numeric."""
+
+from solvers.verify.exact import checks as X
+from solvers.verify.exact import structure as S
+from solvers.verify.exact.certify import Unsupported, run_points
+from solvers.verify.exact.jet import NotRational
+
+# check name -> (residual builder, negative?)  negative: the claim says it does NOT hold
+CERTIFIERS = {
+    "integral": (X.integral, False),
+    "integral_fails": (X.integral, True),
+    "measure": (X.measure, False),
+    "measure_fails": (X.measure, True),
+    "identity": (X.identity, False),
+    "reduced_agrees": (X.reduced, False),
+    "jacobi": (S.jacobi, False),
+    "jacobi_fails": (S.jacobi, True),
+    "hamiltonian_field": (S.hamiltonian, False),
+}
+
+# Why the other checks stay numeric (issue 10: say why where no exact test applies).
+NUMERIC = {
+    "solves_ode": "a printed solution with trigonometric/hyperbolic or hypergeometric "
+                  "functions of the state (eq-**, eq3.21): not algebraic",
+    "negative_integral": "negative evidence from trajectories (returns of an integral "
+                         "candidate), not a pointwise identity",
+    "negative_measure": "negative evidence: a search for a density along trajectories",
+    "permanent_rotations": "a statement about trajectories (stationary motions), checked "
+                           "by integration",
+    "linear_integrals": "recurrence of K1, K2 along long trajectories: trajectory evidence",
+    "casimir": "no exact certifier yet",
+    "bracket_rank": "a rank, not an identity",
+    "functionally_dependent": "a rank statement about gradients",
+    "symmetry": "no exact certifier yet",
+    "open_problem": "nothing to compute",
+    "formula_not_printed": "nothing to compute",
+    "not_checkable": "nothing to compute",
+}
+
+_REASONS: dict[str, str] = {}
+
+
+def _candidates():
+    from solvers.verify.checks.negative import CANDIDATES
+    return CANDIDATES
+
+
+def _found_density(catalogue, case, claim, key):
+    """Item 6: the object that refutes the paper's doubt, certified exactly. `holds` is
+    about the found density (it IS invariant), `refutes` says what that means for the
+    negative claim."""
+    from solvers.verify.checks.negative import case_params
+    res = X.found_density(catalogue, claim, False, case.id)
+    try:
+        out = run_points(key, lambda rng: case_params(case, claim, rng), res)
+    except (Unsupported, NotRational) as e:
+        _REASONS[key] = f"not algebraic at our rational points: {e}"
+        return None
+    out["negative"] = True
+    out["object"] = f"invariant density {res.density} in (M, gamma)"
+    if out["holds"]:
+        out["refutes"] = ("the paper's 'probably this generalization does not exist': the "
+                          "density above satisfies the Liouville equation exactly")
+    return out
+
+
+def _rate_formulas():
+    from solvers.verify.checks.ode import RATE_FORMULAS
+    return RATE_FORMULAS
+
+
+def _second_order(catalogue, claim):
+    from solvers.verify.checks.ode import _is_jet
+    return _is_jet(catalogue, claim)
+
+
+def why_not(claim_id: str) -> str | None:
+    """Why the last exact_for(...) of this claim returned None."""
+    return _REASONS.get(claim_id)
+
+
+def exact_for(catalogue, case, claim, corrected=False):
+    """The `exact` field of the record of `claim` (of its project correction if
+    `corrected`): None where no exact test applies (reason: why_not(claim.id))."""
+    from solvers.verify.params import draw
+    key = claim.id + ("/corrected" if corrected else "")
+    name = claim.check.value
+    args = claim.check_args
+    if name == "reduced_agrees" and args.transform is not None \
+            and args.against == "chaplygin_system":     # as checks/pointwise.check_reduced
+        build, negative = X.transform, False
+    elif name == "reduced_agrees" and _second_order(catalogue, claim):
+        from solvers.verify.exact.taylor import second_order  # eq2.9, eq2.21, eq3.4
+        build, negative = second_order, False
+    elif name == "identity" and args.formula in _rate_formulas():
+        build, negative = X.rate_identity, False
+    elif name in CERTIFIERS:
+        build, negative = CERTIFIERS[name]
+    elif name == "negative_measure" and case.id in _candidates():
+        return _found_density(catalogue, case, claim, key)
+    else:
+        _REASONS[key] = NUMERIC.get(name, f"no exact certifier for check {name}")
+        return None
+    try:
+        res = build(catalogue, claim, corrected)
+        out = run_points(key, lambda rng: draw(case, claim, rng), res)
+        if not out["holds"] and name == "measure" and not corrected:
+            alt = X.ALTERNATE.get(catalogue.formula(args.formula).variables.value)
+            if alt is not None:      # as the complex-step check: the other natural reading
+                alt_out = run_points(key, lambda rng: draw(case, claim, rng),
+                                     X.measure(catalogue, claim, corrected, variables=alt))
+                if alt_out["holds"]:
+                    alt_out["method"] += f"; density read in {alt}"
+                    out = alt_out
+    except (Unsupported, NotRational) as e:
+        _REASONS[key] = f"not algebraic at our rational points: {e}"
+        return None
+    except (TypeError, ValueError, AttributeError, LookupError, ArithmeticError) as e:
+        # the formula's code is not exact-evaluable (numba kernels, float(), complex step)
+        _REASONS[key] = f"not exactly evaluable: {type(e).__name__}: {e}"
+        return None
+    out["negative"] = negative
+    return out

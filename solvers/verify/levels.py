@@ -1,0 +1,224 @@
+"""Two levels of verdicts (issue 10): printed formulas and the table cells they stand under.
+
+A *formula* record judges one printed expression (a claim of the catalogue, or the project's
+correction of it). A *cell* record judges the property a cell of Table 1 or 2 states, with
+the best evidence the project has, in this order:
+
+  1. the printed formula, if it holds (possibly under a stated convention, below);
+  2. else the project's corrected formula, if it holds: the cell is `verified`, and the
+     note "holds; printed formula corrected" sends the reader to the misprint;
+  3. else a formula-free test of the property (a claim whose `establishes` names it);
+  4. else the cell fails: the property itself is not supported.
+
+So a red mark on a cell means the property fails, never only its printed formula.
+
+Each formula record also gets a `qualifier` that says what kind of verdict it is:
+
+  convention          verified: the printed form holds under the convention in `convention`
+                      (the claim's `holds_under`), shown by the check of that reading; read
+                      with the project's conventions it fails (residual kept in evidence)
+  misprint            fails as printed; the project's correction is verified
+  inherited           fails only because it uses the failing claim `inherits`, whose
+                      correction makes it hold
+  refuted-conjecture  the paper hedges ("probably does not exist"); the project answers it,
+                      and `finding` names the object found
+  refuted             a printed statement that fails with no correction the project could find
+  formula-free        a project test of a cell's property that uses no printed formula
+  None                nothing to qualify (verified as printed, evidence, unchecked)
+
+Pure functions of the records and the catalogue: cheap, and the same for `rolling verify`,
+its JSON and the API.
+"""
+
+from __future__ import annotations
+
+from catalogue.schema import Case, Catalogue
+
+NEUTRAL_CHECKS = frozenset({"open_problem", "formula_not_printed", "not_checkable"})
+CELL_NOTE = {"corrected": "holds; printed formula corrected",
+             "formula-free": "holds; shown by a formula-free test (printed formula fails)",
+             "formula-free-test": "confirmed by a formula-free test",
+             "convention": "holds under the paper's own convention (see the formula record)"}
+QUALIFIERS = ("convention", "misprint", "inherited", "refuted-conjecture", "refuted",
+              "formula-free")
+
+
+def cell_id(case_id: str, row: str) -> str:
+    return f"{case_id}/cell/{row}"
+
+
+# --- formula records ---------------------------------------------------------------------
+
+def annotate(records: list[dict], cat: Catalogue) -> list[dict]:
+    """Set level, qualifier, convention, inherits and finding on every formula record
+    (in place; returns the list)."""
+    by_claim = {r["claim"]: r for r in records}
+    claims = {cl.id: cl for cl in cat.claims()}
+    for r in records:
+        r.setdefault("level", "formula")
+        for key in ("qualifier", "convention", "inherits", "finding"):
+            r.setdefault(key, None)
+        cl = claims.get(r["claim"])
+        if cl is None:           # a project correction: judged by its own residual
+            continue
+        corr = by_claim.get(f"{cl.id}/corrected")
+        corr_ok = corr is not None and corr["verdict"] == "verified"
+        if cl.establishes:
+            r["origin"] = "project-test"
+            r["qualifier"] = "formula-free"
+        elif r["verdict"] == "fails" and cl.holds_under and corr_ok:
+            r["verdict"], r["qualifier"], r["convention"] = "verified", "convention", \
+                cl.holds_under
+            ev = dict(r.get("evidence") or {})
+            ev["residual read with the project's convention"] = r["residual"]
+            r["evidence"], r["residual"] = ev, corr["residual"]
+            r["message"] = (f"holds under the convention: {cl.holds_under} (residual "
+                            f"{corr['residual']:.1e}); read with the project's convention: "
+                            + r["message"])
+            # the exact certificate follows the verdict: the printed form read under the
+            # convention is the correction's reading; the witness against our reading stays
+            if r.get("exact") is not None and corr.get("exact") is not None:
+                r["exact"] = {**corr["exact"], "under": "the convention above",
+                              "read_with_project_convention": r["exact"]}
+        elif r["verdict"] == "fails" and cl.hedged:
+            r["qualifier"] = "refuted-conjecture"
+            r["finding"] = (r.get("evidence") or {}).get("found density") or r["message"]
+        elif r["verdict"] == "fails" and cl.inherits and corr_ok and \
+                by_claim.get(cl.inherits, {}).get("verdict") == "fails":
+            r["qualifier"], r["inherits"] = "inherited", cl.inherits
+        elif r["verdict"] == "fails":
+            r["qualifier"] = "misprint" if corr_ok else "refuted"
+    return records
+
+
+# --- cell records ------------------------------------------------------------------------
+
+def _cell_claims(case: Case, cell) -> list[str]:
+    own = [c for c in cell.claims if c.startswith(case.id + "/")]
+    return own or list(cell.claims)
+
+
+def _judge(cid: str, by_claim: dict, establishers: dict) -> tuple[str, str | None, list[str]]:
+    """(effective verdict, basis, records it rests on) of one claim of a cell."""
+    r = by_claim[cid]
+    if r["verdict"] != "fails":
+        basis = "convention" if r.get("qualifier") == "convention" else (
+            "formula-free-test" if r.get("qualifier") == "formula-free" else "printed")
+        return r["verdict"], basis, [cid]
+    corr = by_claim.get(f"{cid}/corrected")
+    if corr is not None and corr["verdict"] == "verified":
+        return "verified", "corrected", [cid, corr["claim"]]
+    free = [e for e in establishers.get(cid, []) if by_claim.get(e, {}).get("verdict")
+            == "verified"]
+    if free:
+        return "verified", "formula-free", [cid, *free]
+    return "fails", None, [cid]
+
+
+def _aggregate(judged: list[tuple[str, dict]]) -> str:
+    verdicts = [v for v, _ in judged]
+    if "fails" in verdicts:
+        return "fails"
+    if any(v == "unchecked" and r["check"] not in NEUTRAL_CHECKS for v, r in judged):
+        return "unchecked"
+    checked = [v for v in verdicts if v != "unchecked"]
+    if not checked:
+        return "unchecked"
+    if all(v == "verified" for v in checked):
+        return "verified"
+    return "evidence" if all(v in ("evidence", "verified") for v in checked) else "unchecked"
+
+
+def cell_records(records: list[dict], cat: Catalogue, case_ids=None) -> list[dict]:
+    """One record per (case, row) whose cell lists claims, for the cases in case_ids (all
+    if None) whose claims have records."""
+    by_claim = {r["claim"]: r for r in records}
+    establishers: dict[str, list[str]] = {}
+    for cl in cat.claims():
+        for target in cl.establishes:
+            establishers.setdefault(target, []).append(cl.id)
+    out = []
+    for table in cat.tables():
+        rows = {r.key: r.plain for r in table.rows}
+        for case in table.cases:
+            if case_ids is not None and case.id not in case_ids:
+                continue
+            for row, cell in case.cells.items():
+                ids = [c for c in _cell_claims(case, cell) if c in by_claim]
+                if not ids:
+                    continue
+                judged, rests, bases, notes = [], [], {}, []
+                for c in ids:
+                    v, basis, on = _judge(c, by_claim, establishers)
+                    judged.append((v, by_claim[c]))
+                    rests += [x for x in on if x not in rests]
+                    if basis is not None:
+                        bases[c] = basis
+                    if basis in CELL_NOTE and CELL_NOTE[basis] not in notes:
+                        notes.append(CELL_NOTE[basis])
+                verdict = _aggregate(judged)
+                failing = [c for (v, _), c in zip(judged, ids, strict=True) if v == "fails"]
+                if verdict == "fails":
+                    msg = "the property fails: " + ", ".join(failing)
+                elif notes:
+                    msg = "; ".join(notes)
+                elif len(ids) == 1:
+                    msg = by_claim[ids[0]]["message"]
+                else:
+                    msg = f"{verdict}: {len(ids)} claims, each as printed"
+                out.append({
+                    "case": case.id, "claim": cell_id(case.id, row.value), "kind": "cell",
+                    "verdict": verdict, "residual": None, "printed": cell.plain,
+                    "label": cell.labels[0] if cell.labels else None, "check": "cell",
+                    "message": msg, "origin": "paper", "corrects": None,
+                    "evidence": {"basis": bases} if bases else None, "seconds": 0.0,
+                    "level": "cell", "row": row.value, "row_label": rows[row],
+                    "rests_on": rests, "notes": notes, "qualifier": None,
+                    "convention": None, "inherits": None, "finding": None})
+    return out
+
+
+# --- which claims a record id needs ------------------------------------------------------
+
+def plan(cat: Catalogue, case: str | None, claim: str | None):
+    """(claim ids to run, keep(record) -> bool, case ids of the cell records) for
+    `verify(case, claim)`; claim may be any record id: a claim, `<claim>/corrected` or a
+    cell `<case>/cell/<row>`. Raises KeyError for an unknown id."""
+    from catalogue.schema import RowKey
+
+    cases = [c for c in cat.cases() if case in (None, c.id)]
+    if claim is None:
+        ids = [cl.id for c in cases for cl in c.claims]
+        return ids, lambda r: True, {c.id for c in cases}
+    owner = {cl.id: c for c in cat.cases() for cl in c.claims}
+    if "/cell/" in claim:
+        cid, row = claim.split("/cell/", 1)
+        c = next((x for x in cases if x.id == cid), None)
+        if c is None or row not in {k.value for k in RowKey} or \
+                not c.cells[RowKey(row)].claims:
+            raise KeyError(claim)
+        base = _cell_claims(c, c.cells[RowKey(row)])
+        keep_ids = {claim}
+    else:
+        base_id = claim.removesuffix("/corrected")
+        if base_id not in owner or owner[base_id] not in cases:
+            raise KeyError(claim)
+        base, keep_ids = [base_id], {claim}
+    need = list(base)
+    for cid in base:                     # what the qualifiers and cells look at
+        cl = owner[cid].claim(cid)
+        need += [x for x in ([cl.inherits] if cl.inherits else []) if x not in need]
+        need += [cl2.id for cl2 in owner[cid].claims if cid in cl2.establishes
+                 and cl2.id not in need]
+    if "/cell/" in claim:
+        keep_ids |= set(need)
+        return need, lambda r: r["claim"] in keep_ids, {claim.split("/cell/", 1)[0]}
+    if claim == base[0]:                 # a claim id: the claim and its correction
+        return need, lambda r: r["claim"] == claim or r.get("corrects") == claim, set()
+    return need, lambda r: r["claim"] == claim, set()
+
+
+def finish(raw: list[dict], cat: Catalogue, keep, cell_cases) -> list[dict]:
+    """Annotate the formula records, add the cell records, keep what was asked for."""
+    annotate(raw, cat)
+    return [r for r in [*raw, *cell_records(raw, cat, cell_cases)] if keep(r)]

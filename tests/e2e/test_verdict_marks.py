@@ -1,0 +1,61 @@
+"""Issue 10 in the browser: a cell whose property holds shows no red cross even when the
+formula printed under it is misprinted; a merged cell shows one mark per body in column
+order; the errata page lists the misprints and is linked from the home page."""
+
+import re
+
+import httpx
+from playwright.sync_api import expect
+
+CASES = ["plane/chaplygin-ball", "plane/routh-ball", "plane/spherical-inertia",
+         "sphere/body-of-revolution", "sphere/round-disk", "sphere/routh-ball",
+         "sphere/flat-base-axisymmetric", "sphere/borisov-fedorov"]
+
+
+def ready(page):
+    page.wait_for_function("document.body?.dataset.ready === '1'")
+
+
+def _verify(server):
+    for cid in CASES:
+        r = httpx.post(f"{server}/api/verify/{cid}", timeout=600)
+        assert r.status_code == 200, r.text
+
+
+def test_cells_over_misprints_show_no_cross(page, server, artifacts):
+    _verify(server)
+    page.goto(server + "/")
+    ready(page)
+    expect(page.locator("#tbl-sphere a.cellmark").first).to_be_visible()
+    assert page.locator("table.paper .mk.fails").count() == 0
+    gyro = page.locator('#tbl-sphere tr.row-gyrostat td[colspan="4"]')
+    marks = gyro.locator(".mk")
+    expect(marks).to_have_count(4)
+    assert [marks.nth(i).get_attribute("data-case") for i in range(4)] == [
+        "sphere/body-of-revolution", "sphere/round-disk", "sphere/routh-ball",
+        "sphere/flat-base-axisymmetric"]
+    assert all("verified" in marks.nth(i).get_attribute("class") for i in range(4))
+    expect(gyro.locator(".cellnote").first).to_have_text("holds; printed formula corrected")
+    expect(page.locator('.legend .mark.pending')).to_be_visible()       # legend: checking
+    page.locator("#tbl-sphere").screenshot(path=str(artifacts / "table-2-levels.png"))
+    page.click('header.site a[href="/errata"]')
+    page.wait_for_url(re.compile(r"/errata$"))
+    ready(page)
+    expect(page.locator("#errata-list article.erratum").first).to_be_visible()
+    assert page.locator("#findings-list article.finding").count() == 2
+    expect(page.locator("#conventions-list")).to_contain_text("{H, x}")
+    expect(page.locator("#errata-list")).to_contain_text(
+        "rolling verify --claim sphere/round-disk/measure --json")
+    page.screenshot(path=str(artifacts / "errata.png"), full_page=True)
+
+
+def test_case_page_says_why_a_cell_holds(page, server, artifacts):
+    _verify(server)
+    page.goto(server + "/case/sphere/round-disk")
+    ready(page)
+    row = page.locator("#row-gyrostat")
+    expect(row.locator(".cellverdict")).to_contain_text("holds; printed formula corrected")
+    assert row.locator(".mk.fails").count() == 0
+    claim = page.locator("#claim-sphere_round-disk_gyrostat_linear-integrals")
+    expect(claim.locator(".qualifier")).to_contain_text("inherited failure")
+    expect(page.locator('header.site a[href="/errata"]')).to_be_visible()
