@@ -73,8 +73,10 @@ def main() -> None:
             browser = pw.chromium.launch(executable_path=CHROMIUM, headless=True,
                                          args=["--no-sandbox", "--disable-gpu"])
             for width, (w, h) in WIDTHS.items():
+                # bypass_csp: wait_for_function evaluates its predicate with eval(),
+                # which the pages' Content-Security-Policy forbids
                 ctx = browser.new_context(viewport={"width": w, "height": h},
-                                          device_scale_factor=1)
+                                          device_scale_factor=1, bypass_csp=True)
                 page = ctx.new_page()
                 for name, path in pages.items():
                     print(shoot(page, url, path, args.out, name, width).relative_to(ROOT))

@@ -18,8 +18,10 @@ CASE = "plane/chaplygin-ball"
 
 def project_pages() -> list[str]:
     """Every page of the explorer (/docs, the vendored Swagger UI, is exempt)."""
+    pages = ["/", "/poincare", "/scenes", "/work-precision", "/errata", "/how-we-check",
+             "/glossary", "/bibliography", "/search"]
     cases = [f"/case/{c.id}" for c in load_catalogue().cases()]
-    return ["/", *cases, "/poincare", "/scenes", "/work-precision", "/no-such-page"]
+    return [*pages, *cases, "/no-such-page"]
 
 
 def settle(page, path):
