@@ -298,7 +298,7 @@ def errata(
     con.print(f"[bold]Errata[/bold]: {len(out['errata'])} printed formulas fail; "
               "the project's correction of each holds")
     for e in out["errata"]:
-        where = e["label"] or e["where"] or ""
+        where = e["number"] or e["where"] or ""
         inh = f" (inherits {e['inherits']})" if e["inherits"] else ""
         con.print(f"✗ [{e['kind']}]{inh} {e['claim']} — {where}"
                   f"{', ' + e['section'] if e['section'] else ''}", markup=False)
@@ -313,15 +313,15 @@ def errata(
     con.print(f"[bold]Conventions[/bold]: {len(out['conventions'])} printed forms hold "
               "under another convention")
     for e in out["conventions"]:
-        con.print(f"✓ {e['claim']} ({e['label']}): {e['convention']}", markup=False)
+        con.print(f"✓ {e['claim']} ({e['number'] or e['label']}): {e['convention']}", markup=False)
         con.print(f"   residual under it {res(e['residual_under_convention'])}, with ours "
                   f"{res(e['residual_printed'])}; reproduce: {e['reproduce']}", markup=False)
     con.print(f"[bold]Findings the paper does not have[/bold]: {len(out['findings'])}")
     for e in out["findings"]:
         con.print(f"• [{e['kind']}] {e['title']}", markup=False)
         con.print(f"   {e['finding']}", markup=False)
-        con.print(f"   claim {e['claim']} ({e['label']}); reproduce: {e['reproduce']}",
-                  markup=False)
+        num = e["number"] or e["label"]
+        con.print(f"   claim {e['claim']} ({num}); reproduce: {e['reproduce']}", markup=False)
 
 
 def _exact_summary(records) -> str:

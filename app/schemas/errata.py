@@ -8,7 +8,8 @@ class _Entry(BaseModel):
     case: str
     kind: str | None = Field(None, description="misprint | inherited | convention | "
                              "refuted-conjecture | refuted")
-    label: str | None = Field(None, description="the paper's equation label")
+    label: str | None = Field(None, description="the equation's LaTeX label (data)")
+    number: str | None = Field(None, description="its number in the printed paper, '(2.15)'")
     where: str | None = Field(None, description="where it is printed, if not a label")
     section: str | None = None
     printed: str = Field(description="the printed form (LaTeX, as in the paper)")

@@ -4,7 +4,7 @@ the checking code itself (solvers/verify/checks), so the page cannot drift from 
 from __future__ import annotations
 
 from catalogue.schema import CheckName
-from solvers.verify.checks import common, negative
+from solvers.verify.checks import common, formula_free, negative
 
 
 def constants() -> dict[str, float]:
@@ -13,7 +13,9 @@ def constants() -> dict[str, float]:
             "H": common.H, "N_POINTS_NEG": negative.N_POINTS_NEG,
             "N_SETTINGS_NEG": negative.N_SETTINGS_NEG, "T_MAP": negative.T_MAP,
             "N_MAP_ORBITS": negative.N_MAP_ORBITS, "MIN_CROSSINGS": negative.MIN_CROSSINGS,
-            "T_LONG": negative.T_LONG}
+            "T_LONG": negative.T_LONG, "FF_T_LONG": formula_free.T_LONG,
+            "FF_N_RUNS": formula_free.N_RUNS, "FF_MIN_CROSSINGS": formula_free.MIN_CROSSINGS,
+            "FF_CONTROL_BREAKS": formula_free.CONTROL_BREAKS}
 
 
 def kinds() -> list[dict]:
@@ -58,6 +60,19 @@ def kinds() -> list[dict]:
                      "instead of a surface. This is evidence, never proof.",
          "points": f"{c['N_SETTINGS_NEG']} draws × {c['N_POINTS_NEG']} points, long runs",
          "tolerance": f"obstruction: residual > {c['TOL']:g}"},
+        {"id": "formula-free", "title": "Formula-free existence tests",
+         "checks": [CheckName.LINEAR_INTEGRALS_RETURN],
+         "computed": "that a property holds without using any printed formula for it: for "
+                     "two integrals linear in M (gyrostat along the symmetry axis on a "
+                     f"sphere), runs of {c['FF_T_LONG']:g} time units must bring (M, γ) and "
+                     "M3 back to the same values at every upward crossing of one level of "
+                     f"γ3 (at least {c['FF_MIN_CROSSINGS']} crossings per run). A control run "
+                     "with the gyrostat moved off the axis must break this (spread above "
+                     f"{c['FF_CONTROL_BREAKS']:g}); if it does not, the test says "
+                     "'unchecked' instead of 'verified'.",
+         "points": f"{c['N_SETTINGS']} parameter draws × {c['FF_N_RUNS']} runs, plus the "
+                   "off-axis control",
+         "tolerance": f"spread of the returns ≤ {c['TOL']:g}"},
         {"id": "exact", "title": "Exact certificates",
          "checks": [],
          "computed": "the residual of a polynomial (or rational) identity evaluated in exact "

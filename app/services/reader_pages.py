@@ -43,7 +43,11 @@ def render_page(text: str, name: str) -> str:
     """`static_page` for a page's text already in hand (`name`: its file name)."""
     html = _PLACEHOLDER.sub(lambda m: _number(m[1], m[2]), text)
     if _NAV_ANCHOR in html:
-        html = html.replace(_NAV_ANCHOR, NAV_EXTRA + _NAV_ANCHOR, 1)
+        header = html[:html.find(_NAV_ANCHOR)]
+        # a link the page's own navigation already has (e.g. Errata) is not added twice
+        extra = re.sub(r'<a href="([^"]+)">[^<]*</a>',
+                       lambda m: "" if f'href="{m[1]}"' in header else m[0], NAV_EXTRA)
+        html = html.replace(_NAV_ANCHOR, extra + _NAV_ANCHOR, 1)
     else:   # a page without the API link (404): give it the whole navigation
         html = html.replace("</a></header>", f"</a><nav aria-label=\"Site\">{_nav()}</nav>"
                             "</header>", 1)

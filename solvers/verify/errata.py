@@ -27,6 +27,19 @@ FINDING_TITLES = {
 }
 
 
+def printed_number(label: str | None) -> str | None:
+    """What a reader of the printed paper finds: "(2.15)", not the LaTeX label."""
+    from catalogue.numbering import printed
+
+    return printed(label)
+
+
+def cite(text: str | None) -> str | None:
+    from catalogue.numbering import cite as _cite
+
+    return _cite(text)
+
+
 def reproduce(claim_id: str) -> str:
     return f"rolling verify --claim {claim_id} --json"
 
@@ -40,7 +53,8 @@ def section_of(label: str | None) -> str | None:
 def _base(rec: dict, cat: Catalogue) -> dict:
     claim = cat.claim(rec["claim"])
     return {"claim": rec["claim"], "case": rec["case"], "kind": rec.get("qualifier"),
-            "label": claim.label, "where": claim.where, "section": section_of(claim.label),
+            "label": claim.label, "number": printed_number(claim.label),
+            "where": cite(claim.where), "section": section_of(claim.label),
             "printed": claim.printed, "plain": claim.plain,
             "residual_printed": rec.get("residual"), "message": rec.get("message", ""),
             "exact": rec.get("exact"), "reproduce": reproduce(rec["claim"])}

@@ -14,15 +14,19 @@ function katexReady() {
 
 const anchor = (id) => "claim-" + id.replace(/[^A-Za-z0-9_-]+/g, "_");
 const caseLink = (e) => `<a href="/case/${e.case}#${anchor(e.claim)}">${escapeHtml(e.case)}</a>`;
-const where = (e) => escapeHtml([e.label, e.where, e.section].filter(Boolean).join(" · "));
+const where = (e) => escapeHtml([e.number, e.where, e.section].filter(Boolean).join(" · "));
 const res = (x) => (x === null || x === undefined ? "n/a" : fmt(x, 2));
 
 function exactHtml(ex, what) {
   if (!ex) return "";
+  // the witness (a rational point and residual) can run to thousands of digits: behind a toggle
   const w = ex.witness !== undefined && ex.witness !== null
-    ? ` witness: <code>${escapeHtml(JSON.stringify(ex.witness))}</code>` : "";
-  return `<p class="exact">Exact check of the ${what} (${escapeHtml(ex.method || "")}): ` +
-    `${ex.holds ? "holds" : "does not hold"} at ${ex.points} rational points.${w}</p>`;
+    ? `<details><summary>rational witness point and its exact residual</summary>` +
+      `<code tabindex="0">${escapeHtml(JSON.stringify(ex.witness))}</code></details>` : "";
+  const bound = ex.holds && ex.bound ? ` ${escapeHtml(ex.bound)}.` : "";
+  return `<div class="exact"><p>Exact check of the ${what}: ` +
+    `${ex.holds ? "holds" : "does not hold"} at ${ex.points} rational point${ex.points === 1 ? "" : "s"}.${bound}</p>` +
+    `<details><summary>method</summary><p>${escapeHtml(ex.method || "")}</p></details>${w}</div>`;
 }
 
 function erratumHtml(e) {
@@ -33,7 +37,7 @@ function erratumHtml(e) {
     `<header><span class="badge fails">✗ ${kind.startsWith("misprint") ? "misprint" : "inherited"}</span> ` +
     `<strong>${where(e)}</strong> — ${caseLink(e)} <span class="cid">${escapeHtml(e.claim)}</span></header>` +
     `<p class="kindline">${kind}</p>` +
-    `<div class="pair"><div><h3>Printed</h3><div class="printed">${printedHtml(e.printed)}</div>` +
+    `<div class="pair"><div><h3>Printed</h3><div class="printed" tabindex="0">${printedHtml(e.printed)}</div>` +
     `<p>residual ${res(e.residual_printed)}</p></div>` +
     `<div><h3>Corrected (the project)</h3><p class="corrected">${escapeHtml(e.corrected)}</p>` +
     `<p>residual ${res(e.residual_corrected)} <span class="badge ${e.corrected_verdict === "verified" ? "verified" : "fails"}">` +
@@ -46,7 +50,7 @@ function conventionHtml(e) {
   return `<article class="erratum convention" id="c-${escapeHtml(e.claim)}">` +
     `<header><span class="badge verified">✓ holds under a convention</span> <strong>${where(e)}</strong> — ` +
     `${caseLink(e)} <span class="cid">${escapeHtml(e.claim)}</span></header>` +
-    `<div class="printed">${printedHtml(e.printed)}</div>` +
+    `<div class="printed" tabindex="0">${printedHtml(e.printed)}</div>` +
     `<p><strong>Convention:</strong> ${escapeHtml(e.convention || "")}</p>` +
     `<p>residual under it ${res(e.residual_under_convention)}; read with the project's convention ${res(e.residual_printed)}</p>` +
     `<p class="repro">Reproduce: <code>${escapeHtml(e.reproduce)}</code></p></article>`;
@@ -59,7 +63,7 @@ function findingHtml(e) {
   return `<article class="finding" id="f-${escapeHtml(e.claim)}">` +
     `<header><span class="badge evidence">${kind}</span> <strong>${escapeHtml(e.title)}</strong></header>` +
     `<p>Where: ${where(e)} — ${caseLink(e)} <span class="cid">${escapeHtml(e.claim)}</span></p>` +
-    `<div class="printed">${printedHtml(e.printed)}</div>` +
+    `<div class="printed" tabindex="0">${printedHtml(e.printed)}</div>` +
     `<p><strong>Found:</strong> ${escapeHtml(e.finding)}</p>` +
     `<details><summary>Evidence</summary><ul>${ev}</ul></details>` +
     exactHtml(e.exact, "claim") +
