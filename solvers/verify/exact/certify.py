@@ -109,6 +109,15 @@ def run_points(seed_key, Pf_draw, residual_fn, k=K_POINTS):
                 return {"holds": False, "points": 1, "method": METHOD,
                         "bound": "exact: a nonzero residual disproves the identity",
                         "witness": {"point": point_json(P, y), "residual": text}}
+    if deg == 0:
+        # every residual is a function of the seeded state, so a tracked bound of 0 means
+        # the degree was lost on the way (a rational constant re-entered as a fresh jet);
+        # the exact zeros stand, but no probability is claimed for them
+        return {"holds": True, "points": k, "method": METHOD, "bounded": False,
+                "bound": (f"exact zeros at {k} points; the degree of the residual was not "
+                          "tracked through this computation, so no Schwartz-Zippel "
+                          "probability is stated and the record does not count as certified"),
+                "witness": None}
     N = 2 ** BITS
     p = (deg / N) ** k
     return {"holds": True, "points": k, "method": METHOD,
