@@ -1,5 +1,9 @@
 """Dependencies of the routes: the settings, the worker pool and the verdict store live
-on app.state (created by the lifespan in app.main), one per running app."""
+on app.state (created by the lifespan in app.main), one per running app.
+
+They are `async def` on purpose: FastAPI runs a plain `def` dependency in the thread pool,
+and three hops through a pool that the page routes also use made /api/health wait behind
+them under load (bench/load.py)."""
 
 from typing import Annotated
 
@@ -10,15 +14,15 @@ from app.core.pool import WorkerPool
 from app.services.verdicts import VerdictStore
 
 
-def get_settings(request: Request) -> Settings:
+async def get_settings(request: Request) -> Settings:
     return request.app.state.settings
 
 
-def get_pool(request: Request) -> WorkerPool:
+async def get_pool(request: Request) -> WorkerPool:
     return request.app.state.pool
 
 
-def get_verdicts(request: Request) -> VerdictStore:
+async def get_verdicts(request: Request) -> VerdictStore:
     return request.app.state.verdicts
 
 
