@@ -2,6 +2,7 @@
 page and in the case JSON, how we check with the code's constants, glossary, bibliography
 with the Cite box, search."""
 
+import json
 import re
 
 import pytest
@@ -18,7 +19,8 @@ pytestmark = pytest.mark.filterwarnings("ignore::DeprecationWarning")
 INTERNAL = re.compile(r"(?<![\w/.-])(eq ?[0-9][0-9.]*[-*/0-9]*|eq-[-*d0-9]+|eq\*|ris-\*?\d|"
                       r"ris\d\.eps|an-dp|rem-\*1|2-14\*)(?![\w])")
 PAGES = ["/", "/poincare", "/scenes", "/work-precision", "/how-we-check", "/glossary",
-         "/bibliography", "/search?q=ball"] + [f"/case/{c.id}" for c in load_catalogue().cases()]
+         "/bibliography", "/search?q=ball", "/errata"]
+PAGES += [f"/case/{c.id}" for c in load_catalogue().cases()]
 
 
 @pytest.fixture(scope="module")
@@ -116,3 +118,25 @@ def test_scenes_and_check_args_show_numbers(client):
     d = client.get("/api/cases/plane/chaplygin-ball").json()
     args = " ".join(str(v) for c in d["claims"] for v in c["check_args"].values())
     assert "(2.24)" in args and not INTERNAL.findall(args)
+
+
+def test_errata_entries_show_printed_numbers_not_labels():
+    """What the errata page shows of an entry (all but the `label` data field and the
+    claim ids) carries printed numbers, never an internal label; computed on real verdicts
+    of cases with misprints, a refuted conjecture and a refuted statement."""
+    from solvers.verify import errata
+    from solvers.verify.run import verify
+
+    cat = load_catalogue()
+    records = [r for cid in ("plane/round-disk", "plane/spherical-inertia",
+                             "sphere/borisov-fedorov") for r in verify(case=cid)]
+    entries = errata.errata(records, cat) + errata.findings(records, cat)
+    assert len(entries) >= 4
+    for e in entries:
+        shown = {k: v for k, v in e.items()
+                 if k not in ("label", "claim", "case", "corrected_claim", "reproduce",
+                              "exact", "corrected_exact", "corrected_formula")}
+        found = INTERNAL.findall(json.dumps(shown))
+        assert not found, (e["claim"], sorted(set(found)))
+        assert (e["number"] is None) == (e["label"] is None or errata.printed_number(
+            e["label"]) is None)

@@ -34,10 +34,24 @@ def printed_number(label: str | None) -> str | None:
     return printed(label)
 
 
-def cite(text: str | None) -> str | None:
+def cite(text):
+    """Reader's text: every internal label replaced by its printed number (strings inside
+    lists and dicts too); labels stay as data in the `label` field only."""
     from catalogue.numbering import cite as _cite
 
-    return _cite(text)
+    if isinstance(text, str):
+        return _cite(text)
+    if isinstance(text, dict):
+        return {cite(k): cite(v) for k, v in text.items()}
+    if isinstance(text, list):
+        return [cite(v) for v in text]
+    return text
+
+
+def cite_latex(tex: str | None) -> str | None:
+    from catalogue.numbering import cite_latex as _cite_latex
+
+    return _cite_latex(tex)
 
 
 def reproduce(claim_id: str) -> str:
@@ -55,8 +69,8 @@ def _base(rec: dict, cat: Catalogue) -> dict:
     return {"claim": rec["claim"], "case": rec["case"], "kind": rec.get("qualifier"),
             "label": claim.label, "number": printed_number(claim.label),
             "where": cite(claim.where), "section": section_of(claim.label),
-            "printed": claim.printed, "plain": claim.plain,
-            "residual_printed": rec.get("residual"), "message": rec.get("message", ""),
+            "printed": cite_latex(claim.printed), "plain": cite(claim.plain),
+            "residual_printed": rec.get("residual"), "message": cite(rec.get("message", "")),
             "exact": rec.get("exact"), "reproduce": reproduce(rec["claim"])}
 
 
@@ -70,7 +84,7 @@ def errata(records: list[dict], cat: Catalogue) -> list[dict]:
         e = _base(r, cat)
         text = corr.get("printed", "")
         m = re.match(r"^\[project's correction of (\w+)\] (.*)$", text, re.S)
-        e.update(corrected=m.group(2) if m else text,
+        e.update(corrected=cite(m.group(2) if m else text),
                  corrected_formula=m.group(1) if m else None, corrected_claim=corr.get("claim"),
                  corrected_verdict=corr.get("verdict"), residual_corrected=corr.get("residual"),
                  corrected_exact=corr.get("exact"), inherits=r.get("inherits"))
@@ -83,7 +97,7 @@ def conventions(records: list[dict], cat: Catalogue) -> list[dict]:
     for r in records:
         if r.get("qualifier") == "convention":
             e = _base(r, cat)
-            e.update(convention=r.get("convention"), residual_printed=(
+            e.update(convention=cite(r.get("convention")), residual_printed=(
                 r.get("evidence") or {}).get("residual read with the project's convention"),
                 residual_under_convention=r.get("residual"))
             out.append(e)
@@ -95,8 +109,8 @@ def findings(records: list[dict], cat: Catalogue) -> list[dict]:
     for r in records:
         if r.get("level", "formula") == "formula" and r.get("qualifier") in FINDING_KINDS:
             e = _base(r, cat)
-            e.update(title=FINDING_TITLES.get(r["claim"], cat.claim(r["claim"]).plain),
-                     finding=r.get("finding") or r.get("message", ""),
-                     evidence=r.get("evidence") or {})
+            e.update(title=cite(FINDING_TITLES.get(r["claim"], cat.claim(r["claim"]).plain)),
+                     finding=cite(r.get("finding") or r.get("message", "")),
+                     evidence=cite(r.get("evidence") or {}))
             out.append(e)
     return out

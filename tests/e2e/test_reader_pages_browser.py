@@ -32,7 +32,7 @@ def test_case_page_shows_printed_equation_numbers(page, server):
 
 def test_no_internal_label_visible_on_any_page(page, server):
     paths = ["/", "/poincare", "/scenes", "/work-precision", "/how-we-check", "/glossary",
-             "/bibliography", "/search?q=Chaplygin"]
+             "/bibliography", "/search?q=Chaplygin", "/errata"]
     paths += [f"/case/{c.id}" for c in load_catalogue().cases()]
     for path in paths:
         page.goto(server + path)

@@ -49,8 +49,9 @@ async def case_page(case_id: str, settings: SettingsDep, verdicts: VerdictsDep):
 
 
 @router.get("/errata")
-async def errata_page(settings: SettingsDep) -> FileResponse:
-    return FileResponse(settings.static_dir / "errata.html", media_type="text/html")
+async def errata_page(settings: SettingsDep) -> HTMLResponse:
+    return HTMLResponse(render_page((settings.static_dir / "errata.html").read_text(),
+                                    "errata.html"))
 
 
 @router.get("/vendor/plotly.min.js")
