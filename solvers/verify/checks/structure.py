@@ -215,9 +215,10 @@ def check_bracket_rank(catalogue, case, claim):
 
 # --- Hamiltonian form after a change of time ----------------------------------------------------
 
-def hamiltonian_residual(catalogue, case, claim, use_corrected=False, seed=14):
-    """max ||(1/N) dx/dt - J grad H|| / max(||(1/N) dx/dt||, ||J grad H||), dx/dt the model's
-    field pushed forward to the bracket's variables (through check_args.transform when given)."""
+def hamiltonian_parts(catalogue, claim, use_corrected=False):
+    """(J, H, N or None, to_b) of a Hamiltonian-form claim: the bracket, the Hamiltonian, the
+    time multiplier and the map of the state to the bracket's variables (through
+    check_args.transform when given); shared by this check and its exact twin."""
     a = claim.check_args
     Vb = _vars(catalogue, a.bracket)
     if _vars(catalogue, a.hamiltonian) != Vb:
@@ -231,6 +232,14 @@ def hamiltonian_residual(catalogue, case, claim, use_corrected=False, seed=14):
         to_b = lambda P, yy: T(P, to_vars(Vt, P, yy))  # noqa: E731
     else:
         to_b = lambda P, yy: to_vars(Vb, P, yy)  # noqa: E731
+    return J, Hf, Nf, to_b
+
+
+def hamiltonian_residual(catalogue, case, claim, use_corrected=False, seed=14):
+    """max ||(1/N) dx/dt - J grad H|| / max(||(1/N) dx/dt||, ||J grad H||), dx/dt the model's
+    field pushed forward to the bracket's variables (through check_args.transform when given)."""
+    a = claim.check_args
+    J, Hf, Nf, to_b = hamiltonian_parts(catalogue, claim, use_corrected)
 
     def residual(P, y):
         v = full_field(P, y)

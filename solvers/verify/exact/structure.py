@@ -3,7 +3,7 @@ the Jacobi identity of a printed tensor and the Hamiltonian form after a change 
 
 import numpy as np
 
-from solvers.verify.checks.structure import _impl, _vars, bracket_fn
+from solvers.verify.checks.structure import _vars, bracket_fn, hamiltonian_parts
 from solvers.verify.exact.certify import directional, plain, residual_vector, seeded
 from solvers.verify.exact.jet import Jet
 from solvers.verify.exact.model import field
@@ -41,18 +41,7 @@ def hamiltonian(catalogue, claim, use_corrected):
     """(1/N) dx/dt - J grad H, dx/dt the exact field pushed forward to the bracket's
     variables (through check_args.transform when given)."""
     a = claim.check_args
-    Vb = _vars(catalogue, a.bracket)
-    if _vars(catalogue, a.hamiltonian) != Vb:
-        raise LookupError(f"{a.hamiltonian} is not written in the variables of {a.bracket}")
-    J = bracket_fn(catalogue, claim, use_corrected, free="arbitrary")
-    Hf = _impl(a.hamiltonian, use_corrected)
-    Nf = _impl(a.multiplier, use_corrected) if a.multiplier else None
-    if a.transform is not None:
-        T = _impl(a.transform, use_corrected)
-        Vt = _vars(catalogue, a.transform)
-        to_b = lambda P, yy: T(P, to_vars(Vt, P, yy))  # noqa: E731
-    else:
-        to_b = lambda P, yy: to_vars(Vb, P, yy)  # noqa: E731
+    J, Hf, Nf, to_b = hamiltonian_parts(catalogue, claim, use_corrected)
 
     def res(P, y):
         v = field(P, plain(y))
