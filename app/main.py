@@ -86,6 +86,8 @@ async def lifespan(app: FastAPI):
     await anyio.to_thread.run_sync(_prepare)
     if settings.use_verdict_cache:
         await anyio.to_thread.run_sync(store.load_cache)
+    if settings.verify_on_start:
+        store.expect_checks()   # "checking" from the first request, while the workers warm
 
     async def background() -> None:
         if settings.warm_workers:

@@ -64,9 +64,13 @@ def test_summary_rules():
                    [a, b])["mark"] == "fails"
     assert summary(["x"], {**rec(a, "verified"), **rec(b, "evidence")}, "measure",
                    [a, b])["mark"] == "evidence"
-    s = summary(["x"], rec(a, "verified"), "measure", [a, b])   # b not computed yet
+    s = summary(["x"], rec(a, "verified"), "measure", [a, b])   # b being checked
+    assert s["mark"] == "pending" and [m["mark"] for m in s["marks"]] == ["verified",
+                                                                          "pending"]
+    # b has no verdict and is not being checked (its check failed): not "checking"
+    s = summary(["x"], rec(a, "verified"), "measure", [a, b], pending=set())
     assert s["mark"] == "unchecked" and [m["mark"] for m in s["marks"]] == ["verified",
-                                                                            "pending"]
+                                                                            "unchecked"]
 
 
 def test_store_cache_round_trip(tmp_path):

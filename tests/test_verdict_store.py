@@ -110,3 +110,23 @@ def test_a_restarted_uvicorn_serves_stored_verdicts_at_once(tmp_path):
         assert h["cases_done"] == 1 and h["updated"] is not None
         assert _get(url, "/api/health")["pool"]["running"] == 0
     print(f"restart to stored verdicts: {waited:.1f} s")
+
+
+def test_cases_without_a_verdict_are_pending_only_while_checked(tmp_path):
+    from app.services import views
+
+    s = VerdictStore([CASE, "plane/chaplygin-ball"], tmp_path)
+    s.put(CASE, [{"claim": f"{CASE}/x", "verdict": "verified"}])
+    assert s.pending() == set()                  # idle: nothing is being checked
+    s.expect_checks()                            # start-up with background verification on
+    assert s.state == "running" and s.pending() == {"plane/chaplygin-ball"}
+    d = views.case_detail("plane/chaplygin-ball", {}, {}, s.case_state("plane/chaplygin-ball"))
+    assert {c["verdict"]["verdict"] for c in d["claims"]} == {"pending"}
+    assert d["verdicts"]["pending"] == len(d["claims"]) and d["verdicts"]["unchecked"] == 0
+    s.state = "failed"                           # the check did not finish: not "checking"
+    d = views.case_detail("plane/chaplygin-ball", {}, {}, s.case_state("plane/chaplygin-ball"))
+    assert {c["verdict"]["verdict"] for c in d["claims"]} == {"unchecked"}
+    full = VerdictStore([CASE], tmp_path)
+    full.load_cache()
+    full.expect_checks()                         # every case stored: nothing to check
+    assert full.state == "done" and full.pending() == set()

@@ -2,7 +2,9 @@ from typing import Any, Literal
 
 from pydantic import BaseModel, Field
 
-Verdict = Literal["verified", "fails", "evidence", "unchecked"]
+# pending: the claim's case is being checked on this server right now (a fresh server
+# recomputing changed cases); unchecked: nothing can be computed, or the check did not run
+Verdict = Literal["verified", "fails", "evidence", "unchecked", "pending"]
 
 
 class VerdictPublic(BaseModel):

@@ -98,8 +98,12 @@ VERDICTS = [
     ("fails", "✗", "the check ran and the printed statement does not hold: the residual is far "
      "above the tolerance. The printed form is kept; a correction the project found is shown "
      "beside it as its own record."),
-    ("evidence", "≈", "a negative claim: evidence for it was found (numbers in the details), "
+    ("evidence", "◐", "a negative claim: evidence for it was found (numbers in the details), "
      "which is not a proof."),
     ("unchecked", "?", "not checkable: nothing can be computed (open problem, no formula "
-     "printed), or the check has not run yet."),
+     "printed, a statement no pointwise computation decides), or the check could not run on "
+     "this server (its details say why)."),
+    ("pending", "…", "checking: the check is running now (a fresh server recomputes the "
+     "verdicts whose catalogue entry or checking code changed); the page updates when it "
+     "finishes."),
 ]

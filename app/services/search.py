@@ -48,11 +48,12 @@ def facets() -> dict[str, list[str]]:
     return {"body": sorted({c["body"] for c in cases}),
             "surface": sorted({c["surface"] for c in cases}),
             "kind": sorted({c["kind"] for c in claims}),
-            "verdict": ["verified", "fails", "evidence", "unchecked"]}
+            "verdict": ["verified", "fails", "evidence", "unchecked", "pending"]}
 
 
 def search(q: str = "", body: str = "", surface: str = "", kind: str = "", verdict: str = "",
-           by_claim: dict[str, dict] | None = None) -> dict:
+           by_claim: dict[str, dict] | None = None, pending: set[str] = frozenset()) -> dict:
+    """`pending`: the cases being checked now; their claims without a verdict are pending."""
     by_claim = by_claim or {}
     words = _fold(q).split()
     cases, claims = _index()
@@ -61,7 +62,9 @@ def search(q: str = "", body: str = "", surface: str = "", kind: str = "", verdi
         return all(w in item["_text"] for w in words)
 
     def verdict_of(cid: str) -> str:
-        return views.record(by_claim[cid])["verdict"] if cid in by_claim else "unchecked"
+        if cid in by_claim:
+            return views.record(by_claim[cid])["verdict"]
+        return "pending" if "/".join(cid.split("/")[:2]) in pending else "unchecked"
 
     out_claims = []
     for c in claims:

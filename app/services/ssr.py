@@ -12,7 +12,8 @@ import re
 from html import escape
 
 VERDICT_WORDS = {"verified": "verified", "fails": "fails as printed",
-                 "evidence": "numerical evidence", "unchecked": "not checked yet"}
+                 "evidence": "numerical evidence", "unchecked": "not checkable",
+                 "pending": "checking"}
 
 
 def _anchor(claim_id: str) -> str:

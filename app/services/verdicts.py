@@ -68,6 +68,20 @@ class VerdictStore:
                     out.setdefault(r["corrects"], []).append(r)
         return out
 
+    def pending(self) -> set[str]:
+        """The cases being checked now (or queued for it): no verdict yet, and the
+        background verification is running."""
+        if self.state != "running":
+            return set()
+        return {c for c in self.case_ids if c not in self.records}
+
+    def expect_checks(self) -> None:
+        """Called at start-up when the background verification will run: the cases it
+        will check are "checking" from the first request, not "unchecked" while the
+        workers warm up."""
+        if any(c not in self.records for c in self.case_ids):
+            self.state = "running"
+
     def case_state(self, case_id: str) -> str:
         if case_id in self.records:
             return "done"
@@ -154,10 +168,13 @@ async def verify_case(pool: WorkerPool, case_id: str, deadline: float) -> list[d
 
 
 def summary(claim_ids: list[str], by_claim: dict[str, dict], row: str,
-            case_ids: list[str]) -> dict | None:
+            case_ids: list[str], pending: set[str] | None = None) -> dict | None:
     """Verdict of a table cell: the cell record (solvers.verify.levels) of each case it
     spans, in column order; the overall mark is fails if any case's property fails, else
-    verified if all are, evidence if all are verified or evidence, else unchecked."""
+    pending if a case is still being checked, verified if all are, evidence if all are
+    verified or evidence, else unchecked. `pending`: the cases being checked now (None:
+    every case without a record is); a case without a record that is not being checked
+    (its check failed) is unchecked."""
     if not claim_ids:
         return None
     from catalogue.load import load_catalogue
@@ -167,8 +184,9 @@ def summary(claim_ids: list[str], by_claim: dict[str, dict], row: str,
     for cid in case_ids:
         rec = by_claim.get(f"{cid}/cell/{row}")
         case = cat.case(cid)
+        waiting = pending is None or cid in pending
         marks.append({"case": cid, "column": case.column,
-                      "mark": rec["verdict"] if rec else "pending",
+                      "mark": rec["verdict"] if rec else "pending" if waiting else "unchecked",
                       "notes": list(rec.get("notes") or []) if rec else [],
                       "message": rec.get("message", "") if rec else "",
                       "rests_on": list(rec.get("rests_on") or []) if rec else []})
@@ -177,11 +195,10 @@ def summary(claim_ids: list[str], by_claim: dict[str, dict], row: str,
                 notes.append(n)
     done = [m["mark"] for m in marks if m["mark"] != "pending"]
     counts = {v: done.count(v) for v in VERDICTS if v in done}
-    pending = len(done) < len(marks)      # a spanned case not computed yet
     if "fails" in counts:
         mark = "fails"
-    elif pending:
-        mark = "unchecked"
+    elif len(done) < len(marks):      # a spanned case is being checked
+        mark = "pending"
     elif done and set(counts) == {"verified"}:
         mark = "verified"
     elif done and set(counts) <= {"verified", "evidence"}:

@@ -15,7 +15,10 @@ from catalogue.schema import Attribution, Case, Cell, Claim, Table
 from solvers.models.bodies import STATE_LABELS
 from solvers.models.cases import CaseSpec, registry
 
-UNCHECKED_MSG = "no verdict yet: the check has not run (see /api/health, verification)"
+UNCHECKED_MSG = "no verdict: the check has not run on this server (see /api/health, verification)"
+PENDING_MSG = ("being checked now: this server is computing the verdicts of the cases whose "
+               "catalogue entry or checking code changed (see /api/health, verification)")
+SHOWN = (*VERDICTS, "pending")    # what a claim shows: a verdict, or pending (being checked)
 
 
 def case_href(case_id: str) -> str:
@@ -40,7 +43,7 @@ def table_of(case_id: str) -> Table:
 
 
 def cell(row_label: str, row: str, c: Cell, by_claim: dict[str, dict],
-         cases: list[str] | None = None) -> dict:
+         cases: list[str] | None = None, pending: set[str] | None = None) -> dict:
     # labels stay as data; what a reader sees carries the printed numbers (catalogue/numbering)
     return {"row": row, "row_label": row_label, "printed": cite_latex(c.printed),
             "plain": cite(c.plain), "shade": c.shade.value, "shade_note": cite(c.shade_note),
@@ -49,10 +52,13 @@ def cell(row_label: str, row: str, c: Cell, by_claim: dict[str, dict],
             "merged": list(c.merged), "colspan": c.colspan,
             "subrow": c.subrow.model_dump() if c.subrow else None, "subrow_case": None,
             "claims": list(c.claims), "convention_note": cite(c.convention_note),
-            "verdict": summary(list(c.claims), by_claim, row, cases or list(c.merged))}
+            "verdict": summary(list(c.claims), by_claim, row, cases or list(c.merged),
+                               pending)}
 
 
-def table(table_id: str, by_claim: dict[str, dict]) -> dict:
+def table(table_id: str, by_claim: dict[str, dict], pending: set[str] | None = None) -> dict:
+    """`pending`: the cases being checked now (VerdictStore.pending); their cells show
+    "checking", not "not checkable"."""
     t: Table = getattr(load_catalogue(), table_id)
     labels = {r.key: r.plain for r in t.rows}
     grid = []
@@ -63,7 +69,8 @@ def table(table_id: str, by_claim: dict[str, dict]) -> dict:
                 continue
             c = case.cells[row.key]
             skip.update(c.merged)
-            d = cell(labels[row.key], row.key.value, c, by_claim, list(c.merged) or [case.id])
+            d = cell(labels[row.key], row.key.value, c, by_claim, list(c.merged) or [case.id],
+                     pending)
             d["merged"] = list(c.merged) or [case.id]
             # a second line under one column of a merged cell (Table 2: a = 2R)
             for cid in d["merged"]:
@@ -80,10 +87,11 @@ def table(table_id: str, by_claim: dict[str, dict]) -> dict:
             "grid": grid}
 
 
-def _verdict(claim: Claim, rec: dict | None) -> dict:
+def _verdict(claim: Claim, rec: dict | None, pending: bool = False) -> dict:
     if rec is None:
-        return {"claim": claim.id, "verdict": "unchecked", "residual": None,
-                "message": UNCHECKED_MSG, "check": claim.check.value}
+        return {"claim": claim.id, "verdict": "pending" if pending else "unchecked",
+                "residual": None, "message": PENDING_MSG if pending else UNCHECKED_MSG,
+                "check": claim.check.value}
     return record(rec)
 
 
@@ -134,7 +142,8 @@ def record(rec: dict) -> dict:
     return out
 
 
-def claim(c: Claim, by_claim: dict[str, dict], corrections: dict[str, list[dict]]) -> dict:
+def claim(c: Claim, by_claim: dict[str, dict], corrections: dict[str, list[dict]],
+          pending: bool = False) -> dict:
     return {"id": c.id, "kind": c.kind.value, "printed": cite_latex(c.printed),
             "plain": cite(c.plain), "label": c.label, "number": printed(c.label),
             "where": cite(c.where),
@@ -145,7 +154,7 @@ def claim(c: Claim, by_claim: dict[str, dict], corrections: dict[str, list[dict]
             "check_args": {k: cite(v) if isinstance(v, str) else v for k, v in
                            c.check_args.model_dump(mode="json", exclude_defaults=True).items()},
             "convention_note": cite(c.convention_note), "remarks": cite(c.remarks),
-            "verdict": _verdict(c, by_claim.get(c.id)),
+            "verdict": _verdict(c, by_claim.get(c.id), pending),
             "corrections": [record(r) for r in corrections.get(c.id, [])]}
 
 
@@ -182,15 +191,17 @@ def case_detail(case_id: str, by_claim: dict[str, dict], corrections: dict[str, 
     case = load_catalogue().case(case_id)
     t = table_of(case_id)
     labels = {r.key: r.plain for r in t.rows}
-    claims = [claim(c, by_claim, corrections) for c in case.claims]
+    # "running" (VerdictStore.case_state): this case has no verdict yet and is being checked
+    checking = verification == "running"
+    claims = [claim(c, by_claim, corrections, checking) for c in case.claims]
     verdicts = [c["verdict"]["verdict"] for c in claims]
     return {**case_summary(case),
             "model": {**_cited_model(case),
                       "equation_numbers": [printed(x) or x for x in case.model.equations]},
             "remarks": [cite(r) for r in case.remarks],
-            "cells": [cell(labels[r.key], r.key.value, case.cells[r.key], by_claim, [case_id])
-                      for r in t.rows],
+            "cells": [cell(labels[r.key], r.key.value, case.cells[r.key], by_claim, [case_id],
+                           {case_id} if checking else set()) for r in t.rows],
             "claims": claims,
             "runnable": runnable(registry()[case_id]),
-            "verdicts": {v: verdicts.count(v) for v in VERDICTS},
+            "verdicts": {v: verdicts.count(v) for v in SHOWN},
             "verification": verification}

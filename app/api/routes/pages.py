@@ -29,7 +29,7 @@ async def home(settings: SettingsDep, verdicts: VerdictsDep) -> HTMLResponse:
     # Tables 1 and 2 in the HTML itself (readable with scripts off); the script redraws
     # them with typeset formulas and verdict marks
     by_claim = verdicts.by_claim()
-    tables = {tid: views.table(tid, by_claim) for tid in ("plane", "sphere")}
+    tables = {tid: views.table(tid, by_claim, verdicts.pending()) for tid in ("plane", "sphere")}
     template = (settings.static_dir / "index.html").read_text()
     return HTMLResponse(render_page(ssr.home_page(template, tables), "index.html"))
 

@@ -54,7 +54,7 @@ async def search_api(verdicts: VerdictsDep, q: str = Query("", max_length=200),
                      body: str = "", surface: str = "", kind: str = "",
                      verdict: str = "") -> dict:
     """Cases and claims matching every word of q, filtered by body, surface, kind, verdict."""
-    return search(q, body, surface, kind, verdict, verdicts.by_claim())
+    return search(q, body, surface, kind, verdict, verdicts.by_claim(), verdicts.pending())
 
 
 @pages.get("/how-we-check", response_class=HTMLResponse)
@@ -83,7 +83,7 @@ def _select(name: str, options: list[str], value: str) -> str:
 async def search_page(verdicts: VerdictsDep, q: str = Query("", max_length=200),
                       body: str = "", surface: str = "", kind: str = "",
                       verdict: str = "") -> str:
-    r = search(q, body, surface, kind, verdict, verdicts.by_claim())
+    r = search(q, body, surface, kind, verdict, verdicts.by_claim(), verdicts.pending())
     f = facets()
     form = (f'<form class="searchform" role="search" action="/search" method="get">'
             f'<label><span>text</span><input type="search" name="q" value="{escape(q)}" '

@@ -15,4 +15,4 @@ router = APIRouter(tags=["tables"])
 async def get_table(table_id: Literal["plane", "sphere"], verdicts: VerdictsDep) -> dict:
     """Rows, columns and the grid of cells (a merged cell once, with its colspan and the
     cases it spans), with the paper's shading and a verdict mark per checkable cell."""
-    return views.table(table_id, verdicts.by_claim())
+    return views.table(table_id, verdicts.by_claim(), verdicts.pending())

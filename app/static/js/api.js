@@ -62,6 +62,8 @@ export const VERDICT_TEXT = {
   verified: "verified",
   fails: "fails",
   evidence: "evidence",
-  unchecked: "unchecked",
+  unchecked: "not checkable",
+  pending: "checking",
 };
-export const VERDICT_ICON = { verified: "✓", fails: "✗", evidence: "◐", unchecked: "?" };
+// "?" means only "not checkable"; "…" a check running now (a fresh server recomputing)
+export const VERDICT_ICON = { verified: "✓", fails: "✗", evidence: "◐", unchecked: "?", pending: "…" };

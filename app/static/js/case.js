@@ -2,7 +2,7 @@
 // printed formula, source and verdict, and a simulate panel with plots and a 3D scene.
 "use strict";
 
-import { api, ApiError, download, escapeHtml, fmt, VERDICT_ICON } from "./api.js";
+import { api, ApiError, download, escapeHtml, fmt, VERDICT_ICON, VERDICT_TEXT } from "./api.js";
 import { mathHtml, printedHtml, textHtml } from "./latex.js";
 import { badgeHtml, markHtml, qualifierHtml } from "./marks.js";
 import { plotDrift, plotGamma, plotState } from "./plots.js";
@@ -67,9 +67,10 @@ function showHead() {
 
 function showTally() {
   const v = C.verdicts;
-  const parts = ["verified", "fails", "evidence", "unchecked"].filter((k) => v[k])
-    .map((k) => `<span class="badge ${k}">${VERDICT_ICON[k]} ${v[k]} ${k}</span>`);
-  const state = C.verification === "running" ? " · verification running…" : "";
+  const parts = ["verified", "fails", "evidence", "unchecked", "pending"].filter((k) => v[k])
+    .map((k) => `<span class="badge ${k}">${VERDICT_ICON[k]} ${v[k]} ${VERDICT_TEXT[k]}</span>`);
+  const state = C.verification === "running"
+    ? " · being checked now on this server; the page updates when the check finishes" : "";
   $("tally").innerHTML = `${C.claims.length} claims: ${parts.join(" ")}<span class="hint">${state}</span>`;
   $("nclaims").textContent = `(${C.claims.length})`;
 }
@@ -139,7 +140,8 @@ const OUTCOME = {
   verified: "it holds to round-off.",
   fails: "it does not hold: the residual is far above the tolerance.",
   evidence: "the evidence found is listed in the details.",
-  unchecked: "no verdict yet.",
+  unchecked: "no verdict: the check could not run on this server (see the details).",
+  pending: "being checked now; this page updates when the check finishes.",
 };
 
 function sentence(c) {
@@ -186,6 +188,23 @@ function claimHtml(c) {
 
 function showClaims() {
   $("claimlist").innerHTML = C.claims.map(claimHtml).join("");
+}
+
+// A fresh server recomputes the verdicts of changed cases in the background: while this
+// case is among them its claims show "checking", and the page redraws them when it is done.
+async function followChecking() {
+  while (C.verification === "running") {
+    await new Promise((r) => setTimeout(r, 3000));
+    try {
+      const c = await api(`/api/cases/${C.id}`);
+      if (c.verification === "running") continue;
+      C = c;
+      showTally(); showCells(); showClaims();
+      document.body.dataset.checked = "1";
+    } catch {
+      return;
+    }
+  }
 }
 
 async function reverify() {
@@ -566,6 +585,7 @@ async function main() {
   });
   if (location.hash) document.getElementById(location.hash.slice(1))?.scrollIntoView();
   document.body.dataset.ready = "1";
+  followChecking();
   if (applyRunQuery(location.search, $)) {   // a permalink of a run: reproduce it
     onEdit();
     $("simform").requestSubmit();

@@ -5,9 +5,9 @@
 // printed formula corrected" is printed under the mark.
 "use strict";
 
-import { escapeHtml, VERDICT_ICON } from "./api.js";
+import { escapeHtml, VERDICT_ICON, VERDICT_TEXT } from "./api.js";
 
-const ICON = { ...VERDICT_ICON, pending: "…" };
+const ICON = VERDICT_ICON;
 const WORD = {
   verified: "property holds", fails: "property fails", evidence: "numerical evidence",
   unchecked: "not checkable", pending: "checking",
@@ -29,7 +29,7 @@ export function markHtml(summary, href) {
 }
 
 export function badgeHtml(verdict) {
-  return `<span class="badge ${verdict}">${VERDICT_ICON[verdict]} ${verdict}</span>`;
+  return `<span class="badge ${verdict}">${VERDICT_ICON[verdict]} ${VERDICT_TEXT[verdict] || verdict}</span>`;
 }
 
 const QUALIFIER_TEXT = {
