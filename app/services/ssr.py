@@ -50,6 +50,44 @@ def case_page(template: str, detail: dict) -> str:
                      f'claims: {escape(counts)}.</p>{claims}</div>', 1))
 
 
+MARK_ICONS = {"verified": "✓", "fails": "✗", "evidence": "◐", "unchecked": "?", "pending": "…"}
+MARK_WORDS = {"verified": "property holds", "fails": "property fails",
+              "evidence": "numerical evidence", "unchecked": "not checkable",
+              "pending": "checking"}
+
+
+def shade_why(c: dict) -> str:
+    """Why a cell is shaded: a disclosure (click, tap, Enter), never a hover title; the
+    same markup as the page's script (static/js/home.js shadeWhy)."""
+    if not c.get("shade_note"):
+        return ""
+    word = {"partial": "partial", "full": "gray"}.get(c["shade"], "unshaded")
+    return (f'<details class="shade-why"><summary>why {word}?</summary>'
+            f'<p>{escape(c["shade_note"])}</p></details>')
+
+
+def _col(m: dict) -> str:
+    return f'<sub class="col">{m["column"]}</sub>' if m.get("column") else ""
+
+
+def mark_html(c: dict) -> str:
+    """The cell's verdict marks as text (one per body, column numbers when merged); the
+    script redraws them as links (static/js/marks.js)."""
+    v = c.get("verdict")
+    if not v:
+        return ""
+    marks = v.get("marks") or [{"mark": v["mark"], "column": None, "notes": []}]
+    many = len(marks) > 1
+    spans = "".join(f'<span class="mk {escape(m["mark"])}" aria-hidden="true">'
+                    f'{MARK_ICONS.get(m["mark"], "?")}{_col(m) if many else ""}</span>'
+                    for m in marks)
+    said = ", ".join((f"column {m['column']}: " if many else "") + MARK_WORDS.get(
+        m["mark"], m["mark"]) for m in marks)
+    notes = "".join(f'<span class="cellnote">{escape(n)}</span>' for n in v.get("notes") or [])
+    return (f'<span class="cellmark {escape(v["mark"])}">{spans}'
+            f'<span class="sr-only">{escape(said)}</span></span>{notes}')
+
+
 def table_html(t: dict) -> str:
     """A table of the paper (views.table) as plain HTML: the same rows, columns, merged
     cells and shading as the page's script draws, with the cells' words instead of typeset
@@ -68,7 +106,8 @@ def table_html(t: dict) -> str:
             sr = shade_words.get(c["shade"], "")
             sub = f'<div>{escape(c["subrow"]["plain"])}</div>' if c.get("subrow") else ""
             cells.append(f'<td{span} class="shade-{escape(c["shade"])}"><div class="cell-body">'
-                         f'{escape(c["plain"])}{sub}<span class="sr-only">{sr}</span></div></td>')
+                         f'{escape(c["plain"])}{sub}<span class="sr-only">{sr}</span></div>'
+                         f'{shade_why(c)}{mark_html(c)}</td>')
         rows.append(f'<tr class="row-{escape(grow["key"])}"><th scope="row">'
                     f'{escape(labels[grow["key"]])}</th>{"".join(cells)}</tr>')
     return (f'<table class="paper ssr" id="tbl-{escape(t["id"])}" '

@@ -96,9 +96,11 @@ function showCells() {
       ? `<div class="claimrefs cellverdict">the cell's property: <strong>${escapeHtml(cm.mark)}</strong> — ` +
         `${escapeHtml(cm.message)}${cm.rests_on.length ? `; rests on ${cm.rests_on.map(claimLink).join(", ")}` : ""}</div>`
       : (cm ? `<div class="claimrefs cellverdict">the cell's property: checking…</div>` : "");
-    const note = c.shade_note ? ` title="${escapeHtml(c.shade_note)}"` : "";
+    const shade = c.shade === "full" ? "gray: the invariant exists" : c.shade === "partial"
+      ? "partial fill: incomplete set of integrals" : "";
+    const why = shade ? `<div class="claimrefs shade-note">shading: ${shade}${c.shade_note ? ` — ${escapeHtml(c.shade_note)}` : ""}</div>` : "";
     return `<tr id="row-${c.row}"><th scope="row">${escapeHtml(c.row_label)}</th>` +
-      `<td class="shade-${c.shade}"${note}>${textHtml(c.printed)}${sub}${att}${refs}${merged}${prop}${mark}</td></tr>`;
+      `<td class="shade-${c.shade}">${textHtml(c.printed)}${sub}${att}${refs}${merged}${why}${prop}${mark}</td></tr>`;
   });
   $("cells").innerHTML = `<table class="cells"><tbody>${rows.join("")}</tbody></table>`;
 }

@@ -14,19 +14,27 @@ function katexReady() {
   });
 }
 
+// why a cell is shaded as it is: a disclosure that opens on click, tap or Enter (never a
+// hover title, which a touch screen cannot show); the same markup as the server's (ssr.py)
+function shadeWhy(cell) {
+  if (!cell.shade_note) return "";
+  const word = cell.shade === "partial" ? "partial" : cell.shade === "full" ? "gray" : "unshaded";
+  return `<details class="shade-why"><summary>why ${word}?</summary><p>${escapeHtml(cell.shade_note)}</p></details>`;
+}
+
 function cellHtml(cell, table) {
   const cls = [`shade-${cell.shade}`];
   const first = cell.merged[0];
   const mark = cell.verdict
     ? markHtml(cell.verdict, `/case/${first}#row-${cell.row}`)
     : "";
-  const title = cell.shade_note ? ` title="${escapeHtml(cell.shade_note)}"` : "";
+  const why = shadeWhy(cell);
   const shadeText = cell.shade === "full" ? "invariant exists" : cell.shade === "partial" ? "incomplete set of integrals" : "";
   const sr = shadeText ? `<span class="sr-only"> (${shadeText})</span>` : "";
   const cols = cell.colspan > 1 ? ` colspan="${cell.colspan}"` : "";
   const cases = cell.merged.map((c) => table.columns.find((x) => x.id === c)?.column).join(" ");
-  return `<td${cols} class="${cls.join(" ")}" data-cases="${escapeHtml(cell.merged.join(" "))}" data-columns="${cases}"${title}>` +
-    `<div class="cell-body">${textHtml(cell.printed)}${sr}</div>${mark}</td>`;
+  return `<td${cols} class="${cls.join(" ")}" data-cases="${escapeHtml(cell.merged.join(" "))}" data-columns="${cases}">` +
+    `<div class="cell-body">${textHtml(cell.printed)}${sr}</div>${why}${mark}</td>`;
 }
 
 function tableHtml(t) {
