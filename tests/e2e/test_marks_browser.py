@@ -17,7 +17,10 @@ TEXT_ON_SHADING = """(gray) => {
   const lum = ([r, g, b]) => [r, g, b].map((v) => v / 255)
     .map((c) => (c <= 0.03928 ? c / 12.92 : ((c + 0.055) / 1.055) ** 2.4))
     .reduce((s, c, i) => s + c * [0.2126, 0.7152, 0.0722][i], 0);
-  const ratio = (a, b) => { const [x, y] = [lum(a), lum(b)].sort((p, q) => q - p); return (x + 0.05) / (y + 0.05); };
+  const ratio = (a, b) => {
+    const [x, y] = [lum(a), lum(b)].sort((p, q) => q - p);
+    return (x + 0.05) / (y + 0.05);
+  };
   const hex = (h) => [1, 3, 5].map((i) => parseInt(h.slice(i, i + 2), 16));
   const out = [];
   for (const td of document.querySelectorAll("td.shade-full, td.shade-partial")) {
@@ -30,7 +33,11 @@ TEXT_ON_SHADING = """(gray) => {
       for (let e = el; e; e = e.parentElement) {
         const b = rgb(getComputedStyle(e).backgroundColor);
         if (b.length === 3 || (b.length === 4 && b[3] > 0.9)) { bgs = [b.slice(0, 3)]; break; }
-        if (e === td) { bgs = td.classList.contains("shade-partial") ? [hex(gray), [255, 255, 255]] : [hex(gray)]; break; }
+        if (e === td) {
+          const half = td.classList.contains("shade-partial");
+          bgs = half ? [hex(gray), [255, 255, 255]] : [hex(gray)];
+          break;
+        }
       }
       const size = parseFloat(st.fontSize), bold = Number(st.fontWeight) >= 700;
       const large = size >= 24 || (bold && size >= 18.66);
