@@ -10,18 +10,10 @@ from pathlib import Path
 import pytest
 from playwright.sync_api import expect
 
-from catalogue.load import load_catalogue
+from tests.e2e.site import project_pages
 
 AXE = Path(__file__).resolve().parents[1] / "vendor" / "axe-core" / "axe.min.js"
 CASE = "plane/chaplygin-ball"
-
-
-def project_pages() -> list[str]:
-    """Every page of the explorer (/docs, the vendored Swagger UI, is exempt)."""
-    pages = ["/", "/poincare", "/scenes", "/work-precision", "/errata", "/how-we-check",
-             "/glossary", "/bibliography", "/search"]
-    cases = [f"/case/{c.id}" for c in load_catalogue().cases()]
-    return [*pages, *cases, "/no-such-page"]
 
 
 def settle(page, path):
@@ -106,7 +98,9 @@ def phone(browser):
 
 def test_no_page_scrolls_sideways_on_a_phone(phone, server):
     wide = {}
-    for path in project_pages():
+    paths = project_pages(server)          # derived from the app's routes (tests/e2e/site.py)
+    assert len(paths) > 25, paths
+    for path in paths:
         settle(phone, server + path)
         w = phone.evaluate("() => [document.scrollingElement.scrollWidth, innerWidth]")
         if w[0] > w[1] or w[1] != 390:
@@ -120,7 +114,7 @@ def test_no_page_scrolls_sideways_on_a_phone(phone, server):
 
 def test_axe_finds_no_serious_or_critical_violation(page, server):
     found = {}
-    for path in project_pages():
+    for path in project_pages(server):
         settle(page, server + path)
         page.add_script_tag(path=str(AXE))
         res = page.evaluate("""async () => {
