@@ -29,6 +29,7 @@ from app.core.config import Settings, get_settings
 from app.core.guards import CSP, HeadAsGet, RequestGuard, SecurityHeaders
 from app.core.pool import WorkerPool
 from app.services import jobs
+from app.services.page_cache import PageCache
 from app.services.verdicts import VerdictStore
 
 log = logging.getLogger("rolling")
@@ -110,6 +111,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     app = FastAPI(title="rolling-hierarchy explorer", version=__version__,
                   description=DESCRIPTION, lifespan=lifespan, docs_url=None, redoc_url=None)
     app.state.settings = settings
+    app.state.pages = PageCache()      # server-rendered pages, until their verdicts change
     errors.install(app)
     app.include_router(api_router)
     app.include_router(pages.router)

@@ -11,6 +11,7 @@ from fastapi import Depends, Request
 
 from app.core.config import Settings
 from app.core.pool import WorkerPool
+from app.services.page_cache import PageCache
 from app.services.verdicts import VerdictStore
 
 
@@ -26,6 +27,11 @@ async def get_verdicts(request: Request) -> VerdictStore:
     return request.app.state.verdicts
 
 
+async def get_pages(request: Request) -> PageCache:
+    return request.app.state.pages
+
+
 SettingsDep = Annotated[Settings, Depends(get_settings)]
 PoolDep = Annotated[WorkerPool, Depends(get_pool)]
 VerdictsDep = Annotated[VerdictStore, Depends(get_verdicts)]
+PagesDep = Annotated[PageCache, Depends(get_pages)]

@@ -7,7 +7,7 @@ from pathlib import Path
 from fastapi import APIRouter, HTTPException
 from fastapi.responses import FileResponse, HTMLResponse
 
-from app.api.deps import SettingsDep, VerdictsDep
+from app.api.deps import PagesDep, SettingsDep, VerdictsDep
 from app.core.errors import not_found_page
 from app.services import ssr, views
 from app.services.reader_pages import render_page
@@ -25,27 +25,36 @@ def plotly_js() -> Path:
 
 
 @router.get("/")
-async def home(settings: SettingsDep, verdicts: VerdictsDep) -> HTMLResponse:
+async def home(settings: SettingsDep, verdicts: VerdictsDep, pages: PagesDep) -> HTMLResponse:
     # Tables 1 and 2 in the HTML itself (readable with scripts off); the script redraws
     # them with typeset formulas and verdict marks
-    by_claim = verdicts.by_claim()
-    tables = {tid: views.table(tid, by_claim, verdicts.pending()) for tid in ("plane", "sphere")}
-    template = (settings.static_dir / "index.html").read_text()
-    return HTMLResponse(render_page(ssr.home_page(template, tables), "index.html"))
+    path = settings.static_dir / "index.html"
+
+    def build() -> str:
+        by_claim, pending = verdicts.by_claim(), verdicts.pending()
+        tables = {tid: views.table(tid, by_claim, pending) for tid in ("plane", "sphere")}
+        return render_page(ssr.home_page(path.read_text(), tables), "index.html")
+
+    return HTMLResponse(pages.get("/", pages.stamp(verdicts, path), build))
 
 
 @router.get("/case/{case_id:path}")
-async def case_page(case_id: str, settings: SettingsDep, verdicts: VerdictsDep):
+async def case_page(case_id: str, settings: SettingsDep, verdicts: VerdictsDep,
+                    pages: PagesDep):
     try:
         load_catalogue().case(case_id)
     except KeyError:
         return not_found_page(settings.static_dir, "No such case",
                               f"{case_id!r} names no case of Tables 1 and 2.")
-    # the claims and their verdicts in the HTML itself (readable with scripts off)
-    detail = views.case_detail(case_id, verdicts.by_claim(), verdicts.corrections(),
-                               verdicts.case_state(case_id))
-    template = (settings.static_dir / "case.html").read_text()
-    return HTMLResponse(render_page(ssr.case_page(template, detail), "case.html"))
+    path = settings.static_dir / "case.html"
+
+    def build() -> str:
+        # the claims and their verdicts in the HTML itself (readable with scripts off)
+        detail = views.case_detail(case_id, verdicts.by_claim(), verdicts.corrections(),
+                                   verdicts.case_state(case_id))
+        return render_page(ssr.case_page(path.read_text(), detail), "case.html")
+
+    return HTMLResponse(pages.get(f"/case/{case_id}", pages.stamp(verdicts, path), build))
 
 
 @router.get("/errata")
