@@ -9,21 +9,17 @@ from html import escape
 from pathlib import Path
 
 from app import __version__
-from app.services import howcheck
+from app.services import howcheck, site_shell
 from catalogue.glossary import load_glossary
 from catalogue.load import load_catalogue
 from catalogue.numbering import cite, printed
 
 PAPER_DOI = "10.1070/RD2002v007n02ABEH000204"   # the seed's \doi{...}
 
-NAV_EXTRA = ('<a href="/how-we-check">How we check</a><a href="/glossary">Glossary</a>'
-             '<a href="/bibliography">Bibliography</a><a href="/errata">Errata</a>'
-             '<form class="navsearch" role="search" action="/search" method="get">'
-             '<label class="sr-only" for="nav-q">Search cases and claims</label>'
-             '<input id="nav-q" name="q" type="search" placeholder="Search…" '
-             'autocomplete="off"></form>')
-_NAV_ANCHOR = '<a href="/docs">API</a>'
 _PLACEHOLDER = re.compile(r"\{\{(printed|fig):([^}]+)\}\}")
+# the address of each static page, for the navigation's aria-current
+_PAGE_PATHS = {"errata.html": "/errata", "poincare.html": "/poincare",
+               "scenes.html": "/scenes", "work-precision.html": "/work-precision"}
 
 
 def _number(kind: str, label: str) -> str:
@@ -42,53 +38,26 @@ def static_page(path: Path) -> str:
 def render_page(text: str, name: str) -> str:
     """`static_page` for a page's text already in hand (`name`: its file name)."""
     html = _PLACEHOLDER.sub(lambda m: _number(m[1], m[2]), text)
-    if _NAV_ANCHOR in html:
-        header = html[:html.find(_NAV_ANCHOR)]
-        # a link the page's own navigation already has (e.g. Errata) is not added twice
-        extra = re.sub(r'<a href="([^"]+)">[^<]*</a>',
-                       lambda m: "" if f'href="{m[1]}"' in header else m[0], NAV_EXTRA)
-        html = html.replace(_NAV_ANCHOR, extra + _NAV_ANCHOR, 1)
-    else:   # a page without the API link (404): give it the whole navigation
-        html = html.replace("</a></header>", f"</a><nav aria-label=\"Site\">{_nav()}</nav>"
-                            "</header>", 1)
+    html = site_shell.fill(html, _PAGE_PATHS.get(name))
     if name == "index.html":
         html = html.replace("</main>", cite_box() + "</main>", 1)
-    tips = '<script type="module" src="/static/js/glossary.js"></script>'
-    return html.replace("</head>", tips + "\n</head>", 1)
+    return html
 
 
-def _nav() -> str:
-    return ('<a href="/#table-plane">Table 1 · plane</a><a href="/#table-sphere">Table 2 · '
-            'sphere</a><a href="/poincare">3D point maps</a><a href="/scenes">Scenes</a>'
-            '<a href="/work-precision">Speed &amp; accuracy</a>' + NAV_EXTRA + _NAV_ANCHOR)
-
-
-def layout(title: str, body: str) -> str:
+def layout(title: str, body: str, current: str | None = None) -> str:
     return f"""<!doctype html>
 <html lang="en">
 <head>
-<meta charset="utf-8">
-<meta name="viewport" content="width=device-width, initial-scale=1">
+{site_shell.HEAD}
 <title>{escape(title)} — Rolling hierarchy</title>
-<link rel="icon" href="/static/favicon.svg" type="image/svg+xml">
-<link rel="stylesheet" href="/static/vendor/katex/katex.min.css">
-<link rel="stylesheet" href="/static/css/app.css">
-<script defer src="/static/vendor/katex/katex.min.js"></script>
-<script type="module" src="/static/js/glossary.js"></script>
 </head>
 <body>
-<a class="skip" href="#main">Skip to the content</a>
-<header class="site">
-  <a class="brand" href="/"><span class="logo" aria-hidden="true"></span>Rolling hierarchy</a>
-  <nav aria-label="Site">{_nav()}</nav>
-</header>
+{site_shell.header("Skip to the content", current)}
 <main id="main" class="reader">
 <h1>{escape(title)}</h1>
 {body}
 </main>
-<footer class="site"><p>Rolling hierarchy {escape(__version__)}. Equation and figure numbers
-are those of the printed paper (<a href="/how-we-check#numbers">how they are derived</a>).</p>
-</footer>
+{site_shell.FOOTER}
 </body>
 </html>"""
 
@@ -137,7 +106,7 @@ def how_we_check() -> str:
         "<code>$$…$$</code> and lines marked <code>\\notag</code> do not); figures are numbered "
         "through the paper. The LaTeX labels stay in the data (the API's <code>label</code> "
         "fields) only.</p>")
-    return layout("How we check", "\n".join(parts))
+    return layout("How we check", "\n".join(parts), "/how-we-check")
 
 
 # --- /glossary ----------------------------------------------------------------------------
@@ -162,7 +131,7 @@ def glossary() -> str:
             '<th scope="col">symbol</th><th scope="col">kind</th><th scope="col">meaning</th>'
             '<th scope="col">valid range</th><th scope="col">in the paper</th></tr></thead>'
             f"<tbody>{''.join(rows)}</tbody></table></div>")
-    return layout("Glossary", body)
+    return layout("Glossary", body, "/glossary")
 
 
 # --- /bibliography and the Cite box -------------------------------------------------------
@@ -209,4 +178,4 @@ def bibliography() -> str:
             "tables, and titles are given only where the paper states them (none is "
             "invented).</p>" + cite_box() +
             f'<h2 id="refs">References ({len(refs)})</h2><ol class="refs">{"".join(items)}</ol>')
-    return layout("Bibliography", body)
+    return layout("Bibliography", body, "/bibliography")

@@ -104,4 +104,4 @@ async def search_page(verdicts: VerdictsDep, q: str = Query("", max_length=200),
                  f'<ul class="results" data-testid="case-results">{cases}</ul>'
                  f'<h2 id="claims">Claims ({len(r["claims"])})</h2>{more}'
                  f'<ul class="results" data-testid="claim-results">{claims}</ul>')
-    return reader_pages.layout("Search cases and claims", body_html)
+    return reader_pages.layout("Search cases and claims", body_html, "/search")

@@ -1,0 +1,70 @@
+"""The parts every page of the explorer shares, written once: the common <head> links, the
+site header (skip link, brand, navigation with the current page marked) and the footer.
+
+A static page (app/static/*.html) holds only what is its own, with three placeholders:
+`{{head}}` inside <head>, `{{site-header:Skip to the …}}` at the top of <body> and
+`{{site-footer}}` after </main>; `fill()` puts the shared parts in. The pages built in
+Python (reader_pages.layout) use the same functions.
+"""
+
+from __future__ import annotations
+
+import re
+from html import escape
+
+from app import __version__
+
+HEAD = """<meta charset="utf-8">
+<meta name="viewport" content="width=device-width, initial-scale=1">
+<link rel="icon" href="/static/favicon.svg" type="image/svg+xml">
+<link rel="stylesheet" href="/static/vendor/katex/katex.min.css">
+<link rel="stylesheet" href="/static/css/app.css">
+<link rel="stylesheet" href="/static/css/extras.css">
+<link rel="stylesheet" href="/static/css/reader.css">
+<script defer src="/static/vendor/katex/katex.min.js"></script>
+<script type="module" src="/static/js/glossary.js"></script>"""
+
+# (href, text): the site's navigation, in this order on every page
+NAV = [("/#table-plane", "Table 1 · plane"), ("/#table-sphere", "Table 2 · sphere"),
+       ("/poincare", "3D point maps"), ("/scenes", "Scenes"),
+       ("/work-precision", "Speed &amp; accuracy"), ("/how-we-check", "How we check"),
+       ("/glossary", "Glossary"), ("/bibliography", "Bibliography"), ("/errata", "Errata")]
+SEARCH = ('<form class="navsearch" role="search" action="/search" method="get">'
+          '<label class="sr-only" for="nav-q">Search cases and claims</label>'
+          '<input id="nav-q" name="q" type="search" placeholder="Search…" '
+          'autocomplete="off"></form>')
+
+FOOTER = f"""<footer class="site"><p>Rolling hierarchy {escape(__version__)}. Source:
+A.&thinsp;V.&nbsp;Borisov, I.&thinsp;S.&nbsp;Mamaev, <cite>The rolling motion of a rigid body on a
+plane and a sphere. Hierarchy of dynamics</cite>, Regular and Chaotic Dynamics 7(2), 2002,
+doi:10.1070/RD2002v007n02ABEH000204. Equation and figure numbers are those of the printed paper
+(<a href="/how-we-check#numbers">how they are derived</a>). Conventions: &gamma; is the unit
+normal at the contact point, from the body into the support; r(&gamma;) runs from the centre of
+mass to the contact point.</p></footer>"""
+
+
+def nav(current: str | None = None) -> str:
+    here = ' aria-current="page"'
+    links = "".join(f'<a href="{href}"{here if href == current else ""}>{text}</a>'
+                    for href, text in NAV)
+    return links + SEARCH + '<a href="/docs">API</a>'
+
+
+def header(skip: str, current: str | None = None) -> str:
+    return (f'<a class="skip" href="#main">{escape(skip)}</a>\n<header class="site">\n'
+            '  <a class="brand" href="/"><span class="logo" aria-hidden="true"></span>'
+            f'Rolling hierarchy</a>\n  <nav aria-label="Site">{nav(current)}</nav>\n</header>')
+
+
+_HEADER = re.compile(r"\{\{site-header:([^}]*)\}\}")
+
+
+def fill(html: str, current: str | None = None) -> str:
+    """A static page with the shared head, header and footer put in its placeholders."""
+    for mark in ("{{head}}", "{{site-footer}}"):
+        if mark not in html:
+            raise ValueError(f"a static page lacks {mark}")
+    if not _HEADER.search(html):
+        raise ValueError("a static page lacks {{site-header:…}}")
+    html = html.replace("{{head}}", HEAD, 1).replace("{{site-footer}}", FOOTER, 1)
+    return _HEADER.sub(lambda m: header(m[1], current), html, count=1)
