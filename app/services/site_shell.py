@@ -23,7 +23,7 @@ HEAD = """<meta charset="utf-8">
 <link rel="stylesheet" href="/static/css/reader.css">
 <script defer src="/static/vendor/katex/katex.min.js"></script>
 <script type="module" src="/static/js/glossary.js"></script>
-<script type="module" src="/static/js/scrollables.js"></script>"""
+<script type="module" src="/static/js/page.js"></script>"""
 
 # (href, text): the site's navigation, in this order on every page
 NAV = [("/#table-plane", "Table 1 · plane"), ("/#table-sphere", "Table 2 · sphere"),

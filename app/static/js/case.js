@@ -92,9 +92,12 @@ function showCells() {
     const merged = c.merged.length > 1 ? `<div class="claimrefs">merged cell: spans ${c.merged.length} columns</div>` : "";
     const sub = c.subrow ? `<div>${textHtml(c.subrow.printed)}</div>` : "";
     const cm = c.verdict && c.verdict.marks && c.verdict.marks.length ? c.verdict.marks[0] : null;
+    // the verdict in words; the checking code's message (developer text) behind a toggle
     const prop = cm && cm.mark !== "pending"
-      ? `<div class="claimrefs cellverdict">the cell's property: <strong>${escapeHtml(cm.mark)}</strong> — ` +
-        `${escapeHtml(cm.message)}${cm.rests_on.length ? `; rests on ${cm.rests_on.map(claimLink).join(", ")}` : ""}</div>`
+      ? `<div class="claimrefs cellverdict">the cell's property: <strong>${escapeHtml(VERDICT_TEXT[cm.mark] === "verified" ? "holds" : VERDICT_TEXT[cm.mark])}</strong>` +
+        `${cm.notes.length ? ` (${escapeHtml(cm.notes.join("; "))})` : ""}` +
+        `${cm.rests_on.length ? `; rests on ${cm.rests_on.map(claimLink).join(", ")}` : ""}` +
+        `${cm.message ? `<details class="dev"><summary>Details</summary>${escapeHtml(cm.message)}</details>` : ""}</div>`
       : (cm ? `<div class="claimrefs cellverdict">the cell's property: checking…</div>` : "");
     const shade = c.shade === "full" ? "gray: the invariant exists" : c.shade === "partial"
       ? "partial fill: incomplete set of integrals" : "";
