@@ -38,7 +38,9 @@ def test_a_runs_permalink_reproduces_it(page, server, context):
     page.fill("#f-samples", "151")
     page.fill("#f-s-M1", "0.25")
     page.click("#run")
-    page.locator("body[data-run='1']").wait_for(state="attached")
+    # the run queues behind the rest of the suite's work on a loaded machine: the same
+    # patience as the reopened link below and the map's run
+    page.locator("body[data-run='1']").wait_for(state="attached", timeout=120_000)
     url = page.url
     assert "run=1" in url and "t_end=7.5" in url and "samples=151" in url
     assert page.locator("#permalink").get_attribute("href") == url
