@@ -20,6 +20,11 @@ SCIPY_METHODS = {"scipy-dop853": "DOP853", "scipy-rk45": "RK45", "scipy-lsoda": 
                  "scipy-radau": "Radau"}
 DEFAULT_METHOD = "dop853"
 MAX_SAMPLES = 200_000
+# which vector field the compiled Runge-Kutta kernels run (solvers/integrate/integrator.py):
+# auto: the case's generated field when compiled (solvers/warmup.py), else the general one;
+# generated: the generated field, compiled on first use of a structure (~15 s);
+# general: the general support-function field, the reference
+FIELDS = {"auto": None, "generated": True, "general": False}
 
 
 def compiled_methods() -> tuple[str, ...]:
@@ -110,7 +115,67 @@ def _check_run_options(t_end, method, rtol, atol, samples):
         raise InputError(f"method = {method!r}: unknown; choose one of {', '.join(methods())}")
 
 
-def _integrate(model: Model, y0, t_out, method, rtol, atol, project, max_steps, step=None):
+# --- the thin entry: a repeated run of the same case validates and builds nothing twice ----
+# Bounded memos of validated inputs (InputError is raised before anything is stored, so
+# a bad input is never remembered). Their values are never handed to the caller as they
+# are: the result's params is a copy, and arrays are fresh per run.
+_CACHE_MAX = 512
+_MODELS: dict = {}
+_STATES: dict = {}
+_TIMES: dict = {}
+
+
+def _remember(memo: dict, key, value):
+    if len(memo) >= _CACHE_MAX:
+        memo.clear()
+    memo[key] = value
+    return value
+
+
+def _model(case, params, allow_any_inertia) -> tuple[Model, object]:
+    """build(), memoized on (case, params, allow_any_inertia); returns (model, key)."""
+    try:
+        key = (case, tuple(params.items()) if params else (), bool(allow_any_inertia))
+        model = _MODELS.get(key)
+    except (TypeError, AttributeError):   # unhashable input: build() says what is wrong
+        return build(case, params, allow_any_inertia=allow_any_inertia), None
+    if model is None:
+        model = _remember(_MODELS, key,
+                          build(case, params, allow_any_inertia=allow_any_inertia))
+    return model, key
+
+
+def _initial(model: Model, key, state0) -> np.ndarray:
+    """initial_state(), memoized per model and state (a read-only array)."""
+    try:
+        skey = (key, tuple(state0)) if key is not None else None
+        y0 = _STATES.get(skey) if skey is not None else None
+    except TypeError:
+        skey = y0 = None
+    if y0 is None:
+        y0 = initial_state(model, state0)
+        y0.setflags(write=False)
+        if skey is not None:
+            _remember(_STATES, skey, y0)
+    return y0
+
+
+def _times(t_end, samples) -> np.ndarray:
+    """linspace(0, t_end, samples), checked distinct, memoized (read-only)."""
+    key = (float(t_end), samples)
+    t_out = _TIMES.get(key)
+    if t_out is None:
+        t_out = np.linspace(0.0, float(t_end), samples)
+        if not bool((t_out[1:] > t_out[:-1]).all()):
+            raise InputError(f"t_end = {t_end!r} is too small for {samples} distinct sample "
+                             "times")
+        t_out.setflags(write=False)
+        _remember(_TIMES, key, t_out)
+    return t_out
+
+
+def _integrate(model: Model, y0, t_out, method, rtol, atol, project, max_steps, step=None,
+               generated=None):
     """Compiled kernels, or scipy's solve_ivp on the independent NumPy field."""
     from solvers.integrate.integrator import integrate, solve_ivp_reference
 
@@ -129,44 +194,70 @@ def _integrate(model: Model, y0, t_out, method, rtol, atol, project, max_steps, 
                          max_steps=max_steps)
     return integrate(model.model, model.p, y0, t_out, method=method, rtol=rtol, atol=atol,
                      max_steps=max_steps,
-                     project_codes=model.integral_codes if project else ())
+                     project_codes=model.integral_codes if project else (),
+                     generated=generated)
 
 
 def simulate(case: str, params: dict | None, state0, t_end: float, *,
              method: str = DEFAULT_METHOD, rtol: float = 1e-10, atol: float = 1e-12,
              samples: int = 201, project: bool = False, max_steps: int = 50_000_000,
-             allow_any_inertia: bool = False, step: float | None = None) -> SimulationResult:
-    """Integrate `case` from `state0` over [0, t_end]; see the module docstring."""
-    model = build(case, params, allow_any_inertia=allow_any_inertia)
-    y0 = initial_state(model, state0)
+             allow_any_inertia: bool = False, step: float | None = None,
+             field: str = "auto") -> SimulationResult:
+    """Integrate `case` from `state0` over [0, t_end]; see the module docstring.
+
+    field: the vector field of the compiled Runge-Kutta methods (FIELDS): "auto" the
+    case's generated field when it is compiled, "generated", or "general" (the reference).
+    stats["field"] says which ran."""
+    model, key = _model(case, params, allow_any_inertia)
+    y0 = _initial(model, key, state0)
     if method == "auto":   # the case's default, from the measured work-precision front
         from solvers.integrate.workprecision import default_method
 
         method = default_method(case, DEFAULT_METHOD)
     _check_run_options(t_end, method, rtol, atol, samples)
+    if field not in FIELDS:
+        raise InputError(f"field = {field!r}: choose one of {', '.join(FIELDS)}")
+    if field == "generated" and method not in compiled_methods():
+        raise InputError(f"field = 'generated': only the compiled Runge-Kutta methods "
+                         f"({', '.join(compiled_methods())}) run the generated field; "
+                         f"{method} does not")
     if project and method in SCIPY_METHODS:
         raise InputError("project = true needs a compiled method (projection happens inside "
                          f"the step); {method} is a scipy reference method")
     check_step(method, step, t_end, max_steps, project)
-    t_out = np.linspace(0.0, float(t_end), samples)
-    if not np.all(np.diff(t_out) > 0):
-        raise InputError(f"t_end = {t_end!r} is too small for {samples} distinct sample times")
-    res = _integrate(model, y0, t_out, method, rtol, atol, project, max_steps, step)
+    t_out = _times(t_end, samples)
+    res = _integrate(model, y0, t_out, method, rtol, atol, project, max_steps, step,
+                     FIELDS[field])
     status = "ok" if res.success else ("budget" if res.budget_exhausted else "singular")
     message = "" if res.success else res.message
-    stats = {"steps": res.steps, "rejected": res.rejected, "rhs_calls": res.rhs_calls,
-             "wall_s": res.wall_s, "method": method}
     t, Y = res.t, res.y[:len(res.t)]
-    inv = {}
-    for name, code in zip(model.integral_names, model.integral_codes, strict=True):
-        out = np.empty(len(t))
-        integral_series(code, model.model, np.ascontiguousarray(Y), model.p, out)
-        inv[name] = out
-    stats.update(rtol=rtol, atol=atol, projected=bool(project), samples=len(t))
+    inv = _invariants(model, Y)
+    stats = {"steps": res.steps, "rejected": res.rejected, "rhs_calls": res.rhs_calls,
+             "wall_s": res.wall_s, "method": method,
+             "field": "numpy" if method in SCIPY_METHODS else res.vector_field,
+             "rtol": rtol, "atol": atol, "projected": bool(project), "samples": len(t)}
     if step is not None:   # the equal steps the kernel took to land on the samples
         stats["step"] = res.t_stop / res.steps if res.steps else step
         stats["step_requested"] = step
-    result = SimulationResult(case, model.params, model.state_labels, np.asarray(t),
-                              np.asarray(Y), inv, stats, status, message)
-    stats["drift"] = {name: result.drift(name) for name in inv}
-    return result
+    stats["drift"] = {name: _drift(v) for name, v in inv.items()}
+    return SimulationResult(case, dict(model.params), model.state_labels, np.asarray(t),
+                            np.asarray(Y), inv, stats, status, message)
+
+
+def _invariants(model: Model, Y) -> dict[str, np.ndarray]:
+    """Every integral the case carries along the rows of Y (fresh arrays)."""
+    Y = np.ascontiguousarray(Y)
+    inv = {}
+    for name, code in zip(model.integral_names, model.integral_codes, strict=True):
+        out = np.empty(len(Y))
+        integral_series(code, model.model, Y, model.p, out)
+        inv[name] = out
+    return inv
+
+
+def _drift(v: np.ndarray) -> float:
+    """max |F(t) - F(0)| / max(|F(0)|, 1), as SimulationResult.drift."""
+    if not len(v):
+        return 0.0
+    v0 = float(v[0])
+    return max(float(v.max()) - v0, v0 - float(v.min())) / max(abs(v0), 1.0)
