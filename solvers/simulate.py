@@ -9,11 +9,13 @@ there, with status "singular" and a message saying where: never NaN as a result.
 
 import math
 from dataclasses import dataclass, field
+from functools import cache
 
 import numpy as np
 
 from solvers.errors import InputError
-from solvers.kernels.integrals import integral_series
+from solvers.integrate.integrator import integrate, output_times, solve_ivp_reference
+from solvers.kernels.integrals import integral_table
 from solvers.models.cases import Model, build, initial_state
 
 SCIPY_METHODS = {"scipy-dop853": "DOP853", "scipy-rk45": "RK45", "scipy-lsoda": "LSODA",
@@ -27,18 +29,21 @@ MAX_SAMPLES = 200_000
 FIELDS = {"auto": None, "generated": True, "general": False}
 
 
+@cache
 def compiled_methods() -> tuple[str, ...]:
     """The adaptive explicit Runge-Kutta methods (solvers/tableaux)."""
     from solvers.integrate.tableaux import TABLEAUX
     return tuple(TABLEAUX)
 
 
+@cache
 def symmetric_methods() -> tuple[str, ...]:
     """The symmetric fixed-step Gauss collocation methods (they take `step`, not rtol)."""
     from solvers.integrate.collocation import METHODS
     return tuple(METHODS)
 
 
+@cache
 def methods() -> tuple[str, ...]:
     return (*compiled_methods(), *symmetric_methods(), *SCIPY_METHODS)
 
@@ -122,7 +127,6 @@ def _check_run_options(t_end, method, rtol, atol, samples):
 _CACHE_MAX = 512
 _MODELS: dict = {}
 _STATES: dict = {}
-_TIMES: dict = {}
 
 
 def _remember(memo: dict, key, value):
@@ -132,17 +136,50 @@ def _remember(memo: dict, key, value):
     return value
 
 
-def _model(case, params, allow_any_inertia) -> tuple[Model, object]:
-    """build(), memoized on (case, params, allow_any_inertia); returns (model, key)."""
+_OPTIONS: dict = {}
+
+
+def _check_options(t_end, method, rtol, atol, samples, project, max_steps, step, field):
+    """Every run option checked (InputError), memoized on the options and their types
+    (2 and 2.0 are equal keys but not equally valid sample counts)."""
+    opts = (t_end, method, rtol, atol, samples, project, max_steps, step, field)
+    try:
+        key = (opts, tuple(map(type, opts)))
+        if key in _OPTIONS:
+            return
+    except TypeError:
+        key = None
+    _check_run_options(t_end, method, rtol, atol, samples)
+    if field not in FIELDS:
+        raise InputError(f"field = {field!r}: choose one of {', '.join(FIELDS)}")
+    if field == "generated" and method not in compiled_methods():
+        raise InputError(f"field = 'generated': only the compiled Runge-Kutta methods "
+                         f"({', '.join(compiled_methods())}) run the generated field; "
+                         f"{method} does not")
+    if project and method in SCIPY_METHODS:
+        raise InputError("project = true needs a compiled method (projection happens inside "
+                         f"the step); {method} is a scipy reference method")
+    check_step(method, step, t_end, max_steps, project)
+    if key is not None:
+        _remember(_OPTIONS, key, True)
+
+
+def _built(case, params, allow_any_inertia):
+    model = build(case, params, allow_any_inertia=allow_any_inertia)
+    return model, np.array(model.integral_codes, dtype=np.int64)
+
+
+def _model(case, params, allow_any_inertia) -> tuple[Model, np.ndarray, object]:
+    """build(), memoized on (case, params, allow_any_inertia): (model, its integral codes
+    as the kernel's array, the memo key)."""
     try:
         key = (case, tuple(params.items()) if params else (), bool(allow_any_inertia))
-        model = _MODELS.get(key)
+        hit = _MODELS.get(key)
     except (TypeError, AttributeError):   # unhashable input: build() says what is wrong
-        return build(case, params, allow_any_inertia=allow_any_inertia), None
-    if model is None:
-        model = _remember(_MODELS, key,
-                          build(case, params, allow_any_inertia=allow_any_inertia))
-    return model, key
+        return (*_built(case, params, allow_any_inertia), None)
+    if hit is None:
+        hit = _remember(_MODELS, key, _built(case, params, allow_any_inertia))
+    return (*hit, key)
 
 
 def _initial(model: Model, key, state0) -> np.ndarray:
@@ -161,24 +198,17 @@ def _initial(model: Model, key, state0) -> np.ndarray:
 
 
 def _times(t_end, samples) -> np.ndarray:
-    """linspace(0, t_end, samples), checked distinct, memoized (read-only)."""
-    key = (float(t_end), samples)
-    t_out = _TIMES.get(key)
+    """linspace(0, t_end, samples), checked distinct once (integrator.output_times)."""
+    t_out = output_times(t_end, samples)
     if t_out is None:
-        t_out = np.linspace(0.0, float(t_end), samples)
-        if not bool((t_out[1:] > t_out[:-1]).all()):
-            raise InputError(f"t_end = {t_end!r} is too small for {samples} distinct sample "
-                             "times")
-        t_out.setflags(write=False)
-        _remember(_TIMES, key, t_out)
+        raise InputError(f"t_end = {t_end!r} is too small for {samples} distinct sample "
+                         "times")
     return t_out
 
 
 def _integrate(model: Model, y0, t_out, method, rtol, atol, project, max_steps, step=None,
                generated=None):
     """Compiled kernels, or scipy's solve_ivp on the independent NumPy field."""
-    from solvers.integrate.integrator import integrate, solve_ivp_reference
-
     if method in SCIPY_METHODS:
         from solvers.models.reference import field as ref_field
 
@@ -208,30 +238,20 @@ def simulate(case: str, params: dict | None, state0, t_end: float, *,
     field: the vector field of the compiled Runge-Kutta methods (FIELDS): "auto" the
     case's generated field when it is compiled, "generated", or "general" (the reference).
     stats["field"] says which ran."""
-    model, key = _model(case, params, allow_any_inertia)
+    model, codes, key = _model(case, params, allow_any_inertia)
     y0 = _initial(model, key, state0)
     if method == "auto":   # the case's default, from the measured work-precision front
         from solvers.integrate.workprecision import default_method
 
         method = default_method(case, DEFAULT_METHOD)
-    _check_run_options(t_end, method, rtol, atol, samples)
-    if field not in FIELDS:
-        raise InputError(f"field = {field!r}: choose one of {', '.join(FIELDS)}")
-    if field == "generated" and method not in compiled_methods():
-        raise InputError(f"field = 'generated': only the compiled Runge-Kutta methods "
-                         f"({', '.join(compiled_methods())}) run the generated field; "
-                         f"{method} does not")
-    if project and method in SCIPY_METHODS:
-        raise InputError("project = true needs a compiled method (projection happens inside "
-                         f"the step); {method} is a scipy reference method")
-    check_step(method, step, t_end, max_steps, project)
+    _check_options(t_end, method, rtol, atol, samples, project, max_steps, step, field)
     t_out = _times(t_end, samples)
     res = _integrate(model, y0, t_out, method, rtol, atol, project, max_steps, step,
                      FIELDS[field])
     status = "ok" if res.success else ("budget" if res.budget_exhausted else "singular")
     message = "" if res.success else res.message
     t, Y = res.t, res.y[:len(res.t)]
-    inv = _invariants(model, Y)
+    inv, drift = _invariants(model, codes, Y)
     stats = {"steps": res.steps, "rejected": res.rejected, "rhs_calls": res.rhs_calls,
              "wall_s": res.wall_s, "method": method,
              "field": "numpy" if method in SCIPY_METHODS else res.vector_field,
@@ -239,25 +259,16 @@ def simulate(case: str, params: dict | None, state0, t_end: float, *,
     if step is not None:   # the equal steps the kernel took to land on the samples
         stats["step"] = res.t_stop / res.steps if res.steps else step
         stats["step_requested"] = step
-    stats["drift"] = {name: _drift(v) for name, v in inv.items()}
+    stats["drift"] = drift
     return SimulationResult(case, dict(model.params), model.state_labels, np.asarray(t),
                             np.asarray(Y), inv, stats, status, message)
 
 
-def _invariants(model: Model, Y) -> dict[str, np.ndarray]:
-    """Every integral the case carries along the rows of Y (fresh arrays)."""
-    Y = np.ascontiguousarray(Y)
-    inv = {}
-    for name, code in zip(model.integral_names, model.integral_codes, strict=True):
-        out = np.empty(len(Y))
-        integral_series(code, model.model, Y, model.p, out)
-        inv[name] = out
-    return inv
-
-
-def _drift(v: np.ndarray) -> float:
-    """max |F(t) - F(0)| / max(|F(0)|, 1), as SimulationResult.drift."""
-    if not len(v):
-        return 0.0
-    v0 = float(v[0])
-    return max(float(v.max()) - v0, v0 - float(v.min())) / max(abs(v0), 1.0)
+def _invariants(model: Model, codes: np.ndarray, Y) -> tuple[dict, dict]:
+    """Every integral the case carries along the rows of Y (rows of one fresh array) and
+    its drift max |F(t) - F(0)| / max(|F(0)|, 1) (SimulationResult.drift), in one call."""
+    out = np.empty((codes.size, len(Y)))
+    drift = np.empty(codes.size)
+    integral_table(codes, model.model, np.ascontiguousarray(Y), model.p, out, drift)
+    names = model.integral_names
+    return dict(zip(names, out, strict=True)), dict(zip(names, drift.tolist(), strict=True))

@@ -54,7 +54,7 @@ class Section:
         return c
 
 
-@dataclass(frozen=True)
+@dataclass(slots=True)   # not frozen: a frozen init costs ~3 us per call (thin entry)
 class IntegrationResult:
     t: np.ndarray                 # output times reached (a prefix of t_out)
     y: np.ndarray                 # (len(t), n) states there
@@ -136,6 +136,52 @@ def _checked_times(t_out) -> np.ndarray:
     return t
 
 
+# output times validated once: id -> (the read-only array handed out, a private writable
+# twin for the kernel, which only reads it); the strong reference keeps the id unique
+_TRUSTED_TIMES: dict = {}
+
+
+def output_times(t_end: float, samples: int) -> np.ndarray | None:
+    """linspace(0, t_end, samples) as a read-only array that integrate() trusts without
+    checking it again, memoized; None if the samples are not distinct."""
+    key = (float(t_end), int(samples))
+    hit = _TRUSTED_TIMES.get(key)
+    if hit is not None:
+        return hit
+    t = np.linspace(0.0, float(t_end), int(samples))
+    if not (math.isfinite(t[-1]) and bool((t[1:] > t[:-1]).all())):
+        return None
+    twin = t.copy()
+    t.setflags(write=False)
+    if len(_TRUSTED_TIMES) > 2 * _CACHE_MAX:
+        _TRUSTED_TIMES.clear()
+    _TRUSTED_TIMES[key] = t
+    _TRUSTED_TIMES[id(t)] = (t, twin)
+    return t
+
+
+def _times(t_out) -> np.ndarray:
+    hit = _TRUSTED_TIMES.get(id(t_out))
+    if hit is not None and hit[0] is t_out:
+        return hit[1]
+    return _checked_times(t_out)
+
+
+# the option vectors of a call, memoized on their values (the kernel only reads them)
+_OPTION_ARRAYS: dict = {}
+
+
+def _option_arrays(iopt: tuple, fopt: tuple):
+    key = (iopt, fopt)
+    hit = _OPTION_ARRAYS.get(key)
+    if hit is None:
+        if len(_OPTION_ARRAYS) > _CACHE_MAX:
+            _OPTION_ARRAYS.clear()
+        hit = _OPTION_ARRAYS[key] = (np.array(iopt, dtype=np.int64),
+                                     np.array(fopt, dtype=np.float64))
+    return hit
+
+
 # generated integrators: (model, p bytes) -> module, and whether a structure's compiled
 # code is ready (True), or not (the monotonic time until which that answer stands)
 _GEN_MODULES: dict = {}
@@ -178,13 +224,16 @@ def generated_ready(model: int, p, method: str = "dop853") -> bool:
     if model not in generate.GENERATED_MODELS:
         return False
     p = np.asarray(p, dtype=np.float64)
-    key = (int(model), p.tobytes(), method)
+    return _ready((int(model), p.tobytes(), method), model, p)
+
+
+def _ready(key, model, p) -> bool:
     ready = _GEN_READY.get(key)
     if ready is True:
         return True
     if ready is not None and time.monotonic() < ready:
         return False
-    ok = _ready_marker(model, p, method).exists()
+    ok = _ready_marker(model, p, key[2]).exists()
     if ok:
         ok = _numba_cache_holds(_generated_module(model, p, key[:2]))
     if len(_GEN_READY) > _CACHE_MAX:
@@ -194,12 +243,11 @@ def generated_ready(model: int, p, method: str = "dop853") -> bool:
 
 
 def _mark_ready(model: int, p, key) -> None:
-    if _GEN_READY.get(key) is not True:
-        try:
-            _ready_marker(model, p, key[2]).touch()
-        except OSError:     # a read-only cache: this process still knows
-            pass
-        _GEN_READY[key] = True
+    try:
+        _ready_marker(model, p, key[2]).touch()
+    except OSError:     # a read-only cache: this process still knows
+        pass
+    _GEN_READY[key] = True
 
 
 def integrate(model, p, y0, t_out, *, method="dop853", rtol=1e-10, atol=1e-12,
@@ -224,7 +272,7 @@ def integrate(model, p, y0, t_out, *, method="dop853", rtol=1e-10, atol=1e-12,
     on first use of a structure; False: the general support-function field, the reference.
     The result's `vector_field` says which ran.
     """
-    t_out = _checked_times(t_out)
+    t_out = _times(t_out)
     y0 = _f64(y0)
     p = np.array(p, dtype=np.float64)
     n = y0.size
@@ -259,12 +307,15 @@ def integrate(model, p, y0, t_out, *, method="dop853", rtol=1e-10, atol=1e-12,
     else:
         sec_code, sec_dir = section.code, int(np.sign(section.direction))
         n_cross, sec_coef = max(1, int(max_crossings)), section.packed(n)
-    iopt = np.array((max_steps, int(compensated), project_every, sec_code, sec_dir, n_cross,
-                     int(fixed)), dtype=np.int64)
-    fopt = np.array((rtol, h_fixed if fixed else control.h0, control.h_max, control.safety,
-                     control.fac_min, control.fac_max, control.beta), dtype=np.float64)
+    iopt, fopt = _option_arrays(
+        (int(max_steps), int(compensated), int(project_every), sec_code, sec_dir, n_cross,
+         int(fixed)),
+        (float(rtol), float(h_fixed if fixed else control.h0), float(control.h_max),
+         float(control.safety), float(control.fac_min), float(control.fac_max),
+         float(control.beta)))
     if isinstance(atol, float | int):
-        atol_v = np.full(n, float(atol))
+        atol_v = np.empty(n)
+        atol_v[:] = atol
     else:
         atol_v = np.array(np.broadcast_to(np.asarray(atol, dtype=np.float64), (n,)))
     # fresh outputs on every call: Y and y_stop are handed to the caller
@@ -273,18 +324,18 @@ def integrate(model, p, y0, t_out, *, method="dop853", rtol=1e-10, atol=1e-12,
     cross_y = np.empty((n_cross, n))
     y_stop = np.empty(n)
     stats = np.zeros(5, dtype=np.int64)
-    kern, used = rk.rk_integrate, "general"
-    gen_key = None
+    kern, used, fresh = rk.rk_integrate, "general", None
     if generated is not False and model in generate.GENERATED_MODELS:
-        if generated or generated_ready(model, p, method):
-            gen_key = (int(model), p.tobytes(), method)
-            kern, used = _generated_module(model, p, gen_key[:2]).rk_integrate, "generated"
+        key = (int(model), p.tobytes(), method)
+        if generated or _ready(key, model, p):
+            kern, used = _generated_module(model, p, key[:2]).rk_integrate, "generated"
+            fresh = None if _GEN_READY.get(key) is True else key
     t0 = time.perf_counter()
     status, t_stop = kern(int(model), p, y0, t_out, A, c, b, E, P, meth, iopt, fopt,
                           atol_v, codes, vals, sec_coef, Y, cross_t, cross_y, y_stop, stats)
     wall = time.perf_counter() - t0
-    if gen_key is not None:
-        _mark_ready(model, p, gen_key)
+    if fresh is not None:   # compiled now: later calls (and processes) may use it
+        _mark_ready(model, p, fresh)
     m, k = stats[rk.S_SAMPLES], stats[rk.S_CROSSINGS]
     message = status_message(status)
     if status != L.OK:
