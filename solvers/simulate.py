@@ -69,16 +69,19 @@ class SimulationResult:
         v = self.invariants[name]
         return float(np.max(np.abs(v - v[0])) / max(abs(v[0]), 1.0)) if len(v) else 0.0
 
-    def to_json(self) -> dict:
+    def to_json(self, arrays: bool = False) -> dict:
+        """Plain data for JSON; arrays=True leaves t, state and the invariants as numpy
+        arrays (for a serializer that writes them directly, such as orjson)."""
+        conv = (lambda a: a) if arrays else (lambda a: a.tolist())
         return {
             "case": self.case,
             "params": self.params,
             "status": self.status,
             "message": self.message,
             "state_labels": list(self.state_labels),
-            "t": self.t.tolist(),
-            "state": self.state.tolist(),
-            "invariants": {k: v.tolist() for k, v in self.invariants.items()},
+            "t": conv(self.t),
+            "state": conv(self.state),
+            "invariants": {k: conv(v) for k, v in self.invariants.items()},
             "stats": self.stats,
         }
 
