@@ -115,6 +115,9 @@ def test_field_general_and_bad_field_over_http(url):
         "generated", "general")
     bad = post(url, body={**BALL, "samples": 5, "field": "generated"})
     assert bad.status_code == 422 and "field" in bad.json()["detail"]
+    scene = httpx.post(f"{url}/api/scene", json={**BALL, "samples": 5, "field": "general"},
+                       timeout=60)
+    assert scene.status_code == 422 and "field" in scene.json()["detail"]
 
 
 def test_negotiation_rules():

@@ -87,8 +87,8 @@ def _filename(case: str, ext: str) -> str:
 
 _RUN_CONTENT = {
     "application/json": {},   # the SimulateResponse schema (response_model)
-    payloads.ARROW: {"schema": {"type": "string", "format": "binary"}, "example": "",
-                     "x-description": "Arrow IPC stream, one record batch"},
+    payloads.ARROW: {"schema": {"type": "string", "format": "binary",
+                                "description": "Arrow IPC stream, one record batch"}},
     payloads.CSV: {"schema": {"type": "string"}},
 }
 _RUN_DESCRIPTION = (
