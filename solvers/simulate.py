@@ -5,6 +5,12 @@ in-house Runge-Kutta kernels or, for `scipy-*` methods, with scipy's solve_ivp o
 independent NumPy field of solvers/models/reference.py, and reports the drift of every
 invariant the case carries. A run that meets a singularity returns what it computed up to
 there, with status "singular" and a message saying where: never NaN as a result.
+
+The compiled kernels run the case's generated field (solvers/kernels/generate.py) where it
+is compiled, else the general one (`field`, FIELDS). A repeated run of the same case is
+thin (issue 12): the model, the initial state, the options and the output times are
+validated once and memoized, and the invariants and their drift come from one compiled
+call (bench/entry_overhead.py).
 """
 
 import math
