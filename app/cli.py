@@ -104,6 +104,10 @@ def simulate(
                                           "parameters and state (--set overrides)")] = False,
     allow_any_inertia: Annotated[bool, typer.Option("--allow-any-inertia", help="accept "
                                  "moments violating the triangle inequality")] = False,
+    field: Annotated[str, typer.Option(help="vector field of the compiled Runge-Kutta "
+                                       "methods: auto (the case's generated field when "
+                                       "compiled), generated (compiles a new structure, "
+                                       "~15 s once), general (the reference)")] = "auto",
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
     timeout: TimeoutOpt = None,
 ):
@@ -125,7 +129,7 @@ def simulate(
         with _timeout(timeout):
             res = sim.simulate(case, params, y0, t_end, method=method, rtol=rtol, atol=atol,
                                samples=samples, project=project,
-                               allow_any_inertia=allow_any_inertia, step=step)
+                               allow_any_inertia=allow_any_inertia, step=step, field=field)
     except InputError as e:
         _fail(str(e))
     if as_json:
@@ -146,7 +150,8 @@ def _summary(res):
     con.print(f"[bold]{res.case}[/bold]  " + " ".join(f"{k}={v:g}" for k, v in res.params.items()))
     con.print(f"status: {res.status}" + (f"  {res.message}" if not res.ok else ""))
     knob = f"step {s['step']:g}" if "step" in s else f"rtol {s['rtol']:g}  atol {s['atol']:g}"
-    con.print(f"method {s['method']}  {knob}  steps {s['steps']}"
+    con.print(f"method {s['method']} ({s.get('field', 'general')} field)  {knob}  "
+              f"steps {s['steps']}"
               f"  rhs calls {s['rhs_calls']}  wall {s['wall_s'] * 1e3:.1f} ms"
               f"{'  (projected)' if s['projected'] else ''}")
     if len(res.t):

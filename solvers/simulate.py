@@ -5,35 +5,51 @@ in-house Runge-Kutta kernels or, for `scipy-*` methods, with scipy's solve_ivp o
 independent NumPy field of solvers/models/reference.py, and reports the drift of every
 invariant the case carries. A run that meets a singularity returns what it computed up to
 there, with status "singular" and a message saying where: never NaN as a result.
+
+The compiled kernels run the case's generated field (solvers/kernels/generate.py) where it
+is compiled, else the general one (`field`, FIELDS). A repeated run of the same case is
+thin (issue 12): the model, the initial state, the options and the output times are
+validated once and memoized, and the invariants and their drift come from one compiled
+call (bench/entry_overhead.py).
 """
 
 import math
 from dataclasses import dataclass, field
+from functools import cache
 
 import numpy as np
 
 from solvers.errors import InputError
-from solvers.kernels.integrals import integral_series
+from solvers.integrate.integrator import integrate, output_times, solve_ivp_reference
+from solvers.kernels.integrals import integral_table
 from solvers.models.cases import Model, build, initial_state
 
 SCIPY_METHODS = {"scipy-dop853": "DOP853", "scipy-rk45": "RK45", "scipy-lsoda": "LSODA",
                  "scipy-radau": "Radau"}
 DEFAULT_METHOD = "dop853"
 MAX_SAMPLES = 200_000
+# which vector field the compiled Runge-Kutta kernels run (solvers/integrate/integrator.py):
+# auto: the case's generated field when compiled (solvers/warmup.py), else the general one;
+# generated: the generated field, compiled on first use of a structure (~15 s);
+# general: the general support-function field, the reference
+FIELDS = {"auto": None, "generated": True, "general": False}
 
 
+@cache
 def compiled_methods() -> tuple[str, ...]:
     """The adaptive explicit Runge-Kutta methods (solvers/tableaux)."""
     from solvers.integrate.tableaux import TABLEAUX
     return tuple(TABLEAUX)
 
 
+@cache
 def symmetric_methods() -> tuple[str, ...]:
     """The symmetric fixed-step Gauss collocation methods (they take `step`, not rtol)."""
     from solvers.integrate.collocation import METHODS
     return tuple(METHODS)
 
 
+@cache
 def methods() -> tuple[str, ...]:
     return (*compiled_methods(), *symmetric_methods(), *SCIPY_METHODS)
 
@@ -59,16 +75,19 @@ class SimulationResult:
         v = self.invariants[name]
         return float(np.max(np.abs(v - v[0])) / max(abs(v[0]), 1.0)) if len(v) else 0.0
 
-    def to_json(self) -> dict:
+    def to_json(self, arrays: bool = False) -> dict:
+        """Plain data for JSON; arrays=True leaves t, state and the invariants as numpy
+        arrays (for a serializer that writes them directly, such as orjson)."""
+        conv = (lambda a: a) if arrays else (lambda a: a.tolist())
         return {
             "case": self.case,
             "params": self.params,
             "status": self.status,
             "message": self.message,
             "state_labels": list(self.state_labels),
-            "t": self.t.tolist(),
-            "state": self.state.tolist(),
-            "invariants": {k: v.tolist() for k, v in self.invariants.items()},
+            "t": conv(self.t),
+            "state": conv(self.state),
+            "invariants": {k: conv(v) for k, v in self.invariants.items()},
             "stats": self.stats,
         }
 
@@ -110,10 +129,95 @@ def _check_run_options(t_end, method, rtol, atol, samples):
         raise InputError(f"method = {method!r}: unknown; choose one of {', '.join(methods())}")
 
 
-def _integrate(model: Model, y0, t_out, method, rtol, atol, project, max_steps, step=None):
-    """Compiled kernels, or scipy's solve_ivp on the independent NumPy field."""
-    from solvers.integrate.integrator import integrate, solve_ivp_reference
+# --- the thin entry: a repeated run of the same case validates and builds nothing twice ----
+# Bounded memos of validated inputs (InputError is raised before anything is stored, so
+# a bad input is never remembered). Their values are never handed to the caller as they
+# are: the result's params is a copy, and arrays are fresh per run.
+_CACHE_MAX = 512
+_MODELS: dict = {}
+_STATES: dict = {}
 
+
+def _remember(memo: dict, key, value):
+    if len(memo) >= _CACHE_MAX:
+        memo.clear()
+    memo[key] = value
+    return value
+
+
+_OPTIONS: dict = {}
+
+
+def _check_options(t_end, method, rtol, atol, samples, project, max_steps, step, field):
+    """Every run option checked (InputError), memoized on the options and their types
+    (2 and 2.0 are equal keys but not equally valid sample counts)."""
+    opts = (t_end, method, rtol, atol, samples, project, max_steps, step, field)
+    try:
+        key = (opts, tuple(map(type, opts)))
+        if key in _OPTIONS:
+            return
+    except TypeError:
+        key = None
+    _check_run_options(t_end, method, rtol, atol, samples)
+    if field not in FIELDS:
+        raise InputError(f"field = {field!r}: choose one of {', '.join(FIELDS)}")
+    if field == "generated" and method not in compiled_methods():
+        raise InputError(f"field = 'generated': only the compiled Runge-Kutta methods "
+                         f"({', '.join(compiled_methods())}) run the generated field; "
+                         f"{method} does not")
+    if project and method in SCIPY_METHODS:
+        raise InputError("project = true needs a compiled method (projection happens inside "
+                         f"the step); {method} is a scipy reference method")
+    check_step(method, step, t_end, max_steps, project)
+    if key is not None:
+        _remember(_OPTIONS, key, True)
+
+
+def _built(case, params, allow_any_inertia):
+    model = build(case, params, allow_any_inertia=allow_any_inertia)
+    return model, np.array(model.integral_codes, dtype=np.int64)
+
+
+def _model(case, params, allow_any_inertia) -> tuple[Model, np.ndarray, object]:
+    """build(), memoized on (case, params, allow_any_inertia): (model, its integral codes
+    as the kernel's array, the memo key)."""
+    try:
+        key = (case, tuple(params.items()) if params else (), bool(allow_any_inertia))
+        hit = _MODELS.get(key)
+    except (TypeError, AttributeError):   # unhashable input: build() says what is wrong
+        return (*_built(case, params, allow_any_inertia), None)
+    if hit is None:
+        hit = _remember(_MODELS, key, _built(case, params, allow_any_inertia))
+    return (*hit, key)
+
+
+def _initial(model: Model, key, state0) -> np.ndarray:
+    """initial_state(), memoized per model and state (a read-only array)."""
+    try:
+        skey = (key, tuple(state0)) if key is not None else None
+        y0 = _STATES.get(skey) if skey is not None else None
+    except TypeError:
+        skey = y0 = None
+    if y0 is None:
+        y0 = initial_state(model, state0)
+        y0.setflags(write=False)
+        if skey is not None:
+            _remember(_STATES, skey, y0)
+    return y0
+
+
+def _times(t_end, samples) -> np.ndarray:
+    """linspace(0, t_end, samples), checked distinct once (integrator.output_times)."""
+    t_out = output_times(t_end, samples)
+    if t_out is None:
+        raise InputError(f"t_end = {t_end!r} is too small for {samples} distinct sample "
+                         "times")
+    return t_out
+
+
+def _integrate(model: Model, y0, t_out, method, rtol, atol, project, max_steps, step=None,
+               generated=None):
+    """Compiled kernels, or scipy's solve_ivp on the independent NumPy field."""
     if method in SCIPY_METHODS:
         from solvers.models.reference import field as ref_field
 
@@ -129,44 +233,51 @@ def _integrate(model: Model, y0, t_out, method, rtol, atol, project, max_steps, 
                          max_steps=max_steps)
     return integrate(model.model, model.p, y0, t_out, method=method, rtol=rtol, atol=atol,
                      max_steps=max_steps,
-                     project_codes=model.integral_codes if project else ())
+                     project_codes=model.integral_codes if project else (),
+                     generated=generated)
 
 
 def simulate(case: str, params: dict | None, state0, t_end: float, *,
              method: str = DEFAULT_METHOD, rtol: float = 1e-10, atol: float = 1e-12,
              samples: int = 201, project: bool = False, max_steps: int = 50_000_000,
-             allow_any_inertia: bool = False, step: float | None = None) -> SimulationResult:
-    """Integrate `case` from `state0` over [0, t_end]; see the module docstring."""
-    model = build(case, params, allow_any_inertia=allow_any_inertia)
-    y0 = initial_state(model, state0)
+             allow_any_inertia: bool = False, step: float | None = None,
+             field: str = "auto") -> SimulationResult:
+    """Integrate `case` from `state0` over [0, t_end]; see the module docstring.
+
+    field: the vector field of the compiled Runge-Kutta methods (FIELDS): "auto" the
+    case's generated field when it is compiled, "generated", or "general" (the reference).
+    stats["field"] says which ran."""
+    model, codes, key = _model(case, params, allow_any_inertia)
+    y0 = _initial(model, key, state0)
     if method == "auto":   # the case's default, from the measured work-precision front
         from solvers.integrate.workprecision import default_method
 
         method = default_method(case, DEFAULT_METHOD)
-    _check_run_options(t_end, method, rtol, atol, samples)
-    if project and method in SCIPY_METHODS:
-        raise InputError("project = true needs a compiled method (projection happens inside "
-                         f"the step); {method} is a scipy reference method")
-    check_step(method, step, t_end, max_steps, project)
-    t_out = np.linspace(0.0, float(t_end), samples)
-    if not np.all(np.diff(t_out) > 0):
-        raise InputError(f"t_end = {t_end!r} is too small for {samples} distinct sample times")
-    res = _integrate(model, y0, t_out, method, rtol, atol, project, max_steps, step)
+    _check_options(t_end, method, rtol, atol, samples, project, max_steps, step, field)
+    t_out = _times(t_end, samples)
+    res = _integrate(model, y0, t_out, method, rtol, atol, project, max_steps, step,
+                     FIELDS[field])
     status = "ok" if res.success else ("budget" if res.budget_exhausted else "singular")
     message = "" if res.success else res.message
-    stats = {"steps": res.steps, "rejected": res.rejected, "rhs_calls": res.rhs_calls,
-             "wall_s": res.wall_s, "method": method}
     t, Y = res.t, res.y[:len(res.t)]
-    inv = {}
-    for name, code in zip(model.integral_names, model.integral_codes, strict=True):
-        out = np.empty(len(t))
-        integral_series(code, model.model, np.ascontiguousarray(Y), model.p, out)
-        inv[name] = out
-    stats.update(rtol=rtol, atol=atol, projected=bool(project), samples=len(t))
+    inv, drift = _invariants(model, codes, Y)
+    stats = {"steps": res.steps, "rejected": res.rejected, "rhs_calls": res.rhs_calls,
+             "wall_s": res.wall_s, "method": method,
+             "field": "numpy" if method in SCIPY_METHODS else res.vector_field,
+             "rtol": rtol, "atol": atol, "projected": bool(project), "samples": len(t)}
     if step is not None:   # the equal steps the kernel took to land on the samples
         stats["step"] = res.t_stop / res.steps if res.steps else step
         stats["step_requested"] = step
-    result = SimulationResult(case, model.params, model.state_labels, np.asarray(t),
-                              np.asarray(Y), inv, stats, status, message)
-    stats["drift"] = {name: result.drift(name) for name in inv}
-    return result
+    stats["drift"] = drift
+    return SimulationResult(case, dict(model.params), model.state_labels, np.asarray(t),
+                            np.asarray(Y), inv, stats, status, message)
+
+
+def _invariants(model: Model, codes: np.ndarray, Y) -> tuple[dict, dict]:
+    """Every integral the case carries along the rows of Y (rows of one fresh array) and
+    its drift max |F(t) - F(0)| / max(|F(0)|, 1) (SimulationResult.drift), in one call."""
+    out = np.empty((codes.size, len(Y)))
+    drift = np.empty(codes.size)
+    integral_table(codes, model.model, np.ascontiguousarray(Y), model.p, out, drift)
+    names = model.integral_names
+    return dict(zip(names, out, strict=True)), dict(zip(names, drift.tolist(), strict=True))

@@ -1,17 +1,24 @@
 """Compile every kernel specialization once so later processes load it from numba's cache.
 
 Run by the README's commands (`./dev ...`) after installation: `python -m solvers.warmup`.
+
+Two parts: the general kernels (one specialization per state dimension and method kind),
+then the generated integrator of every case (solvers/kernels/generate.py: one compile per
+case *structure*, the set of its nonzero parameter slots, ~10-20 s each), which
+`simulate()` runs by default once it is compiled (field="auto"). The generated ones are
+compiled in parallel processes (ROLLING_WARMUP_JOBS, default the number of CPUs, at most
+4); a structure whose compiled code is already in the cache is skipped.
 """
 
+import os
 import time
 
 import numpy as np
 
 
-def warm() -> float:
-    t0 = time.perf_counter()
+def _general() -> None:
     from solvers.kernels.integrals import ENERGY
-    from solvers.models.cases import registry
+    from solvers.models.cases import build, registry
     from solvers.models.derivatives import field_jacobian, integral_gradient
     from solvers.simulate import compiled_methods, simulate, symmetric_methods
 
@@ -22,16 +29,72 @@ def warm() -> float:
             continue
         seen.add(key)
         for method in compiled_methods():
-            r = simulate(cid, case.example, case.state, 0.01, method=method, samples=3)
+            r = simulate(cid, case.example, case.state, 0.01, method=method, samples=3,
+                         field="general")
             simulate(cid, case.example, case.state, 0.01, method=method, samples=3,
-                     project=True)
+                     project=True, field="general")
         simulate(cid, case.example, case.state, 0.01, method=symmetric_methods()[0],
                  samples=3, step=0.005)
-        from solvers.models.cases import build
         m = build(cid, case.example)
         y = np.asarray(r.state[0])
         field_jacobian(m.model, m.p, y)
         integral_gradient(ENERGY, m.model, m.p, y)
+
+
+def pending() -> dict[tuple, list[str]]:
+    """structure -> the cases (with their example parameters) whose generated integrator
+    is not compiled yet for some compiled method."""
+    from solvers.integrate.integrator import generated_ready
+    from solvers.kernels import generate
+    from solvers.models.cases import build, registry
+    from solvers.simulate import compiled_methods
+
+    out: dict[tuple, list[str]] = {}
+    for cid, case in registry().items():
+        m = build(cid, case.example)
+        if m.model not in generate.GENERATED_MODELS:
+            continue
+        if not all(generated_ready(m.model, m.p, meth) for meth in compiled_methods()):
+            out.setdefault(generate.structure(m.model, m.p), []).append(cid)
+    return out
+
+
+def compile_generated(case_id: str) -> str:
+    """Run the case's generated integrator once per compiled method (compiling it into
+    the on-disk cache) and check it against the general field."""
+    from solvers.models.cases import registry
+    from solvers.simulate import compiled_methods, simulate
+
+    case = registry()[case_id]
+    for method in compiled_methods():
+        r = simulate(case_id, case.example, case.state, 0.01, method=method, samples=3,
+                     field="generated")
+        simulate(case_id, case.example, case.state, 0.01, method=method, samples=3,
+                 project=True, field="generated")
+        assert r.stats["field"] == "generated", r.stats
+    return case_id
+
+
+def _jobs() -> int:
+    env = os.environ.get("ROLLING_WARMUP_JOBS")
+    return max(1, int(env)) if env else max(1, min(4, os.cpu_count() or 1))
+
+
+def warm(jobs: int | None = None) -> float:
+    t0 = time.perf_counter()
+    _general()
+    todo = [cases[0] for cases in pending().values()]
+    jobs = min(jobs or _jobs(), len(todo))
+    if jobs > 1:
+        import multiprocessing as mp
+        from concurrent.futures import ProcessPoolExecutor
+
+        # spawn: fresh interpreters (a forked numba/LLVM state is not safe to reuse)
+        with ProcessPoolExecutor(jobs, mp_context=mp.get_context("spawn")) as ex:
+            list(ex.map(compile_generated, todo))
+    else:
+        for cid in todo:
+            compile_generated(cid)
     return time.perf_counter() - t0
 
 

@@ -23,6 +23,11 @@ from app.core.pool import DeadlineExceeded, QueueFull, WorkerCrashed
 from app.schemas.common import FieldError, Problem
 from solvers.errors import InputError
 
+
+class NotAcceptable(Exception):
+    """The client's Accept header names none of the types a route answers with (406)."""
+
+
 # pydantic error types -> the reason in words (otherwise pydantic's own message)
 _REASONS = {
     "finite_number": "must be a finite number (NaN and infinities are not accepted)",
@@ -144,6 +149,10 @@ async def _deadline(request: Request, exc: DeadlineExceeded) -> JSONResponse:
     return problem(504, str(exc))
 
 
+async def _not_acceptable(request: Request, exc: NotAcceptable) -> JSONResponse:
+    return problem(406, str(exc))
+
+
 async def _busy(request: Request, exc: QueueFull) -> JSONResponse:
     return problem(503, f"busy: {exc}", headers={"Retry-After": str(exc.retry_after)})
 
@@ -198,6 +207,7 @@ def install(app: FastAPI) -> None:
     app.add_exception_handler(InputError, _input)
     app.add_exception_handler(DeadlineExceeded, _deadline)
     app.add_exception_handler(QueueFull, _busy)
+    app.add_exception_handler(NotAcceptable, _not_acceptable)
     app.add_exception_handler(WorkerCrashed, _crashed)
     app.add_exception_handler(ClientDisconnected, _gone)
     app.add_exception_handler(StarletteHTTPException, _http)

@@ -47,4 +47,9 @@ BUSY_RESPONSES: dict[int | str, dict] = {
           "headers": {"Retry-After": {"description": "seconds to wait",
                                       "schema": {"type": "integer"}}}},
 }
+NOT_ACCEPTABLE_RESPONSES: dict[int | str, dict] = {
+    406: {"model": Problem, "description": "the Accept header names none of the types "
+          "this route answers with (application/json, application/vnd.apache.arrow.stream, "
+          "text/csv; */* is fine)"},
+}
 NOT_FOUND: dict[int | str, dict] = {404: {"model": Problem, "description": "no such case"}}

@@ -68,6 +68,11 @@ class SimulateRequest(BaseModel):
                                     "triangle inequality")
     example: bool = Field(False, description="start from the case's demo parameters and "
                           "state; given params / state override them")
+    field: Literal["auto", "general"] = Field(
+        "auto", description="vector field of the compiled Runge-Kutta methods: auto, the "
+        "case's generated field (solvers/kernels/generate.py) when it is compiled, else "
+        "the general one; general, the general support-function field (the reference). "
+        "stats.field says which ran")
 
 
 class SceneRequest(SimulateRequest):

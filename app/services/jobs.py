@@ -39,8 +39,11 @@ def warm() -> int:
     from solvers.models.cases import registry
     from solvers.simulate import simulate
 
-    for cid, case in registry().items():
+    for cid, case in registry().items():   # the generated kernels too (field="auto")
         simulate(cid, case.example, case.state, 0.01, samples=3)
+    import pyarrow  # noqa: F401   (the Arrow answer's first use: ~0.3 s of imports)
+
+    import app.services.payloads  # noqa: F401
     import solvers.models.kinematics  # noqa: F401
     return os.getpid()
 
@@ -57,12 +60,10 @@ def _finite(x):
 
 def dumps(obj) -> bytes:
     """Strict JSON (no NaN tokens): a non-finite number, which the solvers never return
-    on purpose, is sent as null."""
-    try:
-        text = json.dumps(obj, allow_nan=False, separators=(",", ":"))
-    except ValueError:
-        text = json.dumps(_finite(obj), allow_nan=False, separators=(",", ":"))
-    return text.encode()
+    on purpose, is sent as null (orjson, app/services/payloads.py)."""
+    from app.services.payloads import dumps as _dumps
+
+    return _dumps(obj)
 
 
 def _run(req: dict, max_steps: int):
@@ -72,14 +73,21 @@ def _run(req: dict, max_steps: int):
     return simulate(req["case"], req["params"], req["state"], req["t_end"],
                     method=req["method"], rtol=req["rtol"], atol=req["atol"],
                     samples=req["samples"], project=req["project"], max_steps=max_steps,
-                    allow_any_inertia=req["allow_any_inertia"], step=req.get("step"))
+                    allow_any_inertia=req["allow_any_inertia"], step=req.get("step"),
+                    field=req.get("field", "auto"))
 
 
 def simulate_json(req: dict, max_steps: int) -> bytes:
-    res = _run(req, max_steps)
-    out = res.to_json()
-    out["stats"]["max_steps"] = max_steps
-    return dumps(out)
+    from app.services.payloads import json_bytes
+
+    return json_bytes(_run(req, max_steps), max_steps)
+
+
+def simulate_arrow(req: dict, max_steps: int) -> bytes:
+    """The run as an Arrow IPC stream (app/services/payloads.py)."""
+    from app.services.payloads import arrow_bytes
+
+    return arrow_bytes(_run(req, max_steps), max_steps)
 
 
 COLUMNS_JSON = Path(__file__).resolve().parents[1] / "static" / "data" / "columns.json"

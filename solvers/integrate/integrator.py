@@ -9,8 +9,11 @@ turns the kernel's status code into a message; the kernel knows nothing of it.
 `solve_ivp_reference` runs scipy's solve_ivp on the same field, as an independent check.
 """
 
+import math
 import time
 from dataclasses import dataclass, field
+from functools import cache
+from pathlib import Path
 
 import numpy as np
 
@@ -51,7 +54,7 @@ class Section:
         return c
 
 
-@dataclass(frozen=True)
+@dataclass(slots=True)   # not frozen: a frozen init costs ~3 us per call (thin entry)
 class IntegrationResult:
     t: np.ndarray                 # output times reached (a prefix of t_out)
     y: np.ndarray                 # (len(t), n) states there
@@ -66,6 +69,7 @@ class IntegrationResult:
     method: str
     crossings_t: np.ndarray = field(default_factory=lambda: np.empty(0))
     crossings_y: np.ndarray = field(default_factory=lambda: np.empty((0, 0)))
+    vector_field: str = "general"   # what the kernel ran: generated | general
 
     @property
     def success(self) -> bool:
@@ -105,11 +109,152 @@ def initial_integrals(model, p, y0, codes) -> np.ndarray:
     return np.array([rk.model_integral(int(k), int(model), y0, p) for k in codes])
 
 
+# --- the thin entry: what does not change between calls is computed once ------------------
+
+# the kernel only reads the method arrays (tableau coefficients), so one copy per tableau
+# serves every call; private, writable (a read-only array is another numba type)
+_method_arrays = cache(method_arrays)
+_NO_DENSE = np.zeros((0, 1))
+_NO_CODES = np.zeros(0, dtype=np.int64)
+_NO_VALUES = np.zeros(0)
+_NO_SECTION: dict = {}   # state dimension -> zero section coefficients
+_CACHE_MAX = 1024
+
+
+def _f64(x) -> np.ndarray:
+    """x as a fresh 1-D writable C float64 array (the one type the kernels are compiled
+    for: a read-only or strided input would be another ~12 s numba specialization)."""
+    return np.array(x, dtype=np.float64).ravel()
+
+
+def _checked_times(t_out) -> np.ndarray:
+    t = _f64(t_out)
+    # strictly increasing (a NaN fails the comparison) with finite ends: all finite
+    if t.size == 0 or not (math.isfinite(t[0]) and math.isfinite(t[-1])) \
+            or not bool((t[1:] > t[:-1]).all()):
+        raise ValueError("t_out must be finite and strictly increasing; t_out[0] is t0")
+    return t
+
+
+# output times validated once: id -> (the read-only array handed out, a private writable
+# twin for the kernel, which only reads it); the strong reference keeps the id unique
+_TRUSTED_TIMES: dict = {}
+
+
+def output_times(t_end: float, samples: int) -> np.ndarray | None:
+    """linspace(0, t_end, samples) as a read-only array that integrate() trusts without
+    checking it again, memoized; None if the samples are not distinct."""
+    key = (float(t_end), int(samples))
+    hit = _TRUSTED_TIMES.get(key)
+    if hit is not None:
+        return hit
+    t = np.linspace(0.0, float(t_end), int(samples))
+    if not (math.isfinite(t[-1]) and bool((t[1:] > t[:-1]).all())):
+        return None
+    twin = t.copy()
+    t.setflags(write=False)
+    if len(_TRUSTED_TIMES) > 2 * _CACHE_MAX:
+        _TRUSTED_TIMES.clear()
+    _TRUSTED_TIMES[key] = t
+    _TRUSTED_TIMES[id(t)] = (t, twin)
+    return t
+
+
+def _times(t_out) -> np.ndarray:
+    hit = _TRUSTED_TIMES.get(id(t_out))
+    if hit is not None and hit[0] is t_out:
+        return hit[1]
+    return _checked_times(t_out)
+
+
+# the option vectors of a call, memoized on their values (the kernel only reads them)
+_OPTION_ARRAYS: dict = {}
+
+
+def _option_arrays(iopt: tuple, fopt: tuple):
+    key = (iopt, fopt)
+    hit = _OPTION_ARRAYS.get(key)
+    if hit is None:
+        if len(_OPTION_ARRAYS) > _CACHE_MAX:
+            _OPTION_ARRAYS.clear()
+        hit = _OPTION_ARRAYS[key] = (np.array(iopt, dtype=np.int64),
+                                     np.array(fopt, dtype=np.float64))
+    return hit
+
+
+# generated integrators: (model, p bytes) -> module, and whether a structure's compiled
+# code is ready (True), or not (the monotonic time until which that answer stands)
+_GEN_MODULES: dict = {}
+_GEN_READY: dict = {}
+NOT_READY_RECHECK_S = 30.0
+
+
+def _generated_module(model: int, p: np.ndarray, key):
+    mod = _GEN_MODULES.get(key)
+    if mod is None:
+        if len(_GEN_MODULES) > _CACHE_MAX:
+            _GEN_MODULES.clear()
+        mod = _GEN_MODULES[key] = generate.generated_integrator(model, p)
+    return mod
+
+
+def _ready_marker(model: int, p, method: str) -> Path:
+    """The file saying the generated integrator of this structure and tableau has been
+    compiled into numba's on-disk cache (written after its first successful run)."""
+    return generate.cache_dir() / f"{generate.module_name(model, p)}.{method}.ready"
+
+
+def _numba_cache_holds(mod) -> bool:
+    """Whether numba's on-disk index of the module's rk_integrate has a fresh entry for
+    this machine (a marker alone would not see a wiped or stale __pycache__)."""
+    disp = getattr(mod, "rk_integrate", None)
+    try:
+        if disp.signatures:
+            return True
+        magic = disp.targetctx.codegen().magic_tuple()
+        return any(k[1] == magic for k in disp._cache._cache_file._load_index())
+    except Exception:   # not a numba dispatcher (or numba changed its internals)
+        return True     # trust the marker
+
+
+def generated_ready(model: int, p, method: str = "dop853") -> bool:
+    """True when `integrate(..., generated=None)` would run the case's generated field:
+    the model has one and its integrator for this tableau is compiled (in this process or
+    in the on-disk cache, as solvers/warmup.py leaves it), so the call pays no compile."""
+    if model not in generate.GENERATED_MODELS:
+        return False
+    p = np.asarray(p, dtype=np.float64)
+    return _ready((int(model), p.tobytes(), method), model, p)
+
+
+def _ready(key, model, p) -> bool:
+    ready = _GEN_READY.get(key)
+    if ready is True:
+        return True
+    if ready is not None and time.monotonic() < ready:
+        return False
+    ok = _ready_marker(model, p, key[2]).exists()
+    if ok:
+        ok = _numba_cache_holds(_generated_module(model, p, key[:2]))
+    if len(_GEN_READY) > _CACHE_MAX:
+        _GEN_READY.clear()
+    _GEN_READY[key] = True if ok else time.monotonic() + NOT_READY_RECHECK_S
+    return ok
+
+
+def _mark_ready(model: int, p, key) -> None:
+    try:
+        _ready_marker(model, p, key[2]).touch()
+    except OSError:     # a read-only cache: this process still knows
+        pass
+    _GEN_READY[key] = True
+
+
 def integrate(model, p, y0, t_out, *, method="dop853", rtol=1e-10, atol=1e-12,
               max_steps=10_000_000, compensated=False, project_codes=(), project_values=None,
               project_every=1, section=None, max_crossings=100_000, h_fixed=None,
               dense_output=True, control=StepControl(),
-              generated=False) -> IntegrationResult:
+              generated=None) -> IntegrationResult:
     """Integrate `model` from (t_out[0], y0) and return the states at the times t_out.
 
     rtol/atol: scaled RMS error per step (atol may be a vector); h_fixed: run with this
@@ -119,17 +264,18 @@ def integrate(model, p, y0, t_out, *, method="dop853", rtol=1e-10, atol=1e-12,
     step. section: record up to max_crossings crossings; the run stops at that number.
     dense_output=False: clip the steps to land on every output time instead of
     interpolating (the states are then step endpoints; it costs steps).
-    generated: run the same kernel compiled against the case's generated field
-    (solvers/kernels/generate.py) for the models that have one.
+    generated: which field the kernel is compiled against, for the models that have a
+    generated one (solvers/kernels/generate.py; the others always run the general field).
+    None (default): the generated field when its compiled code is ready
+    (`generated_ready`: solvers/warmup.py compiles every case's), else the general field,
+    so that a call never pays a ~15 s LLVM compile; True: the generated field, compiled
+    on first use of a structure; False: the general support-function field, the reference.
+    The result's `vector_field` says which ran.
     """
-    # fresh writable C arrays: a read-only or strided input would be another numba
-    # specialization (another ~12 s compile)
-    t_out = np.array(t_out, dtype=np.float64).ravel()
-    y0 = np.array(y0, dtype=np.float64).ravel()
+    t_out = _times(t_out)
+    y0 = _f64(y0)
     p = np.array(p, dtype=np.float64)
     n = y0.size
-    if t_out.size == 0 or np.any(np.diff(t_out) <= 0) or not np.all(np.isfinite(t_out)):
-        raise ValueError("t_out must be finite and strictly increasing; t_out[0] is t0")
     if n != L.STATE_DIM[model]:
         raise ValueError(f"model {model} has a state of dimension {L.STATE_DIM[model]}")
     if method in collocation.METHODS:
@@ -137,38 +283,59 @@ def integrate(model, p, y0, t_out, *, method="dop853", rtol=1e-10, atol=1e-12,
             raise ValueError(f"{method} is a symmetric fixed-step method: give h_fixed > 0; "
                              "it takes no projection and no section")
         return _integrate_symmetric(model, p, y0, t_out, method, float(h_fixed), max_steps)
-    A, c, b, E, P, meth = method_arrays(method)
+    A, c, b, E, P, meth = _method_arrays(method)
     if not dense_output:
-        P = np.zeros((0, 1))
-    codes = np.asarray(project_codes, dtype=np.int64).ravel()
-    if project_values is None:
-        project_values = initial_integrals(model, p, y0, codes)
-    vals = np.array(project_values, dtype=np.float64).ravel()
+        P = _NO_DENSE
+    if len(project_codes):
+        codes = np.asarray(project_codes, dtype=np.int64).ravel()
+        if project_values is None:
+            project_values = initial_integrals(model, p, y0, codes)
+        vals = np.array(project_values, dtype=np.float64).ravel()
+    else:
+        codes, vals = _NO_CODES, (_NO_VALUES if project_values is None
+                                  else np.array(project_values, dtype=np.float64).ravel())
     if vals.size != codes.size or project_every < 1:
         raise ValueError("one project_value per code, and project_every >= 1")
     fixed = h_fixed is not None
     if fixed and not h_fixed > 0:
         raise ValueError("h_fixed must be positive")
-    sec = section if section is not None else Section(coef=(0.0,) * n, code=rk.SECTION_NONE)
-    n_cross = max(1, int(max_crossings)) if section is not None else 1
-    iopt = np.array([max_steps, int(compensated), project_every, sec.code,
-                     int(np.sign(sec.direction)), n_cross, int(fixed)], dtype=np.int64)
-    fopt = np.array([rtol, h_fixed if fixed else control.h0, control.h_max, control.safety,
-                     control.fac_min, control.fac_max, control.beta], dtype=np.float64)
-    atol_v = np.array(np.broadcast_to(np.asarray(atol, dtype=np.float64), (n,)))
+    if section is None:
+        sec_coef = _NO_SECTION.get(n)
+        if sec_coef is None:
+            sec_coef = _NO_SECTION[n] = np.zeros(n + 1)
+        sec_code, sec_dir, n_cross = rk.SECTION_NONE, 0, 1
+    else:
+        sec_code, sec_dir = section.code, int(np.sign(section.direction))
+        n_cross, sec_coef = max(1, int(max_crossings)), section.packed(n)
+    iopt, fopt = _option_arrays(
+        (int(max_steps), int(compensated), int(project_every), sec_code, sec_dir, n_cross,
+         int(fixed)),
+        (float(rtol), float(h_fixed if fixed else control.h0), float(control.h_max),
+         float(control.safety), float(control.fac_min), float(control.fac_max),
+         float(control.beta)))
+    if isinstance(atol, float | int):
+        atol_v = np.empty(n)
+        atol_v[:] = atol
+    else:
+        atol_v = np.array(np.broadcast_to(np.asarray(atol, dtype=np.float64), (n,)))
+    # fresh outputs on every call: Y and y_stop are handed to the caller
     Y = np.empty((t_out.size, n))
     cross_t = np.empty(n_cross)
     cross_y = np.empty((n_cross, n))
     y_stop = np.empty(n)
     stats = np.zeros(5, dtype=np.int64)
+    kern, used, fresh = rk.rk_integrate, "general", None
+    if generated is not False and model in generate.GENERATED_MODELS:
+        key = (int(model), p.tobytes(), method)
+        if generated or _ready(key, model, p):
+            kern, used = _generated_module(model, p, key[:2]).rk_integrate, "generated"
+            fresh = None if _GEN_READY.get(key) is True else key
     t0 = time.perf_counter()
-    kern = rk.rk_integrate
-    if generated and model in generate.GENERATED_MODELS:
-        kern = generate.generated_integrator(model, p).rk_integrate
-    status, t_stop = kern(int(model), p, y0, t_out, A, c, b, E, P, meth, iopt,
-                                     fopt, atol_v, codes, vals, sec.packed(n), Y, cross_t,
-                                     cross_y, y_stop, stats)
+    status, t_stop = kern(int(model), p, y0, t_out, A, c, b, E, P, meth, iopt, fopt,
+                          atol_v, codes, vals, sec_coef, Y, cross_t, cross_y, y_stop, stats)
     wall = time.perf_counter() - t0
+    if fresh is not None:   # compiled now: later calls (and processes) may use it
+        _mark_ready(model, p, fresh)
     m, k = stats[rk.S_SAMPLES], stats[rk.S_CROSSINGS]
     message = status_message(status)
     if status != L.OK:
@@ -177,7 +344,8 @@ def integrate(model, p, y0, t_out, *, method="dop853", rtol=1e-10, atol=1e-12,
         t=t_out[:m].copy(), y=Y[:m], status=int(status), message=message,
         t_stop=float(t_stop), y_stop=y_stop, steps=int(stats[rk.S_ACCEPTED]),
         rejected=int(stats[rk.S_REJECTED]), rhs_calls=int(stats[rk.S_RHS]), wall_s=wall,
-        method=method, crossings_t=cross_t[:k].copy(), crossings_y=cross_y[:k].copy())
+        method=method, crossings_t=cross_t[:k].copy(), crossings_y=cross_y[:k].copy(),
+        vector_field=used)
 
 
 def _integrate_symmetric(model, p, y0, t_out, method, h, max_steps, max_iter=60):

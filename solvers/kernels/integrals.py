@@ -117,3 +117,31 @@ def integral_series(code, model, Y, p, out):
     """integral(code) along the rows of Y."""
     for n in range(Y.shape[0]):
         out[n] = integral(code, model, Y[n], p)
+
+
+@kernel
+def integral_table(codes, model, Y, p, out, drift):
+    """out[i, n] = integral(codes[i]) at Y[n] (one omega and r per row, integrals_into)
+    and drift[i] = max_n |out[i, n] - out[i, 0]| / max(|out[i, 0]|, 1), NaN if a value
+    is NaN: a run's invariants and their drift in one call (simulate's thin entry)."""
+    k = codes.shape[0]
+    m = Y.shape[0]
+    row = np.empty(k)
+    for n in range(m):
+        integrals_into(codes, model, Y[n], p, row)
+        for i in range(k):
+            out[i, n] = row[i]
+    for i in range(k):
+        if m == 0:
+            drift[i] = 0.0
+            continue
+        v0 = out[i, 0]
+        d = 0.0
+        for n in range(m):
+            e = abs(out[i, n] - v0)
+            if e != e:
+                d = np.nan
+                break
+            if e > d:
+                d = e
+        drift[i] = d / max(abs(v0), 1.0)

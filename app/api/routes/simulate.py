@@ -19,6 +19,7 @@ from app.schemas.common import (
     BUSY_RESPONSES,
     DEADLINE_RESPONSES,
     GUARD_RESPONSES,
+    NOT_ACCEPTABLE_RESPONSES,
     PROBLEM_RESPONSES,
 )
 from app.schemas.simulate import (
@@ -29,7 +30,7 @@ from app.schemas.simulate import (
     SimulateResponse,
     ValidatePublic,
 )
-from app.services import jobs
+from app.services import jobs, payloads
 from solvers.errors import InputError
 
 router = APIRouter(tags=["simulate"])
@@ -60,7 +61,7 @@ def resolve(req: SimulateRequest, max_steps: int | None = None) -> dict:
     return {"case": req.case, "params": params, "state": list(state), "t_end": req.t_end,
             "method": req.method, "rtol": req.rtol, "atol": req.atol, "step": req.step,
             "samples": req.samples, "project": req.project,
-            "allow_any_inertia": req.allow_any_inertia,
+            "allow_any_inertia": req.allow_any_inertia, "field": req.field,
             "_model": model}
 
 
@@ -84,25 +85,48 @@ def _filename(case: str, ext: str) -> str:
     return re.sub(r"[^A-Za-z0-9-]+", "_", case) + f".{ext}"
 
 
+_RUN_CONTENT = {
+    "application/json": {},   # the SimulateResponse schema (response_model)
+    payloads.ARROW: {"schema": {"type": "string", "format": "binary",
+                                "description": "Arrow IPC stream, one record batch"}},
+    payloads.CSV: {"schema": {"type": "string"}},
+}
+_RUN_DESCRIPTION = (
+    "the run, in the type the Accept header prefers: application/json (the default, also "
+    "for */*: the object below; a non-finite number is null), "
+    "application/vnd.apache.arrow.stream (an Arrow IPC stream of one record batch: a "
+    "float64 column per series named as in the CSV, t, the state, the invariants under "
+    "unique names such as M_squared; the other fields of the JSON object, each a JSON "
+    "text, in the schema metadata under case, params, status, message, state_labels, "
+    "invariants (column -> invariant) and stats), or text/csv (as format=csv)")
+
+
 @router.post("/simulate", response_model=SimulateResponse,
              responses={**PROBLEM_RESPONSES, **BUSY_RESPONSES, **GUARD_RESPONSES,
-                        **DEADLINE_RESPONSES,
-                        200: {"content": {"text/csv": {}},
-                              "description": "the run: JSON (default) or CSV (format=csv)"}})
+                        **DEADLINE_RESPONSES, **NOT_ACCEPTABLE_RESPONSES,
+                        200: {"content": _RUN_CONTENT, "description": _RUN_DESCRIPTION}})
 async def simulate(req: SimulateRequest, request: Request, pool: PoolDep,
                    settings: SettingsDep,
-                   format: Literal["json", "csv"] = Query("json", description="json: the "
-                   "object below; csv: one row per sample (t, state, invariants)")) -> Response:
+                   format: Literal["json", "csv"] | None = Query(
+                       None, description="csv: one row per sample (t, state, invariants), "
+                       "whatever the Accept header says; json: the JSON object; none: "
+                       "the type the Accept header prefers")) -> Response:
     """Integrate one case from an initial state over [0, t_end]: the state and every
     invariant the case carries at `samples` times, and the cost of the run."""
+    if format is None:
+        media = payloads.negotiate(request.headers.get("accept"))
+    else:
+        media = payloads.CSV if format == "csv" else payloads.JSON
     job = _job(await _resolved(req, settings))
-    fn = jobs.simulate_csv if format == "csv" else jobs.simulate_json
+    fn = {payloads.CSV: jobs.simulate_csv, payloads.ARROW: jobs.simulate_arrow}.get(
+        media, jobs.simulate_json)
     body = await cancel_on_disconnect(request, lambda: pool.run(
         fn, job, settings.max_steps, deadline=settings.deadline_s))
-    if format == "csv":
+    if media == payloads.CSV:
         return Response(body, media_type="text/csv; charset=utf-8", headers={
-            "Content-Disposition": f'attachment; filename="{_filename(req.case, "csv")}"'})
-    return Response(body, media_type="application/json")
+            "Content-Disposition": f'attachment; filename="{_filename(req.case, "csv")}"',
+            "Vary": "Accept"})
+    return Response(body, media_type=media, headers={"Vary": "Accept"})
 
 
 @router.post("/validate", response_model=ValidatePublic,
@@ -123,6 +147,9 @@ async def scene(req: SceneRequest, request: Request, pool: PoolDep,
                 settings: SettingsDep) -> Response:
     """The 3D animation of a run: the body's rotation, its centre of mass and its contact
     point at `frames` times, a mesh of the body, and checks (solvers.models.kinematics)."""
+    if req.field != "auto":
+        raise InputError(f"field = {req.field!r}: a scene runs the default field (auto); "
+                         "field applies to /api/simulate")
     job = _job(await _resolved(req, settings))
     body = await cancel_on_disconnect(request, lambda: pool.run(
         jobs.scene_json, job, req.frames, min(settings.max_steps, 200_000),
