@@ -10,7 +10,7 @@ Beyond `integrate`'s options, for callers whose trajectories differ in more than
 (the Poincare maps, solvers/maps/poincare.py):
   * t_out may be a table (n_traj, N): row i the output times of trajectory i, of which
     the first n_out[i] are used (rows may be ragged: pad them with anything);
-  * max_steps and h_max may be one number or one per trajectory;
+  * max_steps, max_crossings and h_max may be one number or one per trajectory;
   * project_values may be one row per trajectory (default: each start's own values).
 
 Threads: numba's parallel loop runs on its threading layer. If none was chosen (the
@@ -204,11 +204,14 @@ def integrate_ensemble(model, p, Y0, t_out, *, method="dop853", rtol=1e-10, atol
     if not dense_output:
         Pd = np.zeros((0, 1))
     sec = section if section is not None else Section(coef=(0.0,) * n, code=rk.SECTION_NONE)
-    n_cross = max(1, int(max_crossings)) if section is not None else 1
+    cross = (np.maximum(1, _per_traj(max_crossings, n_traj, "max_crossings", np.int64))
+             if section is not None else np.ones(n_traj, dtype=np.int64))
+    n_cross = int(cross.max(initial=1))
     IOPT = np.empty((n_traj, 7), dtype=np.int64)
     IOPT[:] = [0, int(compensated), project_every, sec.code, int(np.sign(sec.direction)),
-               n_cross, int(fixed)]
+               0, int(fixed)]
     IOPT[:, rk.I_MAX_STEPS] = steps
+    IOPT[:, rk.I_MAX_CROSS] = cross
     FOPT = np.empty((n_traj, 7), dtype=np.float64)
     FOPT[:] = [rtol, h_fixed if fixed else control.h0, 0.0, control.safety,
                control.fac_min, control.fac_max, control.beta]
