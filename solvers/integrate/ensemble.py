@@ -148,7 +148,7 @@ def integrate_ensemble(model, p, Y0, t_out, *, method="dop853", rtol=1e-10, atol
     raises ValueError before anything runs. wall_s of each result is its share of the call
     (the call's wall time / the number of trajectories)."""
     model = int(model)
-    if model not in L.STATE_DIM:
+    if not 0 <= model < len(L.STATE_DIM):
         raise ValueError(f"unknown model code {model!r}")
     n = L.STATE_DIM[model]
     Y0 = np.array(Y0, dtype=np.float64)
