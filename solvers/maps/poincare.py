@@ -54,6 +54,7 @@ class MapSpec:
     max_steps: int = 20_000_000
     samples_per_crossing: int = 32
     check: bool = True
+    generated: bool | None = None     # the case's generated field; None: integrate's default
 
     def validate(self) -> None:
         if not math.isfinite(self.energy):
@@ -228,8 +229,11 @@ class _Tracer:
 
 
 def _integrate_options(spec: MapSpec) -> dict:
-    return {"method": spec.method, "rtol": spec.rtol, "atol": spec.atol,
+    opts = {"method": spec.method, "rtol": spec.rtol, "atol": spec.atol,
             "section": spec.section()}
+    if spec.generated is not None:
+        opts["generated"] = spec.generated
+    return opts
 
 
 def trace(model: Model, y0, spec: MapSpec, *, h_max: float = math.inf) -> MapTrajectory:
