@@ -32,7 +32,28 @@ def warm() -> float:
         y = np.asarray(r.state[0])
         field_jacobian(m.model, m.p, y)
         integral_gradient(ENERGY, m.model, m.p, y)
+    warm_ensembles()
     return time.perf_counter() - t0
+
+
+def warm_ensembles() -> None:
+    """The compiled ensemble (solvers/kernels/ensemble.py: one specialization serves every
+    model on the general field), and, where integrate() runs the generated field by
+    default, its twin for every case structure (one compile each), so that the first
+    Poincare map of a server does not compile in a request."""
+    from solvers.integrate.ensemble import _default_generated, integrate_ensemble
+    from solvers.kernels import generate
+    from solvers.models.cases import build, registry
+
+    gen = _default_generated()
+    seen = set()
+    for cid, case in registry().items():
+        m = build(cid, case.example)
+        key = generate.structure(m.model, m.p) if gen else (m.model,)
+        if key in seen:
+            continue
+        seen.add(key)
+        integrate_ensemble(m.model, m.p, [case.state], [0.0, 0.01], generated=gen)
 
 
 if __name__ == "__main__":
