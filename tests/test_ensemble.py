@@ -225,7 +225,7 @@ def test_threading_layer_is_named():
     assert E.threading_layer() in ("workqueue", "omp", "tbb")
 
 
-def test_poincare_map_in_lockstep_equals_one_by_one():
+def test_poincare_map_in_lockstep_equals_one_by_one(monkeypatch):
     """The map's trajectories run together (one ensemble call per round, a pilot then
     chunks, some finishing early) give what trace_checked gives one at a time."""
     from solvers.maps.poincare import (
@@ -249,3 +249,10 @@ def test_poincare_map_in_lockstep_equals_one_by_one():
         assert a.steps == b.steps and a.rhs_calls == b.rhs_calls
         assert np.array_equal(a.t, b.t) and np.array_equal(a.states, b.states)
     assert all(len(tr.t) == 40 for tr in together if tr.status == "ok")
+    # a round cut into several calls (the memory cap) gives the same map
+    from solvers.maps import poincare as pc
+
+    monkeypatch.setattr(pc, "ROUND_BYTES", 3 * 2000 * 6 * 8)
+    cut = trace_checked_all(model, starts, spec)
+    for a, b in zip(together, cut, strict=True):
+        assert np.array_equal(a.states, b.states) and a.check == b.check

@@ -36,6 +36,7 @@ from solvers.models.cases import Model, build, initial_state
 
 MAX_POINTS = 100_000
 MAX_TRAJECTORIES = 1_000
+ROUND_BYTES = 64e6        # memory of the samples of one ensemble call (trace_all)
 PILOT_TAUS = 2000.0       # a trajectory that does not return within 2000 rotation times
 
 
@@ -254,10 +255,8 @@ def trace(model: Model, y0, spec: MapSpec, *, h_max: float = math.inf) -> MapTra
 def trace_all(model: Model, starts, spec: MapSpec, *, h_max=None, workers: int | None = None,
               progress: Callable[[int, int], None] | None = None) -> list[MapTrajectory]:
     """`trace` for every start, the runs of all unfinished trajectories in one compiled
-    parallel call per round (solvers/integrate/ensemble.py); h_max: one per start or
-    None. progress(finished, total) when a round finishes some."""
-    from solvers.integrate.ensemble import integrate_ensemble
-
+    parallel call per round (solvers/integrate/ensemble.py; several if their samples
+    would take more than ROUND_BYTES); h_max: one per start or None. progress(finished, total) when a round finishes some."""
     hm = [math.inf] * len(starts) if h_max is None else list(h_max)
     tracers = [_Tracer(model, y0, spec, h) for y0, h in zip(starts, hm, strict=True)]
     finished = 0
@@ -266,23 +265,34 @@ def trace_all(model: Model, starts, spec: MapSpec, *, h_max=None, workers: int |
         if not live:
             break
         reqs = [tr.request() for tr in live]
+        # the samples of a round take rows x width x 6 doubles: at most ~64 MB per call
         width = max(len(r[1]) for r in reqs)
-        T = np.zeros((len(live), width))
-        for i, r in enumerate(reqs):
-            T[i, :len(r[1])] = r[1]
-        res = integrate_ensemble(model.model, model.p, np.array([r[0] for r in reqs]), T,
-                                 n_out=[len(r[1]) for r in reqs],
-                                 max_crossings=[r[2] for r in reqs],
-                                 max_steps=[r[3] for r in reqs],
-                                 h_max=[tr.h_max for tr in live], workers=workers,
-                                 **_integrate_options(spec))
-        for tr, r in zip(live, res, strict=True):
-            tr.take(r)
+        block = max(1, int(ROUND_BYTES // (width * 6 * 8)))
+        for lo in range(0, len(live), block):
+            _round(model, spec, live[lo:lo + block], reqs[lo:lo + block], workers)
         now = sum(tr.done for tr in tracers)
         if progress is not None and now > finished:
             progress(now, len(tracers))
         finished = now
     return [tr.traj for tr in tracers]
+
+
+def _round(model, spec, live, reqs, workers) -> None:
+    """One compiled ensemble call for the requests of the tracers `live`."""
+    from solvers.integrate.ensemble import integrate_ensemble
+
+    width = max(len(r[1]) for r in reqs)
+    T = np.zeros((len(live), width))
+    for i, r in enumerate(reqs):
+        T[i, :len(r[1])] = r[1]
+    res = integrate_ensemble(model.model, model.p, np.array([r[0] for r in reqs]), T,
+                             n_out=[len(r[1]) for r in reqs],
+                             max_crossings=[r[2] for r in reqs],
+                             max_steps=[r[3] for r in reqs],
+                             h_max=[tr.h_max for tr in live], workers=workers,
+                             **_integrate_options(spec))
+    for tr, r in zip(live, res, strict=True):
+        tr.take(r)
 
 
 def _needs_again(spec: MapSpec, traj: MapTrajectory) -> bool:
