@@ -237,7 +237,8 @@ def integrate_ensemble(model, p, Y0, t_out, *, method="dop853", rtol=1e-10, atol
         numba.set_num_threads(w)
         try:
             kern(model, p, Y0, T, counts, A, c, b, E, Pd, meth, IOPT, FOPT, atol_v, codes,
-                 vals, sec.packed(n), Y, cross_t, cross_y, y_stop, stats, status, t_stop, w)
+                 vals, sec.packed(n), Y, cross_t, cross_y, y_stop, stats, status, t_stop, w,
+                 np.zeros(1, dtype=np.int64))
         finally:
             numba.set_num_threads(before)
     wall = (time.perf_counter() - t0) / n_traj

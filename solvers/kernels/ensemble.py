@@ -18,7 +18,9 @@ picks one and serialises launches (numba's workqueue layer is not thread-safe).
 """
 
 import numba
-from numba import prange
+from numba import prange, types
+from numba.core import cgutils
+from numba.extending import intrinsic
 
 from solvers.kernels.rk import rk_integrate
 
@@ -27,23 +29,44 @@ from solvers.kernels.rk import rk_integrate
 pkernel = numba.njit(cache=True, error_model="numpy", nogil=True, parallel=True)
 
 
+@intrinsic
+def fetch_add(typingctx, counter):
+    """counter[0] += 1 atomically; returns the value before (an LLVM atomicrmw add)."""
+    if not (isinstance(counter, types.Array) and counter.dtype == types.int64):
+        return None
+
+    def codegen(context, builder, sig, args):
+        aryty = sig.args[0]
+        ary = context.make_array(aryty)(context, builder, args[0])
+        ptr = cgutils.get_item_pointer(context, builder, aryty, ary,
+                                       [context.get_constant(types.intp, 0)])
+        return builder.atomic_rmw("add", ptr, context.get_constant(types.int64, 1),
+                                  "monotonic")
+
+    return types.int64(counter), codegen
+
+
 @pkernel
 def rk_ensemble(model, p, Y0, T_out, n_out, A, c, b, E, P, meth, IOPT, FOPT, atol,
                 proj_codes, PROJ_VALS, sec_coef, Y, CROSS_T, CROSS_Y, Y_STOP, STATS, STATUS,
-                T_STOP, workers):
+                T_STOP, workers, counter):
     """rk_integrate(model, p, Y0[i], T_out[i, :n_out[i]], ..., IOPT[i], FOPT[i], ...,
     PROJ_VALS[i], ..., Y[i], CROSS_T[i], CROSS_Y[i], Y_STOP[i], STATS[i]) for every i, in
     parallel; its (status, t_stop) into STATUS[i], T_STOP[i].
 
-    Every threading layer but tbb hands each thread one contiguous block of a prange, so
-    a run of costly neighbours (starts sorted by energy, say) would load one thread only;
-    the trajectories are dealt round-robin instead: thread k of `workers` (numba's thread
-    count of the launch; an argument, since reading it here would keep the function out of
-    numba's cache) takes i = k, k + workers, ..."""
+    Scheduling is dynamic: every threading layer but tbb hands each thread a fixed block
+    of a prange, so a thread dealt the costly trajectories (or descheduled on a busy
+    machine) would leave the other idle. Here the prange is one iteration per worker
+    (`workers`: numba's thread count of the launch; an argument, since reading it here
+    would keep the function out of numba's cache), and each worker takes the next
+    trajectory from a shared counter (counter[0] = 0 on entry) until none is left."""
     n_traj = Y0.shape[0]
     w = max(1, min(workers, n_traj))
-    for k in prange(w):
-        for i in range(k, n_traj, w):
+    for _worker in prange(w):
+        while True:
+            i = fetch_add(counter)
+            if i >= n_traj:
+                break
             st, ts = rk_integrate(model, p, Y0[i], T_out[i, :n_out[i]], A, c, b, E, P, meth,
                                   IOPT[i], FOPT[i], atol, proj_codes, PROJ_VALS[i], sec_coef,
                                   Y[i], CROSS_T[i], CROSS_Y[i], Y_STOP[i], STATS[i])

@@ -256,7 +256,8 @@ def trace_all(model: Model, starts, spec: MapSpec, *, h_max=None, workers: int |
               progress: Callable[[int, int], None] | None = None) -> list[MapTrajectory]:
     """`trace` for every start, the runs of all unfinished trajectories in one compiled
     parallel call per round (solvers/integrate/ensemble.py; several if their samples
-    would take more than ROUND_BYTES); h_max: one per start or None. progress(finished, total) when a round finishes some."""
+    would take more than ROUND_BYTES); h_max: one per start or None.
+    progress(finished, total) when a round finishes some."""
     hm = [math.inf] * len(starts) if h_max is None else list(h_max)
     tracers = [_Tracer(model, y0, spec, h) for y0, h in zip(starts, hm, strict=True)]
     finished = 0
