@@ -320,12 +320,11 @@ def trace_checked_all(model: Model, starts, spec: MapSpec, *, workers: int | Non
                       progress: Callable[[int, int], None] | None = None
                       ) -> list[MapTrajectory]:
     """trace_checked() for every start: trace_all, then trace_all again for those whose
-    check asks for it."""
+    check asks for it. progress(finished, total) as the first pass finishes them, and
+    once more after the second pass if there is one."""
     starts = list(starts)
-    out = trace_all(model, starts, spec, workers=workers)
+    out = trace_all(model, starts, spec, workers=workers, progress=progress)
     redo = [i for i, tr in enumerate(out) if _needs_again(spec, tr)]
-    if progress is not None:
-        progress(len(starts) - len(redo), len(starts))
     if redo:
         again = trace_all(model, [starts[i] for i in redo], spec, workers=workers,
                           h_max=[0.5 * out[i].check["sample_dt"] for i in redo])
