@@ -1,5 +1,6 @@
-"""Batches of initial conditions on both cores: solvers/integrate/batch.py's thread pool (the
-kernels release the GIL) from 1 to 2 workers, for a Poincare-map batch and a sweep.
+"""Batches of initial conditions on both cores: solvers/integrate/batch.py (the compiled
+ensemble, solvers/integrate/ensemble.py, on numba's threads) from 1 to 2 workers, for a
+Poincare-map batch and a sweep (bench/ensemble.py sets it against a Python thread pool).
 
     .venv/bin/python bench/batch_scaling.py      (or: rolling bench batch)
 
@@ -66,7 +67,8 @@ def main():
             lambda w: integrate_batch(plane.model, plane.p, Yp, np.linspace(0, 2000, 201),
                                       workers=w),
     }
-    say(f"cores available: {len(os.sched_getaffinity(0))}; threads, kernels nogil")
+    say(f"cores available: {len(os.sched_getaffinity(0))}; the compiled ensemble on numba "
+        "threads")
     for name, fn in batches.items():
         fn(1)                               # warm
         best = {1: np.inf, 2: np.inf}

@@ -72,6 +72,11 @@ def compile_generated(case_id: str) -> str:
         simulate(case_id, case.example, case.state, 0.01, method=method, samples=3,
                  project=True, field="generated")
         assert r.stats["field"] == "generated", r.stats
+    from solvers.integrate.ensemble import integrate_ensemble  # and its ensemble twin
+    from solvers.models.cases import build
+
+    m = build(case_id, case.example)
+    integrate_ensemble(m.model, m.p, [case.state], [0.0, 0.01], generated=True)
     return case_id
 
 
@@ -95,7 +100,32 @@ def warm(jobs: int | None = None) -> float:
     else:
         for cid in todo:
             compile_generated(cid)
+    warm_ensembles()
     return time.perf_counter() - t0
+
+
+def warm_ensembles() -> None:
+    """The compiled ensemble (solvers/kernels/ensemble.py) on the general field, one
+    specialization per model, and its generated twin for every case structure (compiled
+    by compile_generated in the parallel part when new; loaded here), so that the first
+    Poincare map of a server does not compile in a request."""
+    from solvers.integrate.ensemble import integrate_ensemble
+    from solvers.kernels import generate
+    from solvers.models.cases import build, registry
+
+    seen = set()
+    for cid, case in registry().items():
+        m = build(cid, case.example)
+        if (m.model,) not in seen:     # the general field: one specialization per model
+            seen.add((m.model,))
+            integrate_ensemble(m.model, m.p, [case.state], [0.0, 0.01], generated=False)
+        if m.model not in generate.GENERATED_MODELS:
+            continue
+        key = generate.structure(m.model, m.p)
+        if key in seen:
+            continue
+        seen.add(key)
+        integrate_ensemble(m.model, m.p, [case.state], [0.0, 0.01], generated=True)
 
 
 if __name__ == "__main__":

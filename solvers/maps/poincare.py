@@ -36,6 +36,7 @@ from solvers.models.cases import Model, build, initial_state
 
 MAX_POINTS = 100_000
 MAX_TRAJECTORIES = 1_000
+ROUND_BYTES = 64e6        # memory of the samples of one ensemble call (trace_all)
 PILOT_TAUS = 2000.0       # a trajectory that does not return within 2000 rotation times
 
 
@@ -54,6 +55,7 @@ class MapSpec:
     max_steps: int = 20_000_000
     samples_per_crossing: int = 32
     check: bool = True
+    generated: bool | None = None     # the case's generated field; None: integrate's default
 
     def validate(self) -> None:
         if not math.isfinite(self.energy):
@@ -133,100 +135,204 @@ def dense_check(t: np.ndarray, Y: np.ndarray, ct: np.ndarray, g0: float,
                      np.count_nonzero(~resolved)])
 
 
-def _run(model, y0, t0, t_out, spec, max_cross, control):
-    from solvers.integrate.integrator import integrate
-
-    return integrate(model.model, model.p, y0, t0 + t_out, method=spec.method,
-                     rtol=spec.rtol, atol=spec.atol, max_steps=spec.max_steps,
-                     section=spec.section(), max_crossings=max_cross, control=control)
-
-
 def _status(res) -> str:
     if res.success:
         return "ok"
     return "budget" if res.budget_exhausted else "singular"
 
 
-def trace(model: Model, y0, spec: MapSpec, *, h_max: float = math.inf) -> MapTrajectory:
-    """spec.points crossings of the section from y0 (see the module docstring)."""
-    from solvers.integrate.integrator import StepControl
+class _Tracer:
+    """One trajectory of the map as a sequence of runs of the kernel: a pilot (does it
+    return? its mean return time), then chunks of at most 500 crossings, each sampled
+    densely for the check, until spec.points crossings, a failure, or the step budget.
+    `request()` says what to integrate next, `take(res)` digests the result; `trace` runs
+    one tracer with `integrate`, `trace_all` many in lockstep with one compiled ensemble
+    call per round (the same runs, so the same numbers)."""
 
-    y0 = np.array(y0, dtype=float)
-    x0 = tuple(float(v) for v in map_point(y0))
-    tau = TWO_PI / max(_omega_norm(model, y0), 1e-300)
-    control = StepControl(h_max=h_max)
-    traj = MapTrajectory(x0, y0, np.empty(0), np.empty((0, 6)))
-    # the start lies on the section: a crossing at t ~ 0 is the start itself
-    t_start = 1e-9 * tau
-    pilot = _run(model, y0, 0.0, np.array([0.0, PILOT_TAUS * tau]), spec, 3, control)
-    traj.steps, traj.rhs_calls = pilot.steps, pilot.rhs_calls
-    tc = pilot.crossings_t[pilot.crossings_t > t_start]
-    if not pilot.success or tc.size == 0:
-        traj.status = "no-return" if pilot.success else _status(pilot)
-        traj.message = (pilot.message if not pilot.success else
-                        f"no crossing of g = g0 in direction {spec.direction} within "
-                        f"t = {PILOT_TAUS * tau:.4g} ({PILOT_TAUS:g} rotation times)")
-        return traj
-    period = float(tc[-1] / tc.size)
-    # samples fine enough to follow g: g turns at about the body's rate |omega|, also when
-    # the crossings in the asked direction are rare
-    dt = min(period, tau) / spec.samples_per_crossing
-    times, states = [], []
-    counts = np.zeros(5)
-    t, y = 0.0, y0
-    steps_left = spec.max_steps
-    while len(times) < spec.points:
-        want = min(spec.points - len(times), 500)
-        n_s = math.ceil((1.5 * want + 2) * spec.samples_per_crossing) + 1
-        res = _run(model, y, t, dt * np.arange(n_s), replace_steps(spec, steps_left),
-                   want, control)
+    def __init__(self, model: Model, y0, spec: MapSpec, h_max: float = math.inf):
+        self.spec, self.h_max = spec, h_max
+        y0 = np.array(y0, dtype=float)
+        self.tau = TWO_PI / max(_omega_norm(model, y0), 1e-300)
+        self.traj = MapTrajectory(tuple(float(v) for v in map_point(y0)), y0, np.empty(0),
+                                  np.empty((0, 6)))
+        # the start lies on the section: a crossing at t ~ 0 is the start itself
+        self.t_start = 1e-9 * self.tau
+        self.dt = None                     # sample spacing, set by the pilot
+        self.times, self.states = [], []
+        self.counts = np.zeros(5)
+        self.t, self.y = 0.0, y0
+        self.steps_left = spec.max_steps
+        self.done = False
+
+    def request(self):
+        """(y0, t_out, max_crossings, max_steps) of the next run."""
+        if self.dt is None:
+            return self.y, np.array([0.0, PILOT_TAUS * self.tau]), 3, self.spec.max_steps
+        want = min(self.spec.points - len(self.times), 500)
+        n_s = math.ceil((1.5 * want + 2) * self.spec.samples_per_crossing) + 1
+        return self.y, self.t + self.dt * np.arange(n_s), want, max(int(self.steps_left), 1)
+
+    def take(self, res) -> None:
+        traj, spec = self.traj, self.spec
         traj.steps += res.steps
         traj.rhs_calls += res.rhs_calls
-        steps_left -= res.steps + res.rejected
-        first = t == 0.0
-        keep = res.crossings_t > (t_start if first else -math.inf)
+        if self.dt is None:
+            self._take_pilot(res)
+            return
+        self.steps_left -= res.steps + res.rejected
+        first = self.t == 0.0
+        keep = res.crossings_t > (self.t_start if first else -math.inf)
         ct, cy = res.crossings_t[keep], res.crossings_y[keep]
-        times.extend(ct.tolist())
-        states.extend(cy)
+        self.times.extend(ct.tolist())
+        self.states.extend(cy)
         # the check: from the second sample on in the first chunk (the start itself lies
         # on the section, where the sign of g - g0 is round-off)
         i0 = 1 if first else 0
         if spec.check and len(res.t) > i0 + 1:
-            counts += dense_check(res.t[i0:], res.y[i0:], ct, spec.g0, spec.direction)
-        if len(times) >= spec.points:
-            break
-        if not res.success:
+            self.counts += dense_check(res.t[i0:], res.y[i0:], ct, spec.g0, spec.direction)
+        if len(self.times) >= spec.points:
+            self._finish()
+        elif not res.success:
             traj.status, traj.message = _status(res), res.message
-            break
-        t, y = res.t_stop, res.y_stop
-        if steps_left <= 0:
+            self._finish()
+        elif self.steps_left <= 0:
+            self.t, self.y = res.t_stop, res.y_stop
             traj.status, traj.message = "budget", "the step budget ran out"
+            self._finish()
+        else:
+            self.t, self.y = res.t_stop, res.y_stop
+
+    def _take_pilot(self, pilot) -> None:
+        traj, spec = self.traj, self.spec
+        tc = pilot.crossings_t[pilot.crossings_t > self.t_start]
+        if not pilot.success or tc.size == 0:
+            traj.status = "no-return" if pilot.success else _status(pilot)
+            traj.message = (pilot.message if not pilot.success else
+                            f"no crossing of g = g0 in direction {spec.direction} within "
+                            f"t = {PILOT_TAUS * self.tau:.4g} ({PILOT_TAUS:g} rotation times)")
+            self.done = True
+            return
+        period = float(tc[-1] / tc.size)
+        # samples fine enough to follow g: g turns at about the body's rate |omega|, also
+        # when the crossings in the asked direction are rare
+        self.dt = min(period, self.tau) / spec.samples_per_crossing
+
+    def _finish(self) -> None:
+        traj = self.traj
+        traj.t = np.asarray(self.times[:self.spec.points])
+        traj.states = np.asarray(self.states[:self.spec.points]).reshape(-1, 6)
+        k_all, d_all, k_res, d_res, unresolved = (int(v) for v in self.counts)
+        traj.check = {"kernel": k_all, "dense": d_all, "missed": max(d_res - k_res, 0),
+                      "extra": max(k_res - d_res, 0), "unresolved_intervals": unresolved,
+                      "sample_dt": self.dt,
+                      "h_max": None if math.isinf(self.h_max) else self.h_max}
+        self.done = True
+
+
+def _integrate_options(spec: MapSpec) -> dict:
+    opts = {"method": spec.method, "rtol": spec.rtol, "atol": spec.atol,
+            "section": spec.section()}
+    if spec.generated is not None:
+        opts["generated"] = spec.generated
+    return opts
+
+
+def trace(model: Model, y0, spec: MapSpec, *, h_max: float = math.inf) -> MapTrajectory:
+    """spec.points crossings of the section from y0 (see the module docstring), one
+    `integrate` call per run."""
+    from solvers.integrate.integrator import StepControl, integrate
+
+    tr = _Tracer(model, y0, spec, h_max)
+    control = StepControl(h_max=h_max)
+    while not tr.done:
+        y, t_out, n_cross, steps = tr.request()
+        tr.take(integrate(model.model, model.p, y, t_out, max_steps=steps,
+                          max_crossings=n_cross, control=control,
+                          **_integrate_options(spec)))
+    return tr.traj
+
+
+def trace_all(model: Model, starts, spec: MapSpec, *, h_max=None, workers: int | None = None,
+              progress: Callable[[int, int], None] | None = None) -> list[MapTrajectory]:
+    """`trace` for every start, the runs of all unfinished trajectories in one compiled
+    parallel call per round (solvers/integrate/ensemble.py; several if their samples
+    would take more than ROUND_BYTES); h_max: one per start or None.
+    progress(finished, total) when a round finishes some."""
+    hm = [math.inf] * len(starts) if h_max is None else list(h_max)
+    tracers = [_Tracer(model, y0, spec, h) for y0, h in zip(starts, hm, strict=True)]
+    finished = 0
+    while True:
+        live = [tr for tr in tracers if not tr.done]
+        if not live:
             break
-    traj.t = np.asarray(times[:spec.points])
-    traj.states = np.asarray(states[:spec.points]).reshape(-1, 6)
-    k_all, d_all, k_res, d_res, unresolved = (int(v) for v in counts)
-    traj.check = {"kernel": k_all, "dense": d_all, "missed": max(d_res - k_res, 0),
-                  "extra": max(k_res - d_res, 0), "unresolved_intervals": unresolved,
-                  "sample_dt": dt, "h_max": None if math.isinf(h_max) else h_max}
-    return traj
+        reqs = [tr.request() for tr in live]
+        # the samples of a round take rows x width x 6 doubles: at most ~64 MB per call
+        width = max(len(r[1]) for r in reqs)
+        block = max(1, int(ROUND_BYTES // (width * 6 * 8)))
+        for lo in range(0, len(live), block):
+            _round(model, spec, live[lo:lo + block], reqs[lo:lo + block], workers)
+        now = sum(tr.done for tr in tracers)
+        if progress is not None and now > finished:
+            progress(now, len(tracers))
+        finished = now
+    return [tr.traj for tr in tracers]
 
 
-def replace_steps(spec: MapSpec, steps: int) -> MapSpec:
-    from dataclasses import replace
+def _round(model, spec, live, reqs, workers) -> None:
+    """One compiled ensemble call for the requests of the tracers `live`."""
+    from solvers.integrate.ensemble import integrate_ensemble
 
-    return replace(spec, max_steps=max(int(steps), 1))
+    width = max(len(r[1]) for r in reqs)
+    T = np.zeros((len(live), width))
+    for i, r in enumerate(reqs):
+        T[i, :len(r[1])] = r[1]
+    res = integrate_ensemble(model.model, model.p, np.array([r[0] for r in reqs]), T,
+                             n_out=[len(r[1]) for r in reqs],
+                             max_crossings=[r[2] for r in reqs],
+                             max_steps=[r[3] for r in reqs],
+                             h_max=[tr.h_max for tr in live], workers=workers,
+                             **_integrate_options(spec))
+    for tr, r in zip(live, res, strict=True):
+        tr.take(r)
+
+
+def _needs_again(spec: MapSpec, traj: MapTrajectory) -> bool:
+    c = traj.check
+    return bool(spec.check and c and (c["missed"] or c["extra"]))
+
+
+def _again(first: MapTrajectory, again: MapTrajectory) -> MapTrajectory:
+    again.check["first_pass"] = {k: first.check[k]
+                                 for k in ("kernel", "dense", "missed", "extra")}
+    return again
 
 
 def trace_checked(model: Model, y0, spec: MapSpec) -> MapTrajectory:
     """trace(), and once more with h_max = the sample spacing if the check found a
     crossing the kernel missed (or the samples were too coarse to tell)."""
     traj = trace(model, y0, spec)
-    c = traj.check
-    if spec.check and c and (c["missed"] or c["extra"]):
-        again = trace(model, y0, spec, h_max=0.5 * c["sample_dt"])
-        again.check["first_pass"] = {k: c[k] for k in ("kernel", "dense", "missed", "extra")}
-        return again
+    if _needs_again(spec, traj):
+        return _again(traj, trace(model, y0, spec, h_max=0.5 * traj.check["sample_dt"]))
     return traj
+
+
+def trace_checked_all(model: Model, starts, spec: MapSpec, *, workers: int | None = None,
+                      progress: Callable[[int, int], None] | None = None
+                      ) -> list[MapTrajectory]:
+    """trace_checked() for every start: trace_all, then trace_all again for those whose
+    check asks for it. progress(finished, total) as the first pass finishes them, and
+    once more after the second pass if there is one."""
+    starts = list(starts)
+    out = trace_all(model, starts, spec, workers=workers, progress=progress)
+    redo = [i for i, tr in enumerate(out) if _needs_again(spec, tr)]
+    if redo:
+        again = trace_all(model, [starts[i] for i in redo], spec, workers=workers,
+                          h_max=[0.5 * out[i].check["sample_dt"] for i in redo])
+        for i, tr in zip(redo, again, strict=True):
+            out[i] = _again(out[i], tr)
+        if progress is not None:
+            progress(len(starts), len(starts))
+    return out
 
 
 def sample_initial(model: Model, spec: MapSpec, n: int, rng: np.random.Generator,
@@ -328,18 +434,16 @@ def starts_for(model: Model, spec: MapSpec, *, trajectories: int = 8, initial=No
 def poincare(case: str, params: dict | None, spec: MapSpec, *, trajectories: int = 8,
              initial=None, states=None, seed: int = 0,
              progress: Callable[[int, int], None] | None = None,
-             allow_any_inertia: bool = False) -> PoincareResult:
+             allow_any_inertia: bool = False, workers: int | None = None) -> PoincareResult:
     """The map of `case` on the level spec.energy: `trajectories` sampled starts (seeded),
     or the given `initial` map points (L/G, H/G, l), or full `states` (M, gamma) taken
-    as they are (their own energy is reported). progress(done, total) after each."""
+    as they are (their own energy is reported). All trajectories run together, one
+    compiled parallel call per round on `workers` threads (trace_checked_all);
+    progress(done, total) as they finish."""
     spec.validate()
     model = map_model(case, params, allow_any_inertia=allow_any_inertia)
     starts = starts_for(model, spec, trajectories=trajectories, initial=initial,
                         states=states, seed=seed)
-    out = []
-    for i, y0 in enumerate(starts):
-        out.append(trace_checked(model, y0, spec))
-        if progress is not None:
-            progress(i + 1, len(starts))
+    out = trace_checked_all(model, starts, spec, workers=workers, progress=progress)
     names = tuple(n for n in model.integral_names)
     return PoincareResult(case, model.params, spec, out, names)

@@ -2,10 +2,11 @@
 
 A sweep is a list of tasks, each one map (case, parameters, energy, section, starts): the
 ellipsoid family's lambda, the unbalanced ball's offset, or a stack of energy levels (a
-Poincare atlas). Every task gets its own seed, spawned from the sweep's seed by
-numpy's SeedSequence in task order, so the result does not depend on how many workers
-ran it or in which order the tasks finished: a fixed seed gives the same numbers on one
-core, on two, or on a cluster.
+Poincare atlas). A task carries all the trajectories of its map, run as one compiled
+ensemble (not one task per trajectory). Every task gets its own seed, spawned from the
+sweep's seed by numpy's SeedSequence in task order, so the result does not depend on how
+many workers ran it or in which order the tasks finished: a fixed seed gives the same
+numbers on one core, on two, or on a cluster.
 
 Where it runs (a setting, environment variables ROLLING_DASK_*):
   * by default a LocalCluster on this machine: ROLLING_DASK_WORKERS worker processes
@@ -56,6 +57,7 @@ class MapTask:
     atol: float = 1e-12
     seed: int = 0
     keep_points: bool = False
+    threads: int = 1          # numba threads of the task's compiled ensemble (see run_task)
 
 
 @dataclass
@@ -73,7 +75,10 @@ class SweepResult:
 
 
 def run_task(task: MapTask) -> dict:
-    """The map of one task, summarised per trajectory (run on a dask worker)."""
+    """The map of one task, summarised per trajectory (run on a dask worker). The task
+    carries all its trajectories: they run together, one compiled parallel call per round
+    (solvers.maps.poincare.trace_checked_all), on `task.threads` threads; one, since the
+    dask workers (one thread each) already fill the cores."""
     from solvers.maps.map_analysis import correlation_dimension
     from solvers.maps.poincare import MapSpec, poincare
 
@@ -81,7 +86,7 @@ def run_task(task: MapTask) -> dict:
                    points=task.points, rtol=task.rtol, atol=task.atol)
     t0 = time.perf_counter()
     res = poincare(task.case, task.params, spec, trajectories=task.trajectories,
-                   seed=task.seed)
+                   seed=task.seed, workers=task.threads)
     rows = []
     for tr, sp in zip(res.trajectories, res.integral_spread(), strict=True):
         row = {"initial": list(tr.initial), "n": len(tr.points), "status": tr.status,

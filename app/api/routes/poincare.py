@@ -2,13 +2,14 @@
 /poincare that draws it and the paper's Figs ris-*1..ris-*4 (app/static/data/paper_figures.json,
 written by bench/paper_figures.py).
 
-The starts are resolved (validated, sampled with the seed) in a thread; then every
-trajectory is one job of the worker pool, `workers` at a time. With ?stream=true the answer
-is NDJSON: {"event": "progress", "done": k, "total": n} after each batch, then
-{"event": "result", "result": {...}} (or {"event": "error", "detail": ...}); without it,
-one JSON object {"trajectories": [...], ...} when all are done.
+The starts are resolved (validated, sampled with the seed) in a thread; then they are cut
+into slices of consecutive trajectories, each slice one job of the worker pool (one
+compiled ensemble, app/services/poincare_jobs.py), `workers` jobs at a time. With
+?stream=true the answer is NDJSON: {"event": "progress", "done": k, "total": n} after
+each round of jobs, then {"event": "result", "result": {...}} (or {"event": "error",
+"detail": ...}); without it, one JSON object {"trajectories": [...], ...} when all are done.
 
-One deadline (Settings.deadline_s) holds for the whole request: every trajectory gets the
+One deadline (Settings.deadline_s) holds for the whole request: every job gets the
 time that is left, and when none is left the answer is 504 (in a stream: an error event
 with "status": 504).
 """
@@ -16,6 +17,7 @@ with "status": 504).
 from __future__ import annotations
 
 import json
+import math
 
 import anyio
 from fastapi import APIRouter, Query, Request
@@ -72,22 +74,29 @@ def resolve(req: PoincareRequest, max_steps: int) -> tuple[dict, dict, list[list
 _HINT = "ask for fewer trajectories or points, or loosen rtol"
 
 
-async def _batch(pool, settings, job, starts, results, lo, hi, end):
-    """Trajectories lo..hi-1, each with the time left until `end` (anyio clock)."""
-    async def one(i):
+def _slices(n: int, width: int) -> list[tuple[int, int]]:
+    """The starts cut into jobs of consecutive trajectories: about four rounds of `width`
+    jobs (progress after each round), each job one compiled ensemble."""
+    per_job = max(1, math.ceil(n / (4 * width)))
+    return [(lo, min(n, lo + per_job)) for lo in range(0, n, per_job)]
+
+
+async def _batch(pool, settings, job, starts, results, jobs, end):
+    """The jobs (lo, hi) at once, each with the time left until `end` (anyio clock)."""
+    async def one(lo, hi):
         left = end - anyio.current_time()
         if left <= 0:
             raise DeadlineExceeded(settings.deadline_s, _HINT)
         try:
-            results[i] = await pool.run(poincare_jobs.trajectory, job, starts[i],
-                                        deadline=left)
+            results[lo:hi] = await pool.run(poincare_jobs.trajectories, job, starts[lo:hi],
+                                            deadline=left)
         except DeadlineExceeded:
             raise DeadlineExceeded(settings.deadline_s, _HINT) from None
 
     try:
         async with anyio.create_task_group() as tg:
-            for i in range(lo, hi):
-                tg.start_soon(one, i)
+            for lo, hi in jobs:
+                tg.start_soon(one, lo, hi)
     except BaseExceptionGroup as group:   # the first failure, as the pool raised it
         raise group.exceptions[0] from None
 
@@ -108,13 +117,14 @@ async def poincare(req: PoincareRequest, request: Request, pool: PoolDep,
     n = len(starts)
     end = anyio.current_time() + settings.deadline_s
     width = max(1, settings.workers)
+    jobs = _slices(n, width)
+    rounds = [jobs[k:k + width] for k in range(0, len(jobs), width)]
     results: list[dict | None] = [None] * n
 
     if not stream:
         async def work():
-            for lo in range(0, n, width):
-                await _batch(pool, settings, job, starts, results, lo, min(n, lo + width),
-                             end)
+            for group in rounds:
+                await _batch(pool, settings, job, starts, results, group, end)
 
         await cancel_on_disconnect(request, work)
         return Response(dumps({**header, "trajectories": results}),
@@ -122,17 +132,16 @@ async def poincare(req: PoincareRequest, request: Request, pool: PoolDep,
 
     async def events():
         yield json.dumps({"event": "progress", "done": 0, "total": n}) + "\n"
-        for lo in range(0, n, width):
-            hi = min(n, lo + width)
+        for group in rounds:
             try:
-                await _batch(pool, settings, job, starts, results, lo, hi, end)
+                await _batch(pool, settings, job, starts, results, group, end)
             except Exception as exc:   # a Problem for the page, then stop
                 status = (504 if isinstance(exc, DeadlineExceeded) else
                           422 if isinstance(exc, InputError) else 503)
                 yield json.dumps({"event": "error", "status": status,
                                   "detail": str(exc)}) + "\n"
                 return
-            yield json.dumps({"event": "progress", "done": hi, "total": n}) + "\n"
+            yield json.dumps({"event": "progress", "done": group[-1][1], "total": n}) + "\n"
         yield (b'{"event":"result","result":' + dumps({**header, "trajectories": results})
                + b"}\n").decode()
 
