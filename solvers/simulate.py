@@ -34,8 +34,11 @@ def symmetric_methods() -> tuple[str, ...]:
     return tuple(METHODS)
 
 
+TAYLOR_METHODS = ("taylor", "auto")   # heyoka's Taylor backend; auto: chosen from the front
+
+
 def methods() -> tuple[str, ...]:
-    return (*compiled_methods(), *symmetric_methods(), *SCIPY_METHODS)
+    return (*compiled_methods(), *symmetric_methods(), *TAYLOR_METHODS, *SCIPY_METHODS)
 
 
 @dataclass
@@ -110,9 +113,17 @@ def _check_run_options(t_end, method, rtol, atol, samples):
         raise InputError(f"method = {method!r}: unknown; choose one of {', '.join(methods())}")
 
 
-def _integrate(model: Model, y0, t_out, method, rtol, atol, project, max_steps, step=None):
-    """Compiled kernels, or scipy's solve_ivp on the independent NumPy field."""
+def _integrate(model: Model, y0, t_out, method, rtol, atol, project, max_steps, step=None,
+               precision=None):
+    """Compiled kernels, heyoka's Taylor integrator, or scipy's solve_ivp on the
+    independent NumPy field."""
     from solvers.integrate.integrator import integrate, solve_ivp_reference
+
+    if method == "taylor":
+        from solvers.integrate import taylor_backend
+
+        return taylor_backend.run(model.model, model.p, y0, t_out, rtol=rtol,
+                                  precision=precision, max_steps=max_steps)
 
     if method in SCIPY_METHODS:
         from solvers.models.reference import field as ref_field
@@ -135,15 +146,24 @@ def _integrate(model: Model, y0, t_out, method, rtol, atol, project, max_steps, 
 def simulate(case: str, params: dict | None, state0, t_end: float, *,
              method: str = DEFAULT_METHOD, rtol: float = 1e-10, atol: float = 1e-12,
              samples: int = 201, project: bool = False, max_steps: int = 50_000_000,
-             allow_any_inertia: bool = False, step: float | None = None) -> SimulationResult:
-    """Integrate `case` from `state0` over [0, t_end]; see the module docstring."""
+             allow_any_inertia: bool = False, step: float | None = None,
+             precision: str | None = None) -> SimulationResult:
+    """Integrate `case` from `state0` over [0, t_end]; see the module docstring.
+    precision (method "taylor" only): "double", "long double" or "quad"; None chooses
+    (solvers/integrate/taylor_backend.py)."""
     model = build(case, params, allow_any_inertia=allow_any_inertia)
     y0 = initial_state(model, state0)
-    if method == "auto":   # the case's default, from the measured work-precision front
-        from solvers.integrate.workprecision import default_method
-
-        method = default_method(case, DEFAULT_METHOD)
     _check_run_options(t_end, method, rtol, atol, samples)
+    auto = None
+    if method == "auto":   # from the measured work-precision front, per case and tolerance
+        from solvers.integrate.auto import choose
+
+        auto = choose(case, model.model, rtol, float(t_end), project, step, precision)
+        method, precision = auto["method"], auto["precision"]
+    if method == "taylor" or precision is not None:
+        from solvers.integrate.taylor_backend import check_taylor_options
+
+        check_taylor_options(method, precision, project, step)
     if project and method in SCIPY_METHODS:
         raise InputError("project = true needs a compiled method (projection happens inside "
                          f"the step); {method} is a scipy reference method")
@@ -151,7 +171,7 @@ def simulate(case: str, params: dict | None, state0, t_end: float, *,
     t_out = np.linspace(0.0, float(t_end), samples)
     if not np.all(np.diff(t_out) > 0):
         raise InputError(f"t_end = {t_end!r} is too small for {samples} distinct sample times")
-    res = _integrate(model, y0, t_out, method, rtol, atol, project, max_steps, step)
+    res = _integrate(model, y0, t_out, method, rtol, atol, project, max_steps, step, precision)
     status = "ok" if res.success else ("budget" if res.budget_exhausted else "singular")
     message = "" if res.success else res.message
     stats = {"steps": res.steps, "rejected": res.rejected, "rhs_calls": res.rhs_calls,
@@ -163,6 +183,9 @@ def simulate(case: str, params: dict | None, state0, t_end: float, *,
         integral_series(code, model.model, np.ascontiguousarray(Y), model.p, out)
         inv[name] = out
     stats.update(rtol=rtol, atol=atol, projected=bool(project), samples=len(t))
+    stats.update(getattr(res, "extra", {}))
+    if auto is not None:
+        stats["auto"] = auto
     if step is not None:   # the equal steps the kernel took to land on the samples
         stats["step"] = res.t_stop / res.steps if res.steps else step
         stats["step_requested"] = step
