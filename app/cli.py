@@ -97,6 +97,8 @@ def simulate(
     atol: Annotated[float, typer.Option(help="absolute tolerance")] = 1e-12,
     step: Annotated[float | None, typer.Option(help="constant step of a symmetric method "
                                                "(gauss4/6/8; required there)")] = None,
+    precision: Annotated[str | None, typer.Option(help="method taylor: double, 'long double' "
+                                                  "or quad (default: chosen from rtol)")] = None,
     samples: Annotated[int, typer.Option(help="number of output samples")] = 201,
     project: Annotated[bool, typer.Option("--project", help="project onto the known "
                                           "integrals after every step")] = False,
@@ -125,7 +127,8 @@ def simulate(
         with _timeout(timeout):
             res = sim.simulate(case, params, y0, t_end, method=method, rtol=rtol, atol=atol,
                                samples=samples, project=project,
-                               allow_any_inertia=allow_any_inertia, step=step)
+                               allow_any_inertia=allow_any_inertia, step=step,
+                               precision=precision)
     except InputError as e:
         _fail(str(e))
     if as_json:
@@ -148,7 +151,10 @@ def _summary(res):
     knob = f"step {s['step']:g}" if "step" in s else f"rtol {s['rtol']:g}  atol {s['atol']:g}"
     con.print(f"method {s['method']}  {knob}  steps {s['steps']}"
               f"  rhs calls {s['rhs_calls']}  wall {s['wall_s'] * 1e3:.1f} ms"
-              f"{'  (projected)' if s['projected'] else ''}")
+              f"{'  (projected)' if s['projected'] else ''}"
+              + (f"  precision {s['precision']}" if "precision" in s else ""))
+    if "auto" in s:
+        con.print(f"auto chose {s['method']}: {s['auto']['reason']}")
     if len(res.t):
         tab = Table("t", *res.state_labels)
         for i in sorted({0, len(res.t) // 2, len(res.t) - 1}):
@@ -358,6 +364,10 @@ def methods():
         m = load(name)
         typer.echo(f"{name:14s} compiled Gauss collocation, symmetric, order {m.order}, "
                    f"{m.stages} implicit stages, constant step (--step)")
+    typer.echo(f"{'taylor':14s} heyoka's adaptive Taylor integrator on the case's generated "
+               "field (optional extra 'taylor'), --precision double | 'long double' | quad")
+    typer.echo(f"{'auto':14s} chosen per case and tolerance from the measured "
+               "work-precision front (among dop853, vern9, taylor)")
     for name, sp in SCIPY_METHODS.items():
         typer.echo(f"{name:14s} scipy solve_ivp {sp} on the independent NumPy field (reference)")
 

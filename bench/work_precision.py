@@ -13,6 +13,9 @@ ellipsoid, a ball on a sphere, a flat base on a sphere) and tolerances 1e-4 ... 
             only); LSODA and Radau on the compiled field
   heyoka    adaptive Taylor in float64 on the expression system of solvers/integrate/taylor.py
             (compiled once per tolerance, compilation excluded and reported)
+  taylor    the project's Taylor backend (method "taylor": heyoka on the lean generated
+            field, solvers/integrate/taylor_backend.py) in double at every tolerance and in
+            long double at TAYLOR_EXTENDED; one of ours, a candidate of method "auto"
 
 Error: max over 101 output times of |y - y_ref|_inf / max(1, max|y_ref|_inf); the
 reference is heyoka in 80-bit long double at tol 1e-19, checked against heyoka in real128
@@ -24,6 +27,8 @@ takes more than BUDGET_S / 3, its tighter tolerances are skipped and marked so. 
 absolute time is asserted anywhere: the ratios are read side by side.
 
     .venv/bin/python bench/work_precision.py [--quick]       (or: rolling bench work-precision)
+    .venv/bin/python bench/work_precision.py --only-taylor    (re-measure the taylor runs
+        only and merge them into the committed JSON, the other methods' runs kept)
 
 Writes solvers/integrate/data/work_precision.json (every run; package data the explorer serves)
 and bench/results/work_precision.txt (the table);
@@ -56,6 +61,7 @@ STEPS = (0.4, 0.2, 0.1, 0.05, 0.025, 0.0125)     # gauss8
 SCIPY_MIN_TOL = 1e-14    # scipy clips rtol to 2.2e-14: tighter runs would repeat that one
 SAMPLES = 101
 REPEATS = 5
+TAYLOR_EXTENDED = (1e-14, 1e-15, 1e-16)   # the taylor backend also in long double here
 BUDGET_S = 60.0
 
 
@@ -111,7 +117,26 @@ def scipy_fun(model, compiled):
     return lambda t, y: ref_field(model.model, model.p, y)
 
 
-def run_case(case: WPCase, tols, quick: bool, say) -> list[dict]:
+def run_taylor(case, model, y0, t, Yref, tols) -> list[dict]:
+    """The Taylor backend as simulate() runs it; the compile (first run) excluded."""
+    from solvers.integrate import taylor_backend as tb
+
+    runs = []
+    plan = [(tol, "double") for tol in tols]
+    plan += [(tol, "long double") for tol in TAYLOR_EXTENDED
+             if "long double" in tb.precisions()]
+    for tol, prec in plan:
+        first = tb.run(model.model, model.p, y0, t, rtol=tol, precision=prec)
+        best = min((tb.run(model.model, model.p, y0, t, rtol=tol, precision=prec)
+                    for _ in range(REPEATS)), key=lambda r: r.wall_s)
+        runs.append(_record(case, wp.TAYLOR, tol, best.y, Yref, best.wall_s, None,
+                            best.steps, best.success, best.message, precision=prec,
+                            order=best.extra["taylor_order"],
+                            compile_s=first.extra["compile_s"]))
+    return runs
+
+
+def run_case(case: WPCase, tols, quick: bool, say, only_taylor=False) -> list[dict]:
     spec = registry()[case.id]
     model = build(case.id, {**spec.example, **case.overrides})
     y0 = initial_state(model, spec.state)
@@ -133,6 +158,8 @@ def run_case(case: WPCase, tols, quick: bool, say) -> list[dict]:
     say(f"reference: {info['reference']} ({time.perf_counter() - t0:.1f} s); "
         + info.get("reference_check", "real128 check skipped (--quick)"))
 
+    if only_taylor:
+        return run_taylor(case, model, y0, t, Yref, tols), info
     runs = []
     # warm every path once (numba specializations, heyoka's JIT, scipy's first calls)
     integrate(model.model, model.p, y0, t[:3], method="vern9", compensated=True,
@@ -165,6 +192,7 @@ def run_case(case: WPCase, tols, quick: bool, say) -> list[dict]:
         runs.append(_record(case, wp.HEYOKA, tol, Y, Yref, wall, None, steps, ok,
                             order=h.order))
     info["heyoka_compile_s"] = compile_s
+    runs += run_taylor(case, model, y0, t, Yref, tols)
     # scipy
     for name, method, compiled in ((wp.SCIPY_NUMPY, "DOP853", False),
                                    (wp.SCIPY_COMPILED, "DOP853", True),
@@ -227,7 +255,12 @@ def main(argv=None):
     ap.add_argument("--quick", action="store_true",
                     help="three tolerances, no NumPy-field scipy, no real128 check")
     ap.add_argument("--case", action="append", help="only these case ids")
+    ap.add_argument("--only-taylor", action="store_true",
+                    help="measure only the taylor backend and merge its runs into the "
+                         "committed JSON (the other methods' runs are kept)")
     args = ap.parse_args(argv)
+    if args.only_taylor:
+        return merge_taylor(args)
     tols = (1e-6, 1e-10, 1e-14) if args.quick else TOLS
     cases = [c for c in CASES if not args.case or c.id in args.case]
     lines = []
@@ -267,6 +300,31 @@ def main(argv=None):
     json_out = OUT / "work_precision_quick.json" if args.quick else wp.RESULTS
     json_out.write_text(json.dumps(data, indent=1) + "\n")
     (OUT / f"work_precision{suffix}.txt").write_text("\n".join(lines) + "\n")
+    return 0
+
+
+def merge_taylor(args) -> int:
+    import os
+
+    data = json.loads(wp.RESULTS.read_text())
+    tols = tuple(data["tolerances"])
+    cases = [c for c in CASES if not args.case or c.id in args.case]
+    lines = [f"taylor backend runs, merged into {wp.RESULTS.name}; load average "
+             f"{os.getloadavg()[0]:.1f} at the start"]
+    for case in cases:
+        runs, _ = run_case(case, tols, True, print, only_taylor=True)
+        data["runs"] = [r for r in data["runs"]
+                        if not (r["case"] == case.id and r["method"] == wp.TAYLOR)] + runs
+        for r in runs:
+            e = f"{r['error']:.1e}" if r["error"] is not None else "-"
+            lines.append(f"{case.id:24s} {r['precision']:11s} tol {r['tol']:.0e} error {e:>8s}"
+                         f" wall {r['wall_s'] * 1e3:8.2f} ms order {r['order']:2d} "
+                         f"compile {r['compile_s']:.1f} s")
+            print(lines[-1], flush=True)
+    lines.append(f"load average {os.getloadavg()[0]:.1f} at the end")
+    wp.RESULTS.write_text(json.dumps(data, indent=1) + "\n")
+    OUT.mkdir(exist_ok=True)
+    (OUT / "work_precision_taylor.txt").write_text("\n".join(lines) + "\n")
     return 0
 
 

@@ -160,6 +160,7 @@ def simulate(case: str, params: dict | None, state0, t_end: float, *,
 
         auto = choose(case, model.model, rtol, float(t_end), project, step, precision)
         method, precision = auto["method"], auto["precision"]
+        rtol = atol = auto["tol"]   # the front point's tolerance (auto.py)
     if method == "taylor" or precision is not None:
         from solvers.integrate.taylor_backend import check_taylor_options
 

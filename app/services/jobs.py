@@ -72,7 +72,8 @@ def _run(req: dict, max_steps: int):
     return simulate(req["case"], req["params"], req["state"], req["t_end"],
                     method=req["method"], rtol=req["rtol"], atol=req["atol"],
                     samples=req["samples"], project=req["project"], max_steps=max_steps,
-                    allow_any_inertia=req["allow_any_inertia"], step=req.get("step"))
+                    allow_any_inertia=req["allow_any_inertia"], step=req.get("step"),
+                    precision=req.get("precision"))
 
 
 def simulate_json(req: dict, max_steps: int) -> bytes:

@@ -8,7 +8,10 @@ error against a long-double reference and its wall time. For a requested rtol th
 level is rtol itself (the benchmark's error is relative to max(1, |y_ref|)), and the
 choice is the method whose cheapest run reaching that level is cheapest (workprecision's
 `cost_at`: no interpolation, a conservative reading of the front). The chosen method then
-runs at the requested rtol.
+runs with that front point's tolerance (rtol = atol = its tol, and its precision for
+taylor): auto reads rtol as the error wanted and picks the (method, tolerance) the
+measurements say delivers it at least cost, over the benchmark's run length (a longer
+run accumulates more error, a shorter one less).
 
 A case the benchmark did not measure takes the method that wins the level on most of the
 measured cases. A level no measured run reaches (rtol below what double delivers over the
@@ -46,7 +49,8 @@ def _winner(runs: list[dict], case_id: str, level: float, allowed) -> dict | Non
 
 def choose(case_id: str, model: int, rtol: float, t_end: float, project: bool = False,
            step=None, precision: str | None = None) -> dict:
-    """{"method", "precision", "reason", "front_point"}: what auto runs and why."""
+    """{"method", "precision", "tol", "requested_rtol", "reason", "front_point"}: what
+    auto runs, with which tolerance, and why."""
     from solvers.kernels.generate import GENERATED_MODELS
 
     allowed = list(CANDIDATES)
@@ -92,5 +96,11 @@ def choose(case_id: str, model: int, rtol: float, t_end: float, project: bool = 
     front = None
     if point is not None and "wall_s" in point:
         front = {k: point.get(k) for k in ("method", "tol", "error", "wall_s", "precision")}
+    tol = rtol
+    if front is not None:
+        tol = front["tol"]
+        if method == wp.TAYLOR and precision is None:
+            precision = front.get("precision")
     return {"method": method, "precision": precision if method == wp.TAYLOR else None,
-            "reason": "; ".join([reason, *notes]), "front_point": front}
+            "tol": tol, "requested_rtol": rtol, "reason": "; ".join([reason, *notes]),
+            "front_point": front}

@@ -58,10 +58,9 @@ PRECISIONS = ("double", "long double", "quad")
 EPS = {"double": float(np.finfo(np.float64).eps), "long double": 2.0 ** -63,
        "quad": 2.0 ** -112}
 MAX_CACHED = 8
-# how many units of round-off a Taylor run loses per sqrt(time unit) (measured,
-# bench/taylor_compile.py's floor table): rtol below FLOOR * eps * sqrt(max(1, t_end))
-# is out of a precision's reach
-FLOOR = 100.0
+# the precision rule (choose_precision): a tol below FLOOR * eps * sqrt(max(1, t_end)) asks
+# for less than the round-off a run of that length accumulates in that precision
+FLOOR = 1.0
 
 
 def heyoka():
@@ -114,9 +113,15 @@ def floor(precision: str, t_end: float) -> float:
 
 
 def choose_precision(rtol: float, t_end: float) -> str:
-    """The cheapest precision whose floor(precision, t_end) <= rtol: round-off of a
-    Taylor run grows like a random walk over its steps, about sqrt(t_end) for these
-    O(1)-time-scale systems (measured: bench/taylor_compile.py); else the widest."""
+    """The cheapest precision whose floor(precision, t_end) <= rtol, else the widest.
+
+    Round-off of a run grows like a random walk over its steps, about sqrt(t_end) steps
+    for these O(1)-time-scale systems. Calibrated on bench/results/work_precision_taylor.txt
+    (T = 1000, double): below tol ~ eps sqrt(T) = 7e-15 a tighter tol stops buying accuracy
+    in double (Chaplygin ball: tol 1e-14 -> error 2.3e-13, 1e-16 -> 5.1e-14; disk: 1e-14
+    -> 5.9e-13, 1e-16 -> 1.6e-12), while long double keeps going (1e-16 -> 2.7e-15 and
+    4.1e-16), at 10-30 times the cost: so double down to 7e-15 at T = 1000 (2.2e-16 at
+    T <= 1), long double below, quad below its own floor."""
     offered = precisions()
     for prec in offered:
         if floor(prec, t_end) <= rtol:
