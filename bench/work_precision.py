@@ -27,8 +27,9 @@ takes more than BUDGET_S / 3, its tighter tolerances are skipped and marked so. 
 absolute time is asserted anywhere: the ratios are read side by side.
 
     .venv/bin/python bench/work_precision.py [--quick]       (or: rolling bench work-precision)
-    .venv/bin/python bench/work_precision.py --only-taylor    (re-measure the taylor runs
-        only and merge them into the committed JSON, the other methods' runs kept)
+    .venv/bin/python bench/work_precision.py --only-taylor    (re-measure auto's
+        candidates dop853, vern9 and taylor together, interleaved, and merge them into the
+        committed JSON, the other methods' runs kept)
 
 Writes solvers/integrate/data/work_precision.json (every run; package data the explorer serves)
 and bench/results/work_precision.txt (the table);
@@ -117,22 +118,69 @@ def scipy_fun(model, compiled):
     return lambda t, y: ref_field(model.model, model.p, y)
 
 
+def taylor_plan(tols):
+    """(tol, precision) of the taylor runs: double down to 1e-14 (below, double stalls:
+    taylor_backend.choose_precision), long double at TAYLOR_EXTENDED."""
+    from solvers.integrate import taylor_backend as tb
+
+    plan = [(tol, "double") for tol in tols if tol >= 1e-14]
+    if "long double" in tb.precisions():
+        plan += [(tol, "long double") for tol in TAYLOR_EXTENDED]
+    return plan
+
+
 def run_taylor(case, model, y0, t, Yref, tols) -> list[dict]:
     """The Taylor backend as simulate() runs it; the compile (first run) excluded."""
     from solvers.integrate import taylor_backend as tb
 
     runs = []
-    plan = [(tol, "double") for tol in tols]
-    plan += [(tol, "long double") for tol in TAYLOR_EXTENDED
-             if "long double" in tb.precisions()]
-    for tol, prec in plan:
+    for tol, prec in taylor_plan(tols):
         first = tb.run(model.model, model.p, y0, t, rtol=tol, precision=prec)
         best = min((tb.run(model.model, model.p, y0, t, rtol=tol, precision=prec)
                     for _ in range(REPEATS)), key=lambda r: r.wall_s)
-        runs.append(_record(case, wp.TAYLOR, tol, best.y, Yref, best.wall_s, None,
-                            best.steps, best.success, best.message, precision=prec,
-                            order=best.extra["taylor_order"],
-                            compile_s=first.extra["compile_s"]))
+        runs.append(_taylor_record(case, tol, prec, best, first, Yref))
+    return runs
+
+
+def _taylor_record(case, tol, prec, best, first, Yref):
+    return _record(case, wp.TAYLOR, tol, best.y, Yref, best.wall_s, None, best.steps,
+                   best.success, best.message, precision=prec,
+                   order=best.extra["taylor_order"], compile_s=first.extra["compile_s"])
+
+
+def run_auto_candidates(case, model, y0, t, Yref, tols) -> list[dict]:
+    """method "auto"'s candidates (dop853, vern9, taylor) re-measured together, each
+    tolerance's runs interleaved (dop853, vern9, taylor, dop853, ...), best of REPEATS:
+    the same load for all three."""
+    from solvers.integrate import taylor_backend as tb
+
+    plan = taylor_plan(tols)
+    firsts = {(tol, prec): tb.run(model.model, model.p, y0, t, rtol=tol, precision=prec)
+              for tol, prec in plan}              # the compiles, excluded
+    for method in wp.PLAIN:
+        integrate(model.model, model.p, y0, t[:3], method=method, compensated=True)
+    runs = []
+    for tol in sorted({x for x in tols} | {tol for tol, _ in plan}, reverse=True):
+        best = {}
+        for _ in range(REPEATS):
+            for method in wp.PLAIN:
+                if tol not in tols:
+                    continue
+                r = integrate(model.model, model.p, y0, t, method=method, rtol=tol,
+                              atol=tol, compensated=True)
+                if method not in best or r.wall_s < best[method].wall_s:
+                    best[method] = r
+            for ptol, prec in plan:
+                if ptol == tol:
+                    r = tb.run(model.model, model.p, y0, t, rtol=tol, precision=prec)
+                    if prec not in best or r.wall_s < best[prec].wall_s:
+                        best[prec] = r
+        for key, r in best.items():
+            if key in wp.PLAIN:
+                runs.append(_record(case, key, tol, r.y, Yref, r.wall_s, r.rhs_calls,
+                                    r.steps, r.success, r.message))
+            else:
+                runs.append(_taylor_record(case, tol, key, r, firsts[(tol, key)], Yref))
     return runs
 
 
@@ -159,7 +207,7 @@ def run_case(case: WPCase, tols, quick: bool, say, only_taylor=False) -> list[di
         + info.get("reference_check", "real128 check skipped (--quick)"))
 
     if only_taylor:
-        return run_taylor(case, model, y0, t, Yref, tols), info
+        return run_auto_candidates(case, model, y0, t, Yref, tols), info
     runs = []
     # warm every path once (numba specializations, heyoka's JIT, scipy's first calls)
     integrate(model.model, model.p, y0, t[:3], method="vern9", compensated=True,
@@ -256,8 +304,9 @@ def main(argv=None):
                     help="three tolerances, no NumPy-field scipy, no real128 check")
     ap.add_argument("--case", action="append", help="only these case ids")
     ap.add_argument("--only-taylor", action="store_true",
-                    help="measure only the taylor backend and merge its runs into the "
-                         "committed JSON (the other methods' runs are kept)")
+                    help="re-measure dop853, vern9 and taylor (auto's candidates) "
+                         "interleaved and merge them into the committed JSON (the other "
+                         "methods' runs are kept)")
     args = ap.parse_args(argv)
     if args.only_taylor:
         return merge_taylor(args)
@@ -309,17 +358,21 @@ def merge_taylor(args) -> int:
     data = json.loads(wp.RESULTS.read_text())
     tols = tuple(data["tolerances"])
     cases = [c for c in CASES if not args.case or c.id in args.case]
-    lines = [f"taylor backend runs, merged into {wp.RESULTS.name}; load average "
-             f"{os.getloadavg()[0]:.1f} at the start"]
+    lines = [f"dop853, vern9 and the taylor backend, interleaved, merged into "
+             f"{wp.RESULTS.name}; load average {os.getloadavg()[0]:.1f} at the start"]
     for case in cases:
         runs, _ = run_case(case, tols, True, print, only_taylor=True)
+        renew = {wp.TAYLOR, *wp.PLAIN}
         data["runs"] = [r for r in data["runs"]
-                        if not (r["case"] == case.id and r["method"] == wp.TAYLOR)] + runs
+                        if not (r["case"] == case.id and r["method"] in renew)] + runs
         for r in runs:
             e = f"{r['error']:.1e}" if r["error"] is not None else "-"
-            lines.append(f"{case.id:24s} {r['precision']:11s} tol {r['tol']:.0e} error {e:>8s}"
-                         f" wall {r['wall_s'] * 1e3:8.2f} ms order {r['order']:2d} "
-                         f"compile {r['compile_s']:.1f} s")
+            what = (f"taylor {r['precision']:11s}" if r["method"] == wp.TAYLOR
+                    else f"{r['method']:18s}")
+            extra = (f" order {r['order']:2d} compile {r['compile_s']:.1f} s"
+                     if r["method"] == wp.TAYLOR else f" rhs {r['rhs_calls']}")
+            lines.append(f"{case.id:24s} {what} tol {r['tol']:.0e} error {e:>8s}"
+                         f" wall {r['wall_s'] * 1e3:8.2f} ms" + extra)
             print(lines[-1], flush=True)
     lines.append(f"load average {os.getloadavg()[0]:.1f} at the end")
     wp.RESULTS.write_text(json.dumps(data, indent=1) + "\n")

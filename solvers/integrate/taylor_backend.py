@@ -60,10 +60,11 @@ EPS = {"double": float(np.finfo(np.float64).eps), "long double": 2.0 ** -63,
        "quad": 2.0 ** -112}
 MAX_CACHED = 8
 # heyoka's step-size control reads the event functions' Taylor coefficients with the
-# state's (measured, heyoka 7.13: a t_event on v0 - 1e10 takes the flat base from 2078 steps
-# and error 4e-10 to 447 steps and a wrong state at T = 1000; det I_Q, of size ~10,
-# from 2078 to 1907 steps and 15x the error). Scaled by 1e-30 they keep their zeros and
-# leave the control to the state alone (2078 steps again).
+# state's, on purpose (bluescarni/heyoka PR #124, "Don't ignore the event equations when
+# determining the timestep"). Measured, heyoka 7.13, flat base, T = 1000: a t_event on
+# v0 - 1e10 takes it from 2078 steps and error 4e-10 to 447 steps and a wrong state; det I_Q
+# (size ~10) to 1907 steps and 15x the error. Scaled by 1e-30 the events keep their zeros
+# and leave the control to the state alone (2078 steps again).
 EVENT_SCALE = 1e-30
 # the precision rule (choose_precision): a tol below FLOOR * eps * sqrt(max(1, t_end)) asks
 # for less than the round-off a run of that length accumulates in that precision
