@@ -114,7 +114,7 @@ def _check_run_options(t_end, method, rtol, atol, samples):
 
 
 def _integrate(model: Model, y0, t_out, method, rtol, atol, project, max_steps, step=None,
-               precision=None):
+               precision=None, compensated=False):
     """Compiled kernels, heyoka's Taylor integrator, or scipy's solve_ivp on the
     independent NumPy field."""
     from solvers.integrate.integrator import integrate, solve_ivp_reference
@@ -139,7 +139,7 @@ def _integrate(model: Model, y0, t_out, method, rtol, atol, project, max_steps, 
         return integrate(model.model, model.p, y0, t_out, method=method, h_fixed=step,
                          max_steps=max_steps)
     return integrate(model.model, model.p, y0, t_out, method=method, rtol=rtol, atol=atol,
-                     max_steps=max_steps,
+                     max_steps=max_steps, compensated=compensated,
                      project_codes=model.integral_codes if project else ())
 
 
@@ -172,7 +172,8 @@ def simulate(case: str, params: dict | None, state0, t_end: float, *,
     t_out = np.linspace(0.0, float(t_end), samples)
     if not np.all(np.diff(t_out) > 0):
         raise InputError(f"t_end = {t_end!r} is too small for {samples} distinct sample times")
-    res = _integrate(model, y0, t_out, method, rtol, atol, project, max_steps, step, precision)
+    res = _integrate(model, y0, t_out, method, rtol, atol, project, max_steps, step, precision,
+                     compensated=bool(auto and auto["compensated"]))   # as measured
     status = "ok" if res.success else ("budget" if res.budget_exhausted else "singular")
     message = "" if res.success else res.message
     stats = {"steps": res.steps, "rejected": res.rejected, "rhs_calls": res.rhs_calls,

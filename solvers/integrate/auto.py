@@ -2,27 +2,34 @@
 case and per tolerance, across the in-house kernels and the Taylor backend.
 
 The measurements are bench/work_precision.py's (solvers/integrate/data/work_precision.json):
-for each benchmark case, runs of dop853, vern9 and `taylor` (heyoka on the lean generated
-field, solvers/integrate/taylor_backend.py) at tolerances 1e-4 ... 1e-16, each with its
-error against a long-double reference and its wall time. For a requested rtol the error
-level is rtol itself (the benchmark's error is relative to max(1, |y_ref|)), and the
-choice is the method whose cheapest run reaching that level is cheapest (workprecision's
-`cost_at`: no interpolation, a conservative reading of the front). The chosen method then
-runs with that front point's tolerance (rtol = atol = its tol, and its precision for
-taylor): auto reads rtol as the error wanted and picks the (method, tolerance) the
-measurements say delivers it at least cost, over the benchmark's run length (a longer
-run accumulates more error, a shorter one less).
+for each benchmark case, runs of dop853 and vern9 (compensated summation, rtol = atol)
+and `taylor` (heyoka on the lean generated field, solvers/integrate/taylor_backend.py, in
+double and long double) at tolerances 1e-4 ... 1e-16, each with its error against a
+long-double reference and its wall time. auto reads the requested rtol as the error
+wanted (the benchmark's error is relative to max(1, |y_ref|)).
+
+For each candidate, its Pareto points (workprecision.pareto) give the cost at that error
+by log-log interpolation between the two points that bracket it (the runs a tolerance
+apart; for taylor only between points of the same precision), and the tolerance that
+delivers it by the same interpolation of log tol; a level below every point of a method
+rules it out, one above every point takes its cheapest point. The cheapest candidate wins.
+It runs with that tolerance snapped down to a quarter decade (taylor_backend.snap_tol:
+never looser, and few distinct Taylor compiles), as the benchmark ran it (rtol = atol,
+compensated summation for dop853 / vern9, the point's precision for taylor). The
+benchmark's run is 1000 time units (100 for the unbalanced ball): a longer run of the
+same case accumulates more error, a shorter one less.
 
 A case the benchmark did not measure takes the method that wins the level on most of the
-measured cases. A level no measured run reaches (rtol below what double delivers over the
-benchmark's run, e.g. 1e-15 over T = 1000) goes to the Taylor backend, whose precision
-rule (taylor_backend.choose_precision) then picks long double or quad. Projection has no
-Taylor form, so with project = true only dop853 and vern9 compete. Without heyoka the
-Taylor candidate is left out, and the reason says so.
+measured cases, at the requested rtol. A level no measured run reaches (e.g. 1e-16 over
+T = 1000) goes to the Taylor backend, whose rule (taylor_backend.choose_precision) picks
+long double or quad. Projection has no Taylor form, so with project = true only dop853
+and vern9 compete. Without heyoka the Taylor candidate is left out, and the reason says so.
 """
 
 from __future__ import annotations
 
+import itertools
+import math
 from collections import Counter
 
 from solvers.integrate import workprecision as wp
@@ -38,10 +45,39 @@ def _taylor_available() -> bool:
     return True
 
 
+def _lerp_log(a: float, b: float, s: float) -> float:
+    return math.exp(math.log(a) + s * (math.log(b) - math.log(a)))
+
+
+def at_level(records: list[dict], level: float) -> dict | None:
+    """The cost and tolerance of one method at error `level`, interpolated on its Pareto
+    front (module doc); None if no run of it reaches the level."""
+    pts = wp.pareto(records)               # by increasing error
+    below = [r for r in pts if r["error"] <= level]
+    if not below:
+        return None
+    for r1, r2 in itertools.pairwise(pts):
+        if r1["error"] <= level < r2["error"]:
+            if r1.get("precision") != r2.get("precision") or r1["error"] <= 0:
+                break                      # no interpolation across precisions
+            s = (math.log(level) - math.log(r1["error"])) / \
+                (math.log(r2["error"]) - math.log(r1["error"]))
+            return {"method": r1["method"], "precision": r1.get("precision"),
+                    "tol": _lerp_log(r1["tol"], r2["tol"], s),
+                    "wall_s": _lerp_log(r1["wall_s"], r2["wall_s"], s), "error": level,
+                    "between": [_point(r1), _point(r2)]}
+    best = min(below, key=lambda r: r["wall_s"])
+    return {**_point(best), "between": None}
+
+
+def _point(r: dict) -> dict:
+    return {k: r.get(k) for k in ("method", "tol", "error", "wall_s", "precision")}
+
+
 def _winner(runs: list[dict], case_id: str, level: float, allowed) -> dict | None:
     best = None
     for m in allowed:
-        c = wp.cost_at([r for r in runs if r["case"] == case_id and r["method"] == m], level)
+        c = at_level([r for r in runs if r["case"] == case_id and r["method"] == m], level)
         if c is not None and (best is None or c["wall_s"] < best["wall_s"]):
             best = c
     return best
@@ -49,8 +85,9 @@ def _winner(runs: list[dict], case_id: str, level: float, allowed) -> dict | Non
 
 def choose(case_id: str, model: int, rtol: float, t_end: float, project: bool = False,
            step=None, precision: str | None = None) -> dict:
-    """{"method", "precision", "tol", "requested_rtol", "reason", "front_point"}: what
-    auto runs, with which tolerance, and why."""
+    """{"method", "precision", "tol", "compensated", "requested_rtol", "reason",
+    "front_point"}: what auto runs, with which tolerance, and why."""
+    from solvers.integrate.taylor_backend import snap_tol
     from solvers.kernels.generate import GENERATED_MODELS
 
     allowed = list(CANDIDATES)
@@ -67,24 +104,22 @@ def choose(case_id: str, model: int, rtol: float, t_end: float, project: bool = 
         data = {"runs": [], "cases": []}
     runs = data["runs"]
     measured = {c["id"] for c in data["cases"]}
-    point, basis = None, ""
+    front = None
     if case_id in measured:
-        point = _winner(runs, case_id, rtol, allowed)
+        front = _winner(runs, case_id, rtol, allowed)
         basis = f"the measured front of {case_id}"
+        method = front["method"] if front else None
     else:
         wins = Counter()
         for cid in sorted(measured):
             w = _winner(runs, cid, rtol, allowed)
             if w is not None:
                 wins[w["method"]] += 1
-        if wins:
-            m = wins.most_common(1)[0][0]
-            point = {"method": m, "wins": dict(wins)}
-            basis = (f"{case_id} is not measured: the method cheapest at this level on "
-                     f"most measured cases ({dict(wins)})")
-    if point is not None:
-        method = point["method"]
-        reason = f"cheapest run with error <= {rtol:.0e} on {basis}"
+        method = wins.most_common(1)[0][0] if wins else None
+        basis = (f"{case_id} is not measured: the method cheapest at this level on most "
+                 f"measured cases ({dict(wins)})")
+    if method is not None:
+        reason = f"cheapest at error {rtol:.0e} on {basis}"
     elif wp.TAYLOR in allowed:
         method = wp.TAYLOR
         reason = (f"no measured run reaches error {rtol:.0e}; the Taylor backend in the "
@@ -93,14 +128,18 @@ def choose(case_id: str, model: int, rtol: float, t_end: float, project: bool = 
         method = "vern9"
         reason = (f"no measured run reaches error {rtol:.0e}; vern9, the most accurate "
                   "in-house pair (double precision limits it)")
-    front = None
-    if point is not None and "wall_s" in point:
-        front = {k: point.get(k) for k in ("method", "tol", "error", "wall_s", "precision")}
     tol = rtol
     if front is not None:
-        tol = front["tol"]
+        tol = min(snap_tol(front["tol"]), 0.1)
+        reason += (f": {front['method']} at tol {tol:.3g}, "
+                   + ("interpolated between the runs at tol "
+                      + " and ".join(f"{p['tol']:.0e}" for p in front["between"])
+                      if front["between"] else f"its run at tol {front['tol']:.0e}")
+                   + f", {front['wall_s'] * 1e3:.3g} ms on the benchmark")
         if method == wp.TAYLOR and precision is None:
             precision = front.get("precision")
+    tol = max(tol, 1e-16)
     return {"method": method, "precision": precision if method == wp.TAYLOR else None,
-            "tol": tol, "requested_rtol": rtol, "reason": "; ".join([reason, *notes]),
+            "tol": tol, "compensated": front is not None and method in wp.PLAIN,
+            "requested_rtol": rtol, "reason": "; ".join([reason, *notes]),
             "front_point": front}

@@ -27,13 +27,13 @@ able to deliver rtol over the run (rule in its docstring). The states come back 
 
 Singularities are heyoka terminal events (scaled, see EVENT_SCALE) on the generated
 field's own checks: det(E - k J)
-reaching 0 (the body stops fitting the sphere, eq1.3), det I_Q reaching 0, and
+reaching 0 (the body stops fitting the sphere, eq1.3; only inside a cavity, k > 0) and
 g1^2 + g2^2 reaching FLAT_DISK^2 (the disk falls flat); heyoka's non-finite outcome is the
-fourth. Each stops the run with the kernels' status code and message (layout.STATUS_TEXT):
-status "singular", the samples before the stop, never NaN. The step budget is heyoka's
-max_steps (status "budget"). The request deadline is the worker pool's (the worker
-running the job is killed, as for every method); `run(..., wall_limit=s)` also stops it
-from a step callback, for callers outside the pool.
+third (det I_Q cannot reach 0: I_Q >= I). Each stops the run with the kernels' status
+code and message (layout.STATUS_TEXT): status "singular", the samples before the stop,
+never NaN. The step budget is heyoka's max_steps (status "budget"). The request deadline
+is the worker pool's (the worker running the job is killed, as for every method);
+`run(..., wall_limit=s)` also stops it from a step callback, for callers outside the pool.
 
 heyoka is the optional extra `taylor` (`pip install rolling-hierarchy[taylor]`, included
 in `dev`); without it `method="taylor"` is an InputError saying so.
@@ -173,7 +173,9 @@ def snap_tol(rtol: float) -> float:
 def cache_key(model: int, p, precision: str, tol: float) -> tuple:
     from solvers.kernels.generate import structure
 
-    return (structure(model, p, fold=False), precision, float(tol))
+    # the sign of k decides whether the fit event exists (_compile)
+    return (structure(model, p, fold=False), float(np.asarray(p)[L.CURV]) > 0, precision,
+            float(tol))
 
 
 def compiled(model: int, p, precision: str, tol: float) -> tuple[Compiled, bool]:
@@ -208,11 +210,13 @@ def _compile(model: int, p, precision: str, tol: float) -> Compiled:
     if "edge" in checks:   # g1^2 + g2^2 reaches FLAT_DISK^2: the disk lies flat (eq2.71)
         exprs.append(hvars[3] * hvars[3] + hvars[4] * hvars[4] - FLAT_DISK ** 2)
         codes.append(L.SING_EDGE)
-    if "fit" in checks:    # det(E - k J) reaches 0 (eq1.3)
+    # det(E - k J) reaches 0 (eq1.3): only inside a cavity (k > 0); outside a ball (k < 0)
+    # E - k J >= E, as J = Hess h is positive semidefinite for a convex body
+    if "fit" in checks and float(np.asarray(p)[L.CURV]) > 0:
         exprs.append(checks["fit"])
         codes.append(L.SING_FIT)
-    exprs.append(checks["iq"])   # det I_Q reaches 0 (eq1.6)
-    codes.append(L.SING_INERTIA)
+    # det I_Q needs no event: I_Q = I + m (|r|^2 E - r r^T) >= I, positive definite for the
+    # positive moments the cases accept (eq1.6); every event costs time in every step
     events = [hy.t_event(EVENT_SCALE * e, direction=neg, fp_type=fp) for e in exprs]
     t0 = time.perf_counter()
     ta = hy.taylor_adaptive(list(zip(hvars, rhs, strict=True)), _cast(fp, [0.0] * len(hvars)),
@@ -276,7 +280,8 @@ def run(model: int, p, y0, t_out, *, rtol: float, precision: str | None = None,
         ta.time = fp(float(t_out[0]))
         ta.state[:] = _cast(fp, y0)
         ta.pars[:] = _cast(fp, p[:entry.n_par])
-        ta.reset_cooldowns()
+        if entry.events:
+            ta.reset_cooldowns()
         t0 = time.perf_counter()
         res = ta.propagate_grid(_cast(fp, t_out), max_steps=int(max_steps), callback=cb)
         wall = time.perf_counter() - t0
