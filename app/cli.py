@@ -564,15 +564,17 @@ def _poincare_summary(out: dict):
 
 
 BENCHES = {"work-precision": "work_precision.py", "longrun": "longrun.py",
-           "scenes": "scenes.py", "batch": "batch_scaling.py"}
+           "scenes": "scenes.py", "batch": "batch_scaling.py", "auto-front": "auto_front.py"}
+QUICK = ("work-precision", "auto-front")
 
 
 @cli.command()
 def bench(
-    name: Annotated[str, typer.Argument(help="work-precision | longrun | scenes | batch")],
-    quick: Annotated[bool, typer.Option("--quick", help="work-precision only: three "
+    name: Annotated[str, typer.Argument(help="work-precision | longrun | scenes | batch | "
+                                          "auto-front")],
+    quick: Annotated[bool, typer.Option("--quick", help="work-precision: three "
                                         "tolerances, no NumPy-field scipy, no real128 "
-                                        "check")] = False,
+                                        "check; auto-front: three targets")] = False,
 ):
     """Run a benchmark of bench/ in this process (ratios side by side, never absolute
     times); its table and JSON go to bench/results/."""
@@ -585,7 +587,7 @@ def bench(
     if not script.is_file():
         _fail(f"{script} not found: the benchmarks run from a checkout of the repository")
     saved = sys.argv
-    sys.argv = [str(script), *(["--quick"] if quick and name == "work-precision" else [])]
+    sys.argv = [str(script), *(["--quick"] if quick and name in QUICK else [])]
     try:
         runpy.run_path(str(script), run_name="__main__")
     except SystemExit as exc:
