@@ -63,6 +63,9 @@ SCIPY_MIN_TOL = 1e-14    # scipy clips rtol to 2.2e-14: tighter runs would repea
 SAMPLES = 101
 REPEATS = 5
 TAYLOR_EXTENDED = (1e-14, 1e-15, 1e-16)   # the taylor backend also in long double here
+# --only-taylor also measures auto's candidates half a decade apart from 10^-8.5 to
+# 10^-13.5 (a Taylor method's error is not a smooth power of tol: its order steps with it)
+HALF_DECADES = tuple(10.0 ** -(k + 0.5) for k in range(8, 14))
 BUDGET_S = 60.0
 
 
@@ -356,7 +359,7 @@ def merge_taylor(args) -> int:
     import os
 
     data = json.loads(wp.RESULTS.read_text())
-    tols = tuple(data["tolerances"])
+    tols = tuple(sorted({*data["tolerances"], *HALF_DECADES}, reverse=True))
     cases = [c for c in CASES if not args.case or c.id in args.case]
     lines = [f"dop853, vern9 and the taylor backend, interleaved, merged into "
              f"{wp.RESULTS.name}; load average {os.getloadavg()[0]:.1f} at the start"]
@@ -371,7 +374,7 @@ def merge_taylor(args) -> int:
                     else f"{r['method']:18s}")
             extra = (f" order {r['order']:2d} compile {r['compile_s']:.1f} s"
                      if r["method"] == wp.TAYLOR else f" rhs {r['rhs_calls']}")
-            lines.append(f"{case.id:24s} {what} tol {r['tol']:.0e} error {e:>8s}"
+            lines.append(f"{case.id:24s} {what} tol {r['tol']:.1e} error {e:>8s}"
                          f" wall {r['wall_s'] * 1e3:8.2f} ms" + extra)
             print(lines[-1], flush=True)
     lines.append(f"load average {os.getloadavg()[0]:.1f} at the end")
