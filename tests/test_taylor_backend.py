@@ -206,7 +206,7 @@ def test_auto_says_what_it_chose_and_why():
     fp = a["front_point"]
     assert fp["method"] == a["method"] and fp["error"] <= 1e-6
     assert a["tol"] <= fp["tol"] and a["compensated"] == (a["method"] != "taylor")
-    # the choice is the cheapest candidate at that error on the interpolated front
+    # the choice is the cheapest measured run of a candidate with error <= 1e-6
     from solvers.integrate import auto
     from solvers.integrate import workprecision as wp
 
