@@ -361,26 +361,32 @@ def merge_taylor(args) -> int:
     data = json.loads(wp.RESULTS.read_text())
     tols = tuple(sorted({*data["tolerances"], *HALF_DECADES}, reverse=True))
     cases = [c for c in CASES if not args.case or c.id in args.case]
-    lines = [f"dop853, vern9 and the taylor backend, interleaved, merged into "
-             f"{wp.RESULTS.name}; load average {os.getloadavg()[0]:.1f} at the start"]
+    renew = {wp.TAYLOR, *wp.PLAIN}
+    load0 = os.getloadavg()[0]
     for case in cases:
         runs, _ = run_case(case, tols, True, print, only_taylor=True)
-        renew = {wp.TAYLOR, *wp.PLAIN}
         data["runs"] = [r for r in data["runs"]
                         if not (r["case"] == case.id and r["method"] in renew)] + runs
         for r in runs:
+            r["load"] = round(load0, 1)
+    # the table of every case's re-measured runs (the cases not re-run keep theirs)
+    lines = ["dop853, vern9 and the taylor backend, interleaved per case, merged into "
+             f"{wp.RESULTS.name}; load average at the start of each case's measurement "
+             "in brackets"]
+    for c in data["cases"]:
+        for r in (x for x in data["runs"] if x["case"] == c["id"] and x["method"] in renew):
             e = f"{r['error']:.1e}" if r["error"] is not None else "-"
             what = (f"taylor {r['precision']:11s}" if r["method"] == wp.TAYLOR
                     else f"{r['method']:18s}")
             extra = (f" order {r['order']:2d} compile {r['compile_s']:.1f} s"
                      if r["method"] == wp.TAYLOR else f" rhs {r['rhs_calls']}")
-            lines.append(f"{case.id:24s} {what} tol {r['tol']:.1e} error {e:>8s}"
-                         f" wall {r['wall_s'] * 1e3:8.2f} ms" + extra)
-            print(lines[-1], flush=True)
-    lines.append(f"load average {os.getloadavg()[0]:.1f} at the end")
+            lines.append(f"{c['id']:24s} {what} tol {r['tol']:.1e} error {e:>8s}"
+                         f" wall {r['wall_s'] * 1e3:8.2f} ms" + extra
+                         + (f" [{r['load']}]" if "load" in r else ""))
     wp.RESULTS.write_text(json.dumps(data, indent=1) + "\n")
     OUT.mkdir(exist_ok=True)
     (OUT / "work_precision_taylor.txt").write_text("\n".join(lines) + "\n")
+    print("\n".join(lines))
     return 0
 
 
