@@ -97,6 +97,8 @@ def simulate(
     atol: Annotated[float, typer.Option(help="absolute tolerance")] = 1e-12,
     step: Annotated[float | None, typer.Option(help="constant step of a symmetric method "
                                                "(gauss4/6/8; required there)")] = None,
+    precision: Annotated[str | None, typer.Option(help="method taylor: double, 'long double' "
+                                                  "or quad (default: chosen from rtol)")] = None,
     samples: Annotated[int, typer.Option(help="number of output samples")] = 201,
     project: Annotated[bool, typer.Option("--project", help="project onto the known "
                                           "integrals after every step")] = False,
@@ -129,7 +131,8 @@ def simulate(
         with _timeout(timeout):
             res = sim.simulate(case, params, y0, t_end, method=method, rtol=rtol, atol=atol,
                                samples=samples, project=project,
-                               allow_any_inertia=allow_any_inertia, step=step, field=field)
+                               allow_any_inertia=allow_any_inertia, step=step, field=field,
+                               precision=precision)
     except InputError as e:
         _fail(str(e))
     if as_json:
@@ -153,7 +156,10 @@ def _summary(res):
     con.print(f"method {s['method']} ({s.get('field', 'general')} field)  {knob}  "
               f"steps {s['steps']}"
               f"  rhs calls {s['rhs_calls']}  wall {s['wall_s'] * 1e3:.1f} ms"
-              f"{'  (projected)' if s['projected'] else ''}")
+              f"{'  (projected)' if s['projected'] else ''}"
+              + (f"  precision {s['precision']}" if "precision" in s else ""))
+    if "auto" in s:
+        con.print(f"auto chose {s['method']}: {s['auto']['reason']}")
     if len(res.t):
         tab = Table("t", *res.state_labels)
         for i in sorted({0, len(res.t) // 2, len(res.t) - 1}):
@@ -363,6 +369,10 @@ def methods():
         m = load(name)
         typer.echo(f"{name:14s} compiled Gauss collocation, symmetric, order {m.order}, "
                    f"{m.stages} implicit stages, constant step (--step)")
+    typer.echo(f"{'taylor':14s} heyoka's adaptive Taylor integrator on the case's generated "
+               "field (optional extra 'taylor'), --precision double | 'long double' | quad")
+    typer.echo(f"{'auto':14s} chosen per case and tolerance from the measured "
+               "work-precision front (among dop853, vern9, taylor)")
     for name, sp in SCIPY_METHODS.items():
         typer.echo(f"{name:14s} scipy solve_ivp {sp} on the independent NumPy field (reference)")
 
@@ -559,16 +569,19 @@ def _poincare_summary(out: dict):
 
 
 BENCHES = {"work-precision": "work_precision.py", "longrun": "longrun.py",
-           "scenes": "scenes.py", "batch": "batch_scaling.py", "ensemble": "ensemble.py"}
+           "scenes": "scenes.py", "batch": "batch_scaling.py", "ensemble": "ensemble.py",
+           "auto-front": "auto_front.py"}
+QUICK = ("work-precision", "ensemble", "auto-front")
 
 
 @cli.command()
 def bench(
     name: Annotated[str, typer.Argument(help="work-precision | longrun | scenes | batch | "
-                                        "ensemble")],
+                                        "ensemble | auto-front")],
     quick: Annotated[bool, typer.Option("--quick", help="work-precision: three "
                                         "tolerances, no NumPy-field scipy, no real128 "
-                                        "check; ensemble: two cases")] = False,
+                                        "check; ensemble: two cases; auto-front: three "
+                                        "targets")] = False,
 ):
     """Run a benchmark of bench/ in this process (ratios side by side, never absolute
     times); its table and JSON go to bench/results/."""
@@ -581,8 +594,7 @@ def bench(
     if not script.is_file():
         _fail(f"{script} not found: the benchmarks run from a checkout of the repository")
     saved = sys.argv
-    sys.argv = [str(script),
-                *(["--quick"] if quick and name in ("work-precision", "ensemble") else [])]
+    sys.argv = [str(script), *(["--quick"] if quick and name in QUICK else [])]
     try:
         runpy.run_path(str(script), run_name="__main__")
     except SystemExit as exc:

@@ -13,6 +13,9 @@ ellipsoid, a ball on a sphere, a flat base on a sphere) and tolerances 1e-4 ... 
             only); LSODA and Radau on the compiled field
   heyoka    adaptive Taylor in float64 on the expression system of solvers/integrate/taylor.py
             (compiled once per tolerance, compilation excluded and reported)
+  taylor    the project's Taylor backend (method "taylor": heyoka on the lean generated
+            field, solvers/integrate/taylor_backend.py) in double at every tolerance and in
+            long double at TAYLOR_EXTENDED; one of ours, a candidate of method "auto"
 
 Error: max over 101 output times of |y - y_ref|_inf / max(1, max|y_ref|_inf); the
 reference is heyoka in 80-bit long double at tol 1e-19, checked against heyoka in real128
@@ -24,6 +27,9 @@ takes more than BUDGET_S / 3, its tighter tolerances are skipped and marked so. 
 absolute time is asserted anywhere: the ratios are read side by side.
 
     .venv/bin/python bench/work_precision.py [--quick]       (or: rolling bench work-precision)
+    .venv/bin/python bench/work_precision.py --only-taylor    (re-measure auto's
+        candidates dop853, vern9 and taylor together, interleaved, and merge them into the
+        committed JSON, the other methods' runs kept)
 
 Writes solvers/integrate/data/work_precision.json (every run; package data the explorer serves)
 and bench/results/work_precision.txt (the table);
@@ -56,6 +62,10 @@ STEPS = (0.4, 0.2, 0.1, 0.05, 0.025, 0.0125)     # gauss8
 SCIPY_MIN_TOL = 1e-14    # scipy clips rtol to 2.2e-14: tighter runs would repeat that one
 SAMPLES = 101
 REPEATS = 5
+TAYLOR_EXTENDED = (1e-14, 1e-15, 1e-16)   # the taylor backend also in long double here
+# --only-taylor also measures auto's candidates half a decade apart from 10^-8.5 to
+# 10^-13.5 (a Taylor method's error is not a smooth power of tol: its order steps with it)
+HALF_DECADES = tuple(10.0 ** -(k + 0.5) for k in range(8, 14))
 BUDGET_S = 60.0
 
 
@@ -111,7 +121,73 @@ def scipy_fun(model, compiled):
     return lambda t, y: ref_field(model.model, model.p, y)
 
 
-def run_case(case: WPCase, tols, quick: bool, say) -> list[dict]:
+def taylor_plan(tols):
+    """(tol, precision) of the taylor runs: double down to 1e-14 (below, double stalls:
+    taylor_backend.choose_precision), long double at TAYLOR_EXTENDED."""
+    from solvers.integrate import taylor_backend as tb
+
+    plan = [(tol, "double") for tol in tols if tol >= 1e-14]
+    if "long double" in tb.precisions():
+        plan += [(tol, "long double") for tol in TAYLOR_EXTENDED]
+    return plan
+
+
+def run_taylor(case, model, y0, t, Yref, tols) -> list[dict]:
+    """The Taylor backend as simulate() runs it; the compile (first run) excluded."""
+    from solvers.integrate import taylor_backend as tb
+
+    runs = []
+    for tol, prec in taylor_plan(tols):
+        first = tb.run(model.model, model.p, y0, t, rtol=tol, precision=prec)
+        best = min((tb.run(model.model, model.p, y0, t, rtol=tol, precision=prec)
+                    for _ in range(REPEATS)), key=lambda r: r.wall_s)
+        runs.append(_taylor_record(case, tol, prec, best, first, Yref))
+    return runs
+
+
+def _taylor_record(case, tol, prec, best, first, Yref):
+    return _record(case, wp.TAYLOR, tol, best.y, Yref, best.wall_s, None, best.steps,
+                   best.success, best.message, precision=prec,
+                   order=best.extra["taylor_order"], compile_s=first.extra["compile_s"])
+
+
+def run_auto_candidates(case, model, y0, t, Yref, tols) -> list[dict]:
+    """method "auto"'s candidates (dop853, vern9, taylor) re-measured together, each
+    tolerance's runs interleaved (dop853, vern9, taylor, dop853, ...), best of REPEATS:
+    the same load for all three."""
+    from solvers.integrate import taylor_backend as tb
+
+    plan = taylor_plan(tols)
+    firsts = {(tol, prec): tb.run(model.model, model.p, y0, t, rtol=tol, precision=prec)
+              for tol, prec in plan}              # the compiles, excluded
+    for method in wp.PLAIN:
+        integrate(model.model, model.p, y0, t[:3], method=method, compensated=True)
+    runs = []
+    for tol in sorted({x for x in tols} | {tol for tol, _ in plan}, reverse=True):
+        best = {}
+        for _ in range(REPEATS):
+            for method in wp.PLAIN:
+                if tol not in tols:
+                    continue
+                r = integrate(model.model, model.p, y0, t, method=method, rtol=tol,
+                              atol=tol, compensated=True)
+                if method not in best or r.wall_s < best[method].wall_s:
+                    best[method] = r
+            for ptol, prec in plan:
+                if ptol == tol:
+                    r = tb.run(model.model, model.p, y0, t, rtol=tol, precision=prec)
+                    if prec not in best or r.wall_s < best[prec].wall_s:
+                        best[prec] = r
+        for key, r in best.items():
+            if key in wp.PLAIN:
+                runs.append(_record(case, key, tol, r.y, Yref, r.wall_s, r.rhs_calls,
+                                    r.steps, r.success, r.message))
+            else:
+                runs.append(_taylor_record(case, tol, key, r, firsts[(tol, key)], Yref))
+    return runs
+
+
+def run_case(case: WPCase, tols, quick: bool, say, only_taylor=False) -> list[dict]:
     spec = registry()[case.id]
     model = build(case.id, {**spec.example, **case.overrides})
     y0 = initial_state(model, spec.state)
@@ -133,6 +209,8 @@ def run_case(case: WPCase, tols, quick: bool, say) -> list[dict]:
     say(f"reference: {info['reference']} ({time.perf_counter() - t0:.1f} s); "
         + info.get("reference_check", "real128 check skipped (--quick)"))
 
+    if only_taylor:
+        return run_auto_candidates(case, model, y0, t, Yref, tols), info
     runs = []
     # warm every path once (numba specializations, heyoka's JIT, scipy's first calls)
     integrate(model.model, model.p, y0, t[:3], method="vern9", compensated=True,
@@ -165,6 +243,7 @@ def run_case(case: WPCase, tols, quick: bool, say) -> list[dict]:
         runs.append(_record(case, wp.HEYOKA, tol, Y, Yref, wall, None, steps, ok,
                             order=h.order))
     info["heyoka_compile_s"] = compile_s
+    runs += run_taylor(case, model, y0, t, Yref, tols)
     # scipy
     for name, method, compiled in ((wp.SCIPY_NUMPY, "DOP853", False),
                                    (wp.SCIPY_COMPILED, "DOP853", True),
@@ -227,7 +306,13 @@ def main(argv=None):
     ap.add_argument("--quick", action="store_true",
                     help="three tolerances, no NumPy-field scipy, no real128 check")
     ap.add_argument("--case", action="append", help="only these case ids")
+    ap.add_argument("--only-taylor", action="store_true",
+                    help="re-measure dop853, vern9 and taylor (auto's candidates) "
+                         "interleaved and merge them into the committed JSON (the other "
+                         "methods' runs are kept)")
     args = ap.parse_args(argv)
+    if args.only_taylor:
+        return merge_taylor(args)
     tols = (1e-6, 1e-10, 1e-14) if args.quick else TOLS
     cases = [c for c in CASES if not args.case or c.id in args.case]
     lines = []
@@ -267,6 +352,41 @@ def main(argv=None):
     json_out = OUT / "work_precision_quick.json" if args.quick else wp.RESULTS
     json_out.write_text(json.dumps(data, indent=1) + "\n")
     (OUT / f"work_precision{suffix}.txt").write_text("\n".join(lines) + "\n")
+    return 0
+
+
+def merge_taylor(args) -> int:
+    import os
+
+    data = json.loads(wp.RESULTS.read_text())
+    tols = tuple(sorted({*data["tolerances"], *HALF_DECADES}, reverse=True))
+    cases = [c for c in CASES if not args.case or c.id in args.case]
+    renew = {wp.TAYLOR, *wp.PLAIN}
+    load0 = os.getloadavg()[0]
+    for case in cases:
+        runs, _ = run_case(case, tols, True, print, only_taylor=True)
+        data["runs"] = [r for r in data["runs"]
+                        if not (r["case"] == case.id and r["method"] in renew)] + runs
+        for r in runs:
+            r["load"] = round(load0, 1)
+    # the table of every case's re-measured runs (the cases not re-run keep theirs)
+    lines = ["dop853, vern9 and the taylor backend, interleaved per case, merged into "
+             f"{wp.RESULTS.name}; load average at the start of each case's measurement "
+             "in brackets"]
+    for c in data["cases"]:
+        for r in (x for x in data["runs"] if x["case"] == c["id"] and x["method"] in renew):
+            e = f"{r['error']:.1e}" if r["error"] is not None else "-"
+            what = (f"taylor {r['precision']:11s}" if r["method"] == wp.TAYLOR
+                    else f"{r['method']:18s}")
+            extra = (f" order {r['order']:2d} compile {r['compile_s']:.1f} s"
+                     if r["method"] == wp.TAYLOR else f" rhs {r['rhs_calls']}")
+            lines.append(f"{c['id']:24s} {what} tol {r['tol']:.1e} error {e:>8s}"
+                         f" wall {r['wall_s'] * 1e3:8.2f} ms" + extra
+                         + (f" [{r['load']}]" if "load" in r else ""))
+    wp.RESULTS.write_text(json.dumps(data, indent=1) + "\n")
+    OUT.mkdir(exist_ok=True)
+    (OUT / "work_precision_taylor.txt").write_text("\n".join(lines) + "\n")
+    print("\n".join(lines))
     return 0
 
 

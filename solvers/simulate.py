@@ -49,9 +49,12 @@ def symmetric_methods() -> tuple[str, ...]:
     return tuple(METHODS)
 
 
+TAYLOR_METHODS = ("taylor", "auto")   # heyoka's Taylor backend; auto: chosen from the front
+
+
 @cache
 def methods() -> tuple[str, ...]:
-    return (*compiled_methods(), *symmetric_methods(), *SCIPY_METHODS)
+    return (*compiled_methods(), *symmetric_methods(), *TAYLOR_METHODS, *SCIPY_METHODS)
 
 
 @dataclass
@@ -216,8 +219,15 @@ def _times(t_end, samples) -> np.ndarray:
 
 
 def _integrate(model: Model, y0, t_out, method, rtol, atol, project, max_steps, step=None,
-               generated=None):
-    """Compiled kernels, or scipy's solve_ivp on the independent NumPy field."""
+               generated=None, precision=None, compensated=False):
+    """Compiled kernels, heyoka's Taylor integrator, or scipy's solve_ivp on the
+    independent NumPy field."""
+    if method == "taylor":
+        from solvers.integrate import taylor_backend
+
+        return taylor_backend.run(model.model, model.p, y0, t_out, rtol=rtol,
+                                  precision=precision, max_steps=max_steps)
+
     if method in SCIPY_METHODS:
         from solvers.models.reference import field as ref_field
 
@@ -232,7 +242,7 @@ def _integrate(model: Model, y0, t_out, method, rtol, atol, project, max_steps, 
         return integrate(model.model, model.p, y0, t_out, method=method, h_fixed=step,
                          max_steps=max_steps)
     return integrate(model.model, model.p, y0, t_out, method=method, rtol=rtol, atol=atol,
-                     max_steps=max_steps,
+                     max_steps=max_steps, compensated=compensated,
                      project_codes=model.integral_codes if project else (),
                      generated=generated)
 
@@ -241,30 +251,44 @@ def simulate(case: str, params: dict | None, state0, t_end: float, *,
              method: str = DEFAULT_METHOD, rtol: float = 1e-10, atol: float = 1e-12,
              samples: int = 201, project: bool = False, max_steps: int = 50_000_000,
              allow_any_inertia: bool = False, step: float | None = None,
-             field: str = "auto") -> SimulationResult:
+             field: str = "auto", precision: str | None = None) -> SimulationResult:
     """Integrate `case` from `state0` over [0, t_end]; see the module docstring.
 
     field: the vector field of the compiled Runge-Kutta methods (FIELDS): "auto" the
     case's generated field when it is compiled, "generated", or "general" (the reference).
-    stats["field"] says which ran."""
+    stats["field"] says which ran. precision (method "taylor" only): "double",
+    "long double" or "quad"; None chooses (solvers/integrate/taylor_backend.py)."""
     model, codes, key = _model(case, params, allow_any_inertia)
     y0 = _initial(model, key, state0)
-    if method == "auto":   # the case's default, from the measured work-precision front
-        from solvers.integrate.workprecision import default_method
+    auto = None
+    if method == "auto":   # from the measured work-precision front, per case and tolerance
+        _check_run_options(t_end, method, rtol, atol, samples)
+        from solvers.integrate.auto import choose
 
-        method = default_method(case, DEFAULT_METHOD)
+        auto = choose(case, model.model, rtol, float(t_end), project, step, precision)
+        method, precision = auto["method"], auto["precision"]
+        rtol = atol = auto["tol"]   # the front point's tolerance (auto.py)
+    if method == "taylor" or precision is not None:
+        from solvers.integrate.taylor_backend import check_taylor_options
+
+        check_taylor_options(method, precision, project, step)
     _check_options(t_end, method, rtol, atol, samples, project, max_steps, step, field)
     t_out = _times(t_end, samples)
     res = _integrate(model, y0, t_out, method, rtol, atol, project, max_steps, step,
-                     FIELDS[field])
+                     FIELDS[field], precision,
+                     compensated=bool(auto and auto["compensated"]))   # as measured
     status = "ok" if res.success else ("budget" if res.budget_exhausted else "singular")
     message = "" if res.success else res.message
     t, Y = res.t, res.y[:len(res.t)]
     inv, drift = _invariants(model, codes, Y)
+    vector_field = ("numpy" if method in SCIPY_METHODS else
+                    "generated (heyoka)" if method == "taylor" else res.vector_field)
     stats = {"steps": res.steps, "rejected": res.rejected, "rhs_calls": res.rhs_calls,
-             "wall_s": res.wall_s, "method": method,
-             "field": "numpy" if method in SCIPY_METHODS else res.vector_field,
+             "wall_s": res.wall_s, "method": method, "field": vector_field,
              "rtol": rtol, "atol": atol, "projected": bool(project), "samples": len(t)}
+    stats.update(getattr(res, "extra", {}))
+    if auto is not None:
+        stats["auto"] = auto
     if step is not None:   # the equal steps the kernel took to land on the samples
         stats["step"] = res.t_stop / res.steps if res.steps else step
         stats["step_requested"] = step

@@ -22,8 +22,8 @@ def _methods() -> tuple[str, ...]:
 
         return tuple(methods())
     except ImportError:  # the compiled integrator is missing: list what the API promises
-        return ("dop853", "vern9", "rk45", "gauss4", "gauss6", "gauss8", "scipy-dop853",
-                "scipy-rk45", "scipy-lsoda", "scipy-radau")
+        return ("dop853", "vern9", "rk45", "gauss4", "gauss6", "gauss8", "taylor", "auto",
+                "scipy-dop853", "scipy-rk45", "scipy-lsoda", "scipy-radau")
 
 
 CASE_IDS = _case_ids()
@@ -60,6 +60,9 @@ class SimulateRequest(BaseModel):
     step: FiniteFloat | None = Field(None, gt=0, le=1e3, description="the constant step of "
                                      "a symmetric method (gauss4/6/8; required there, "
                                      "refused elsewhere: the others choose theirs)")
+    precision: Literal["double", "long double", "quad"] | None = Field(
+        None, description="method taylor only: the floating-point type of the Taylor "
+        "integrator; null: chosen from rtol and t_end (results are float64 either way)")
     samples: int = Field(201, ge=2, le=MAX_SAMPLES, description="output times, evenly "
                          "spaced on [0, t_end]")
     project: bool = Field(False, description="project onto the known integrals after "
@@ -97,7 +100,9 @@ class SimulateResponse(BaseModel):
         description="name -> values aligned with t ('energy' always)")
     stats: dict[str, Any] = Field(description="steps, rejected, rhs_calls, wall_s, method, "
                                   "rtol, atol, projected, samples, drift (max relative "
-                                  "drift of every invariant), max_steps")
+                                  "drift of every invariant), max_steps; taylor: "
+                                  "precision, taylor_order, compiled, compile_s; auto: "
+                                  "the method chosen, why and the front point")
 
 
 class ValidatePublic(BaseModel):

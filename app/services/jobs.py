@@ -74,7 +74,7 @@ def _run(req: dict, max_steps: int):
                     method=req["method"], rtol=req["rtol"], atol=req["atol"],
                     samples=req["samples"], project=req["project"], max_steps=max_steps,
                     allow_any_inertia=req["allow_any_inertia"], step=req.get("step"),
-                    field=req.get("field", "auto"))
+                    field=req.get("field", "auto"), precision=req.get("precision"))
 
 
 def simulate_json(req: dict, max_steps: int) -> bytes:

@@ -72,44 +72,13 @@ def _choose_layer():
         numba.config.THREADING_LAYER = "workqueue"
 
 
-_ENS_READY: dict = {}
-
-
-def _ens_marker(model: int, p):
-    return generate.cache_dir() / f"ens_{generate.module_name(model, p)}.ready"
-
-
 def _default_generated(model: int, p, method: str) -> bool:
-    """integrate()'s own rule for generated=None, applied to the ensemble: the generated
-    field when the case's generated integrator for this tableau AND its ensemble twin are
-    already compiled (solvers/warmup.py compiles both), so a call never compiles."""
-    if model not in generate.GENERATED_MODELS or not generated_ready(model, p, method):
-        return False
-    key = generate.module_name(model, p)
-    if _ENS_READY.get(key):
-        return True
-    ok = _ens_marker(model, p).exists()
-    if ok:
-        disp = generated_ensemble(model, p).rk_ensemble
-        try:
-            magic = disp.targetctx.codegen().magic_tuple()
-            ok = bool(disp.signatures) or any(
-                k[1] == magic for k in disp._cache._cache_file._load_index())
-        except Exception:   # numba changed its internals: trust the marker
-            ok = True
-    if ok:
-        _ENS_READY[key] = True
-    return ok
-
-
-def _mark_ens_ready(model: int, p) -> None:
-    key = generate.module_name(model, p)
-    if not _ENS_READY.get(key):
-        try:
-            _ens_marker(model, p).touch()
-        except OSError:     # a read-only cache: this process still knows
-            pass
-        _ENS_READY[key] = True
+    """integrate()'s own rule for generated=None, so an ensemble runs the same field as
+    the one-by-one calls (bit for bit): the generated field when the case's generated
+    integrator for this tableau is compiled. solvers/warmup.py compiles the ensemble twin
+    with it; a structure compiled outside the warm-up (field="generated" from Python or
+    the CLI) compiles its twin at its first ensemble."""
+    return model in generate.GENERATED_MODELS and generated_ready(model, p, method)
 
 
 def generated_ensemble(model: int, p):
@@ -275,8 +244,6 @@ def integrate_ensemble(model, p, Y0, t_out, *, method="dop853", rtol=1e-10, atol
                  np.zeros(1, dtype=np.int64))
         finally:
             numba.set_num_threads(before)
-    if kern is not kernels.rk_ensemble:
-        _mark_ens_ready(model, p)
     wall = (time.perf_counter() - t0) / n_traj
     out = []
     for i in range(n_traj):

@@ -29,7 +29,8 @@ SYMMETRIC = ("gauss8",)               # constant step: its records' tol is the s
 OURS = (*PLAIN, "dop853+proj", "vern9+proj", *SYMMETRIC)
 SCIPY_NUMPY = "scipy-DOP853/numpy"    # scipy's DOP853 on the independent NumPy field
 SCIPY_COMPILED = "scipy-DOP853/numba"  # the same on our compiled field (scipy overhead only)
-HEYOKA = "heyoka"
+HEYOKA = "heyoka"                     # heyoka on the general expression system (taylor.py)
+TAYLOR = "taylor"                     # the Taylor backend: heyoka on the lean generated field
 
 
 def cost_at(records: list[dict], level: float) -> dict | None:

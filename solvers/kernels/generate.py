@@ -384,15 +384,17 @@ def generated_integrator(model: int, p, fold: bool = False):
 
 # --- heyoka ------------------------------------------------------------------------------------
 
-def heyoka_system(model: int, p, fold: bool = True):
+def heyoka_system(model: int, p, fold: bool = True, with_checks: bool = False):
     """(state variables, right-hand sides, parameter values) for heyoka from the same sympy
     equations: the lean system (zero terms dropped). fold=False keeps the nonzero
     parameters as heyoka runtime parameters par[slot] (pass the returned values as pars),
-    so one compiled integrator serves every value; fold=True returns no values."""
+    so one compiled integrator serves every value; fold=True returns no values.
+    with_checks: a fourth item, the singularity checks of `equations` ("iq", "fit",
+    "edge") as heyoka expressions (the Taylor backend's terminal events)."""
     import heyoka as hy
     import sympy as sp
 
-    prog, state, params, outs, _ = equations(model, p, fold)
+    prog, state, params, outs, checks = equations(model, p, fold)
     hvars = list(hy.make_vars(*[s.name for s in state]))
     table = dict(zip(state, hvars, strict=True))
     for s in params:
@@ -433,4 +435,7 @@ def heyoka_system(model: int, p, fold: bool = True):
         return out
 
     n_par = 1 + max((SLOT_NAMES.index(s.name) for s in params), default=-1)
-    return hvars, [tr(sp.sympify(e)) for e in outs], np.asarray(p, dtype=float)[:n_par].copy()
+    out = (hvars, [tr(sp.sympify(e)) for e in outs], np.asarray(p, dtype=float)[:n_par].copy())
+    if with_checks:
+        out = (*out, {name: tr(sp.sympify(e)) for name, e in checks.items()})
+    return out

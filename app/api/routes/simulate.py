@@ -58,9 +58,13 @@ def resolve(req: SimulateRequest, max_steps: int | None = None) -> dict:
         raise InputError(f"project = true needs a compiled method (projection happens inside "
                          f"the step); {req.method} is a scipy reference method")
     check_step(req.method, req.step, req.t_end, max_steps, req.project)
+    if req.method == "taylor" or req.precision is not None:
+        from solvers.integrate.taylor_backend import check_taylor_options
+
+        check_taylor_options(req.method, req.precision, req.project, req.step)
     return {"case": req.case, "params": params, "state": list(state), "t_end": req.t_end,
             "method": req.method, "rtol": req.rtol, "atol": req.atol, "step": req.step,
-            "samples": req.samples, "project": req.project,
+            "samples": req.samples, "project": req.project, "precision": req.precision,
             "allow_any_inertia": req.allow_any_inertia, "field": req.field,
             "_model": model}
 
@@ -164,4 +168,6 @@ async def methods() -> list[dict]:
     from solvers.simulate import symmetric_methods
 
     return [{"name": m, "kind": "scipy reference" if m.startswith("scipy-") else
-             "symmetric" if m in symmetric_methods() else "compiled"} for m in METHODS]
+             "symmetric" if m in symmetric_methods() else
+             "taylor" if m == "taylor" else "auto" if m == "auto" else "compiled"}
+            for m in METHODS]

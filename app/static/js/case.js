@@ -557,7 +557,8 @@ async function main() {
     SYMMETRIC = new Set(methods.filter((m) => m.kind === "symmetric").map((m) => m.name));
     const group = (kind, label) => `<optgroup label="${label}">` + methods.filter((m) => m.kind === kind)
       .map((m) => `<option value="${m.name}">${m.name}</option>`).join("") + "</optgroup>";
-    $("f-method").innerHTML = group("compiled", "compiled Runge–Kutta") +
+    $("f-method").innerHTML = group("auto", "chosen from the measured front") +
+      group("compiled", "compiled Runge–Kutta") + group("taylor", "Taylor (heyoka)") +
       group("symmetric", "symmetric, constant step (Gauss)") + group("scipy reference", "scipy reference");
   } catch (err) {
     $("case-title").textContent = "Could not load the case";

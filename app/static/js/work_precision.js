@@ -25,7 +25,7 @@ function traces(runs) {
     return {
       name: method, x: rs.map((r) => r.error), y: rs.map((r) => r.wall_s * 1e3),
       text: rs.map((r) => `${r.knob === "h" ? "step h" : "tol"} ${fmt(r.tol, 0)}` + (r.rhs_calls ? `, ${r.rhs_calls} rhs calls` : "")
-        + (r.order ? `, order ${r.order}` : "")),
+        + (r.order ? `, order ${r.order}` : "") + (r.precision ? `, ${r.precision}` : "")),
       mode: "lines+markers", type: "scatter",
       line: { width: ours ? 2.5 : 1.5, dash: ours ? "solid" : "dot" },
       hovertemplate: "%{text}<br>error %{x:.1e}<br>%{y:.3g} ms<extra>" + method + "</extra>",

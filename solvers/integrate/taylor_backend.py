@@ -1,0 +1,324 @@
+"""`method="taylor"`: heyoka's adaptive Taylor integrator as a runtime backend of simulate().
+
+The system is the case's lean generated field (solvers/kernels/generate.py,
+`heyoka_system(fold=False)`): the same sympy equations as the generated numba field
+(eq1.1-eq1.3, eq3.14-eq3.15), zero terms dropped, the nonzero parameters heyoka runtime
+parameters `par[slot]`, so one compiled integrator serves every parameter value of a case
+*structure*. heyoka compiles it with LLVM (0.5-10 s, see `bench/results/taylor_compile.txt`);
+the compiled integrator is kept process-wide per (structure, precision, tol) in a small LRU
+(`MAX_CACHED`), so an interactive run pays the compile once.
+
+Tolerance: heyoka takes one `tol`; it picks the Taylor order ~ -ln(tol)/2 and a step
+that keeps the last terms of the series below tol * max(1, |y|_inf) (Jorba & Zou): an
+absolute error for states of norm below 1, relative above. So tol = rtol, and atol has no
+separate role: the effective absolute tolerance is rtol (`stats["atol_effective"]`).
+The tol is compiled into the integrator (it fixes the order), so it is part of the key;
+to keep the number of compiles small it is snapped down to a quarter decade
+(`snap_tol`: 1e-10 stays 1e-10, 3e-10 becomes 1.78e-10), never looser than asked.
+
+LLVM code: unrolled for double (the fastest steps: 3x compact mode's on the Chaplygin
+ball, for a 2-7 s compile); compact mode for long double and quad, where it compiles in
+about a second instead of 18-65 s and runs no slower (bench/results/taylor_compile.txt).
+
+Precision: "double" (float64), "long double" (x87 80-bit where numpy's longdouble has a
+64-bit mantissa) and "quad" (real128, in software, where heyoka was built with it);
+`precisions()` lists what this build offers. `choose_precision` picks the cheapest one
+able to deliver rtol over the run (rule in its docstring). The states come back as float64.
+
+Singularities are heyoka terminal events (scaled, see EVENT_SCALE) on the generated
+field's own checks: det(E - k J)
+reaching 0 (the body stops fitting the sphere, eq1.3; only inside a cavity, k > 0) and
+g1^2 + g2^2 reaching FLAT_DISK^2 (the disk falls flat); heyoka's non-finite outcome is the
+third (det I_Q cannot reach 0: I_Q >= I). Each stops the run with the kernels' status
+code and message (layout.STATUS_TEXT): status "singular", the samples before the stop,
+never NaN. The step budget is heyoka's max_steps (status "budget"). The request deadline
+is the worker pool's (the worker running the job is killed, as for every method);
+`run(..., wall_limit=s)` also stops it from a step callback, for callers outside the pool.
+
+heyoka is the optional extra `taylor` (`pip install rolling-hierarchy[taylor]`, included
+in `dev`); without it `method="taylor"` is an InputError saying so.
+"""
+
+from __future__ import annotations
+
+import math
+import threading
+import time
+from collections import OrderedDict
+from dataclasses import dataclass
+
+import numpy as np
+
+from solvers.errors import InputError
+from solvers.kernels import layout as L
+from solvers.kernels import rk
+from solvers.kernels.support import FLAT_DISK
+
+MISSING = "method 'taylor' needs heyoka: pip install rolling-hierarchy[taylor]"
+PRECISIONS = ("double", "long double", "quad")
+EPS = {"double": float(np.finfo(np.float64).eps), "long double": 2.0 ** -63,
+       "quad": 2.0 ** -112}
+MAX_CACHED = 8
+# heyoka's step-size control reads the event functions' Taylor coefficients with the
+# state's, on purpose (bluescarni/heyoka PR #124, "Don't ignore the event equations when
+# determining the timestep"). Measured, heyoka 7.13, flat base, T = 1000: a t_event on
+# v0 - 1e10 takes it from 2078 steps and error 4e-10 to 447 steps and a wrong state; det I_Q
+# (size ~10) to 1907 steps and 15x the error. Scaled by 1e-30 the events keep their zeros
+# and leave the control to the state alone (2078 steps again).
+EVENT_SCALE = 1e-30
+# the precision rule (choose_precision): a tol below FLOOR * eps * sqrt(max(1, t_end)) asks
+# for less than the round-off a run of that length accumulates in that precision
+FLOOR = 1.0
+
+
+def heyoka():
+    """The heyoka module, or an InputError naming the extra that installs it."""
+    try:
+        import heyoka as hy
+    except ImportError as e:
+        raise InputError(MISSING) from e
+    return hy
+
+
+def precisions() -> tuple[str, ...]:
+    """The precisions this platform and heyoka build offer (double always)."""
+    hy = heyoka()
+    out = ["double"]
+    if np.finfo(np.longdouble).nmant >= 63:
+        out.append("long double")
+    if getattr(hy, "_with_real128", False):
+        out.append("quad")
+    return tuple(out)
+
+
+def check_precision(precision: str | None) -> None:
+    if precision is not None and precision not in PRECISIONS:
+        raise InputError(f"precision = {precision!r}: choose one of {', '.join(PRECISIONS)}")
+    if precision is not None and precision not in precisions():
+        raise InputError(f"precision = {precision!r}: this platform's heyoka offers "
+                         f"{', '.join(precisions())}")
+
+
+def check_taylor_options(method: str, precision: str | None, project: bool, step) -> None:
+    """InputError for what the Taylor backend does not take (checked before any run)."""
+    if precision is not None and method != "taylor":
+        raise InputError(f"precision = {precision!r}: only method 'taylor' runs in another "
+                         f"precision; {method} runs in double")
+    if method != "taylor":
+        return
+    heyoka()
+    check_precision(precision)
+    if project:
+        raise InputError("project = true: method 'taylor' does not project (its integrals "
+                         "hold to about rtol without it)")
+    if step is not None:
+        raise InputError(f"step = {step!r}: method 'taylor' chooses its own steps from rtol")
+
+
+def floor(precision: str, t_end: float) -> float:
+    """The smallest rtol a run of length t_end can deliver in `precision` (module doc)."""
+    return FLOOR * EPS[precision] * float(np.sqrt(max(1.0, t_end)))
+
+
+def choose_precision(rtol: float, t_end: float) -> str:
+    """The cheapest precision whose floor(precision, t_end) <= rtol, else the widest.
+
+    Round-off of a run grows like a random walk over its steps, about sqrt(t_end) steps
+    for these O(1)-time-scale systems. Calibrated on bench/results/work_precision_taylor.txt
+    (T = 1000, double): below tol ~ eps sqrt(T) = 7e-15 a tighter tol stops buying accuracy
+    in double (Chaplygin ball: tol 1e-14 -> error 2.3e-13, 1e-16 -> 5.1e-14; disk: 1e-14
+    -> 5.9e-13, 1e-16 -> 1.6e-12), while long double keeps going (1e-16 -> 2.7e-15 and
+    4.1e-16), at 10-30 times the cost: so double down to 7e-15 at T = 1000 (2.2e-16 at
+    T <= 1), long double below, quad below its own floor."""
+    offered = precisions()
+    for prec in offered:
+        if floor(prec, t_end) <= rtol:
+            return prec
+    return offered[-1]
+
+
+def _fp(hy, precision: str):
+    return {"double": float, "long double": np.longdouble}.get(precision) or hy.real128
+
+
+def _cast(fp, values) -> np.ndarray:
+    if fp is float or fp is np.longdouble:
+        return np.asarray(values, dtype=fp)
+    return np.array([fp(float(v)) for v in np.ravel(values)], dtype=fp)
+
+
+@dataclass
+class Compiled:
+    """One compiled integrator: reused under its lock (it carries the state)."""
+
+    ta: object
+    fp: object
+    n_par: int
+    events: tuple[int, ...]      # layout status code of each terminal event
+    compile_s: float
+    lock: threading.Lock
+
+
+_cache: OrderedDict = OrderedDict()
+_cache_lock = threading.Lock()
+COMPILES = [0]      # compiles done in this process (tests count them)
+
+
+def snap_tol(rtol: float) -> float:
+    """The largest 10^(j/4) <= rtol (j integer): the tol the integrator is compiled for."""
+    j = math.floor(4.0 * math.log10(rtol) + 1e-9)
+    return 10.0 ** (j / 4.0)
+
+
+def cache_key(model: int, p, precision: str, tol: float) -> tuple:
+    from solvers.kernels.generate import structure
+
+    # the sign of k decides whether the fit event exists (_compile)
+    return (structure(model, p, fold=False), float(np.asarray(p)[L.CURV]) > 0, precision,
+            float(tol))
+
+
+def compiled(model: int, p, precision: str, tol: float) -> tuple[Compiled, bool]:
+    """(the compiled integrator of the case structure, whether it came from the cache)."""
+    key = cache_key(model, p, precision, tol)
+    with _cache_lock:
+        if key in _cache:
+            _cache.move_to_end(key)
+            return _cache[key], True
+    entry = _compile(model, p, precision, tol)
+    with _cache_lock:
+        _cache[key] = entry
+        _cache.move_to_end(key)
+        while len(_cache) > MAX_CACHED:
+            _cache.popitem(last=False)
+    return entry, False
+
+
+def clear_cache() -> None:
+    with _cache_lock:
+        _cache.clear()
+
+
+def _compile(model: int, p, precision: str, tol: float) -> Compiled:
+    from solvers.kernels.generate import heyoka_system
+
+    hy = heyoka()
+    fp = _fp(hy, precision)
+    hvars, rhs, pars, checks = heyoka_system(model, p, fold=False, with_checks=True)
+    neg = hy.event_direction.negative
+    exprs, codes = [], []
+    if "edge" in checks:   # g1^2 + g2^2 reaches FLAT_DISK^2: the disk lies flat (eq2.71)
+        exprs.append(hvars[3] * hvars[3] + hvars[4] * hvars[4] - FLAT_DISK ** 2)
+        codes.append(L.SING_EDGE)
+    # det(E - k J) reaches 0 (eq1.3): only inside a cavity (k > 0); outside a ball (k < 0)
+    # E - k J >= E, as J = Hess h is positive semidefinite for a convex body
+    # A ball (support c |gamma| + (a, gamma)) has the constant radius of curvature c, and a
+    # ball that does not fit is refused before any run: no event (it doubled the cost of
+    # a step of the Chaplygin ball in a cavity, bench/results/auto_front.txt)
+    pv = np.asarray(p, dtype=float)
+    ball = not any(pv[s] != 0.0 for s in (L.B11, L.B22, L.B33, L.B12, L.B13, L.B23, L.DISK_D))
+    if "fit" in checks and pv[L.CURV] > 0 and not ball:
+        exprs.append(checks["fit"])
+        codes.append(L.SING_FIT)
+    # det I_Q needs no event: I_Q = I + m (|r|^2 E - r r^T) >= I, positive definite for the
+    # positive moments the cases accept (eq1.6); every event costs time in every step
+    events = [hy.t_event(EVENT_SCALE * e, direction=neg, fp_type=fp) for e in exprs]
+    t0 = time.perf_counter()
+    ta = hy.taylor_adaptive(list(zip(hvars, rhs, strict=True)), _cast(fp, [0.0] * len(hvars)),
+                            tol=fp(tol), fp_type=fp, pars=_cast(fp, pars), t_events=events,
+                            compact_mode=precision != "double")
+    COMPILES[0] += 1
+    return Compiled(ta, fp, len(pars), tuple(codes), time.perf_counter() - t0,
+                    threading.Lock())
+
+
+@dataclass
+class TaylorRun:
+    """What simulate() needs of a run (the fields of integrator.IntegrationResult)."""
+
+    t: np.ndarray
+    y: np.ndarray
+    status: int
+    message: str
+    t_stop: float
+    steps: int
+    rejected: int
+    rhs_calls: int
+    wall_s: float
+    method: str
+    extra: dict
+
+    @property
+    def success(self) -> bool:
+        return self.status == L.OK
+
+    @property
+    def budget_exhausted(self) -> bool:
+        return self.status == rk.MAX_STEPS
+
+
+def run(model: int, p, y0, t_out, *, rtol: float, precision: str | None = None,
+        max_steps: int = 50_000_000, wall_limit: float | None = None) -> TaylorRun:
+    """Integrate from (t_out[0], y0), states at t_out (float64); see the module doc."""
+    from solvers.integrate.integrator import status_message
+    from solvers.kernels.generate import GENERATED_MODELS
+
+    hy = heyoka()
+    if model not in GENERATED_MODELS:
+        raise InputError(f"method 'taylor' runs the generated fields of models "
+                         f"{GENERATED_MODELS}; model {model} has none")
+    t_out = np.asarray(t_out, dtype=float)
+    prec = precision or choose_precision(rtol, float(t_out[-1] - t_out[0]))
+    check_precision(prec)
+    tol = snap_tol(rtol)
+    entry, cached = compiled(model, p, prec, tol)
+    fp = entry.fp
+    p = np.asarray(p, dtype=float)
+    cb = None
+    if wall_limit is not None:
+        stop_at = time.monotonic() + wall_limit
+
+        def cb(ta):
+            return time.monotonic() < stop_at
+    with entry.lock:
+        ta = entry.ta
+        ta.time = fp(float(t_out[0]))
+        ta.state[:] = _cast(fp, y0)
+        ta.pars[:] = _cast(fp, p[:entry.n_par])
+        if entry.events:
+            ta.reset_cooldowns()
+        t0 = time.perf_counter()
+        res = ta.propagate_grid(_cast(fp, t_out), max_steps=int(max_steps), callback=cb)
+        wall = time.perf_counter() - t0
+        t_stop = float(ta.time)
+    outcome, nsteps, Y = res[0], int(res[3]), np.asarray(res[-1], dtype=float)
+    code = int(outcome.value)
+    if outcome == hy.taylor_outcome.time_limit:
+        status = L.OK
+    elif outcome == hy.taylor_outcome.step_limit:
+        status = rk.MAX_STEPS
+    elif outcome == hy.taylor_outcome.err_nf_state:
+        status = L.SING_NONFINITE
+    elif outcome == hy.taylor_outcome.cb_stop:
+        status = rk.MAX_STEPS
+    elif code < 0:     # terminal event number -code - 1
+        status = entry.events[-code - 1]
+    else:
+        status = L.SING_NONFINITE
+    m = len(Y)
+    while m and not np.all(np.isfinite(Y[m - 1])):
+        m -= 1
+    if status == L.OK and m < len(t_out):
+        status = L.SING_NONFINITE
+    message = "" if status == L.OK else status_message(status)
+    if outcome == hy.taylor_outcome.cb_stop:
+        message = f"the wall-time limit of {wall_limit:g} s ran out before the last output time"
+    if status != L.OK:
+        message += f" (stopped at t = {t_stop:.17g})"
+    extra = {"precision": prec, "taylor_order": int(ta.order), "compiled": not cached,
+             "compile_s": 0.0 if cached else entry.compile_s, "tol": tol,
+             "atol_effective": tol}
+    # one Taylor jet (the series of every state variable to the order) per step
+    return TaylorRun(t=t_out[:m].copy(), y=Y[:m], status=int(status), message=message,
+                     t_stop=t_stop, steps=nsteps, rejected=0, rhs_calls=nsteps, wall_s=wall,
+                     method="taylor", extra=extra)
