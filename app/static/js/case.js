@@ -76,10 +76,16 @@ function showTally() {
 }
 
 // a merged cell lists claims of the other cases it spans: those link to their own page
+// shown as the reader knows a claim: its kind and printed number (the id is in its Details)
 function claimLink(id) {
-  const owner = id.split("/").slice(0, 2).join("/");
-  if (owner === C.id) return `<a href="#${anchor(id)}">${escapeHtml(id.slice(C.id.length + 1))}</a>`;
-  return `<a href="/case/${owner}#${anchor(id)}">${escapeHtml(id)}</a>`;
+  const parts = id.split("/");
+  const owner = parts.slice(0, 2).join("/");
+  if (owner === C.id) {
+    const cl = C.claims.find((x) => x.id === id);
+    const text = cl ? `${cl.kind}${cl.number ? ` ${cl.number}` : ""}` : parts.slice(2).join(" ");
+    return `<a href="#${anchor(id)}">${escapeHtml(text)}</a>`;
+  }
+  return `<a href="/case/${owner}#${anchor(id)}">${escapeHtml(`${parts[2] || "claim"} on the ${owner} page`)}</a>`;
 }
 
 function showCells() {
