@@ -18,11 +18,14 @@ a matched final-state error interpolated (log-log) on that front:
   scipy-numpy  scipy DOP853 on the independent NumPy field (solvers/models/reference.py).
 Errors: max-norm of the state at T against heyoka in long double (tol 1e-18). Timing:
 per tolerance the competitors run interleaved (A B C A B C ...), best of REPEATS; scipy
-once. A breakdown (ns per field call, steps) says where the time goes.
+once. On a loaded machine a best-of-5 can still be slowed: the "robust" column takes the
+rhs calls at the matched error (deterministic) times the lowest cost per call on that
+competitor's front (Runge-Kutta competitors only). A breakdown (ns per rhs call, steps,
+the field alone) says where the time goes.
 
     PYTHONPATH=$PWD .venv/bin/python bench/limit.py [--quick]
         -> bench/results/limit.{txt,json}   (--quick: limit.quick.{txt,json})
---quick: 5 tolerances, best of 3, no scipy-numpy and no heyoka-gen (~3 min once the
+--quick: 5 tolerances (1e-6 ... 1e-12), best of 3, no scipy-numpy and no heyoka-gen (~3 min once the
 kernels are compiled; a fresh cache first compiles the unrolled kernels, ~2 min a case).
 """
 
@@ -291,7 +294,7 @@ def front(case, params, y0, T, targets, limit_field, quick=False):
     def err(y):
         return float(np.max(np.abs(np.asarray(y, dtype=float) - ref)))
 
-    rtols = [10.0 ** -k for k in ((6, 7, 8, 9, 10) if quick else (6, 7, 8, 9, 10, 11, 12))]
+    rtols = [10.0 ** -k for k in ((6, 8, 10, 11, 12) if quick else (6, 7, 8, 9, 10, 11, 12))]
     gen_field = generated(model.model, p).field
 
     @numba.njit(inline="always")
@@ -347,12 +350,12 @@ def front(case, params, y0, T, targets, limit_field, quick=False):
         def go(ta=ta):
             ta.time = 0.0
             ta.state[:] = y0
-            ta.propagate_until(T)
-            return ta.state.copy()
+            steps = ta.propagate_until(T)[3]
+            return ta.state.copy(), steps
         hruns[("heyoka-lean", tol)] = go
         if not quick:
             tay = Taylor(model.model, p, y0, tol=tol)
-            hruns[("heyoka-gen", tol)] = lambda tay=tay: tay.run(y0, [0.0, T])[0][-1]
+            hruns[("heyoka-gen", tol)] = lambda tay=tay: (tay.run(y0, [0.0, T])[0][-1], 0)
     hbest = dict.fromkeys(hruns, math.inf)
     hout = {}
     for _ in range(repeats):
@@ -362,7 +365,20 @@ def front(case, params, y0, T, targets, limit_field, quick=False):
             hbest[key] = min(hbest[key], time.perf_counter() - t0)
     for (name, tol), w in hbest.items():
         res.setdefault(name, [])
-        res[name].append((err(hout[(name, tol)]), w))
+        res[name].append((err(hout[(name, tol)][0]), w))
+    # robust to the load: rhs calls at the matched error times the lowest cost per call
+    # seen on the front (a run slowed by another job only raises its cost per call; the
+    # calls are deterministic). Not for heyoka: its cost per step grows with the order,
+    # which its tolerance sets.
+    work_pts = {name: [(res[name][i][0], outs[name][i][2], best[name][i])
+                       for i in range(len(rtols))] for name in runners}
+    robust = {}
+    for name, pts in work_pts.items():
+        unit = min(w / max(1, u) for _, u, w in pts)
+        robust[name] = {}
+        for t in targets:
+            u = at_error([(e, u) for e, u, _ in pts], t)
+            robust[name][f"{t:.0e}"] = None if u is None else u * unit
     scal = ball_scalar(p) if limit_field is ball_field else None
     for name, fun in (("scipy-scalar", scal), ("scipy-numpy", None)):
         if (name == "scipy-scalar" and fun is None) or (name == "scipy-numpy" and quick):
@@ -382,7 +398,7 @@ def front(case, params, y0, T, targets, limit_field, quick=False):
                          "rhs_calls": work[name][i][1],
                          "ns_per_rhs": best[name][i] / max(1, work[name][i][1]) * 1e9}
                         for i, rt in enumerate(rtols)] for name in runners}
-    return res, table, breakdown, compile_s
+    return res, table, breakdown, compile_s, robust
 
 
 @numba.njit(nogil=True)
@@ -437,10 +453,12 @@ def main():
              f"({os.cpu_count()} cores)"]
     out = {"quick": quick, "load_start": load0}
     for case, prm, y0, T, targets, lf in cases:
-        res, table, breakdown, compile_s = front(case, prm, y0, T, targets, lf, quick)
+        res, table, breakdown, compile_s, robust = front(case, prm, y0, T, targets, lf,
+                                                         quick)
         fc = field_cost(case, prm, y0, lf)
         out[case] = {"T": T, "state": [float(v) for v in y0], "params": prm,
-                     "fronts": res, "at_error": table, "breakdown": breakdown,
+                     "fronts": res, "at_error": table, "at_error_robust": robust,
+                     "breakdown": breakdown,
                      "first_call_s": compile_s, "field_ns_per_call": fc,
                      "load": os.getloadavg()}
         lines.append(f"\n{case}, T = {T:g}, y0 = {np.round(np.asarray(y0, float), 6).tolist()}"
@@ -452,15 +470,23 @@ def main():
             key = f"{t:.0e}"
             lim = (table.get("limit") or {}).get(key)
             hey = table["heyoka-lean"][key]
-            lines.append(f"  at error {key}: time, x the limit, x heyoka-lean")
+            rlim = (robust.get("limit") or {}).get(key)
+            lines.append(f"  at error {key}: time, x the limit, x heyoka-lean | robust: rhs "
+                         "calls at that error x best cost per call, x limit (robust), x heyoka")
             for name in table:
                 v = table[name][key]
                 if v is None:
                     lines.append(f"    {name:14s}  outside its front")
                     continue
-                rl = f"{v / lim:7.2f}" if lim else "      -"
-                rh = f"{v / hey:7.2f}" if hey else "      -"
-                lines.append(f"    {name:14s} {v * 1e3:9.2f} ms  {rl} x limit  {rh} x heyoka")
+                rl = f"{v / lim:6.2f}" if lim else "     -"
+                rh = f"{v / hey:6.2f}" if hey else "     -"
+                line = f"    {name:14s} {v * 1e3:9.2f} ms {rl} x limit {rh} x heyoka"
+                r = (robust.get(name) or {}).get(key)
+                if r is not None:
+                    a = f"{r / rlim:6.2f}" if rlim else "     -"
+                    b = f"{r / hey:6.2f}" if hey else "     -"
+                    line += f" | {r * 1e3:8.2f} ms {a} x limit {b} x heyoka"
+                lines.append(line)
         lines.append("  where the time goes (per tolerance: ns per rhs call = (stepper + "
                      "field) / calls; steps):")
         for name, rows in breakdown.items():
