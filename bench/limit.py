@@ -3,24 +3,36 @@
 Competitors, each traced over a range of tolerances (a work-precision front), its time at
 a matched final-state error interpolated (log-log) on that front:
   limit        a DOP853 written by hand in numba (scipy's coefficients, loops over constant
-               arrays), the field written by hand and inlined (inline='always');
+               arrays), the field written by hand and inlined (inline='always'): the
+               Chaplygin ball and the disk (the flat base has no hand-written field);
   lean-dop853  the same hand-written DOP853 on the generated field of the case
                (solvers/kernels/generate.py): what the generated field alone buys;
   ours         the project's integrate(): general rk_integrate kernel, general field;
-  ours-generated  integrate(generated=True): the same rk_integrate source compiled
-               against the case's generated field (solvers/kernels/generate.py);
+  ours-generated  integrate(generated=True): rk.py's loop kernel compiled against the
+               case's generated field, inlined (through the Python entry);
+  gen-loops    the same compiled kernel called directly (packed arrays reused: no entry);
+  gen-unrolled the kernel with DOP853 unrolled (solvers/kernels/unroll.py), called directly;
   heyoka-lean  heyoka's Taylor integrator on the generated lean expressions;
   heyoka-gen   heyoka on the general expression system (solvers/integrate/taylor.py);
   scipy-scalar scipy DOP853 on the best plain-Python scalar field (math.sqrt, tuples);
   scipy-numpy  scipy DOP853 on the independent NumPy field (solvers/models/reference.py).
-Errors: max-norm of the state at T against heyoka in long double (tol 1e-18).
+Errors: max-norm of the state at T against heyoka in long double (tol 1e-18). Timing:
+per tolerance the competitors run interleaved (A B C A B C ...), best of REPEATS; scipy
+once. On a loaded machine a best-of-5 can still be slowed: the "robust" column takes the
+rhs calls at the matched error (deterministic) times the lowest cost per call on that
+competitor's front (Runge-Kutta competitors only). A breakdown (ns per rhs call, steps,
+the field alone) says where the time goes.
 
-    PYTHONPATH=$PWD .venv/bin/python bench/limit.py   # -> bench/results/limit.{txt,json}
+    PYTHONPATH=$PWD .venv/bin/python bench/limit.py [--quick]
+        -> bench/results/limit.{txt,json}   (--quick: limit.quick.{txt,json})
+--quick: 5 tolerances (1e-6 ... 1e-12), best of 3, no scipy-numpy and no heyoka-gen (~3 min once the
+kernels are compiled; a fresh cache first compiles the unrolled kernels, ~2 min a case).
 """
 
 import itertools
 import json
 import math
+import os
 import sys
 import time
 from pathlib import Path
@@ -30,9 +42,9 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.integrate._ivp import dop853_coefficients as DC
 
-from solvers.integrate.integrator import integrate
+from solvers.integrate.integrator import integrate, method_arrays
 from solvers.integrate.taylor import Taylor
-from solvers.kernels.generate import generated, heyoka_system
+from solvers.kernels.generate import generated, generated_integrator, heyoka_system
 from solvers.models.cases import build, registry
 from solvers.models.reference import field as ref_field
 
@@ -249,68 +261,127 @@ def at_error(points, target):
     return None
 
 
+def kernel_runner(kern, model, p, y0, T, method="dop853"):
+    """The compiled kernel called directly, its arrays packed once (what integrate() does,
+    without the Python entry)."""
+    A, c, b, E, P, meth = method_arrays(method)
+    n = y0.size
+    t_out = np.array([0.0, T])
+    Y = np.empty((2, n))
+    ct, cy, ys = np.empty(1), np.empty((1, n)), np.empty(n)
+    st = np.zeros(5, dtype=np.int64)
+    codes, vals, sec = np.zeros(0, dtype=np.int64), np.zeros(0), np.zeros(n + 1)
+    iopt = np.array([10**8, 0, 1, 0, 1, 1, 0], dtype=np.int64)
+
+    def run(rt):
+        fopt = np.array([rt, 0.0, np.inf, 0.9, 0.2, 10.0, 0.04])
+        atol = np.full(n, rt * 1e-3)
+        kern(model, p, y0, t_out, A, c, b, E, P, meth, iopt, fopt, atol, codes, vals, sec, Y,
+             ct, cy, ys, st)
+        return Y[1].copy(), int(st[0]), int(st[2])
+
+    return run
+
+
 def front(case, params, y0, T, targets, limit_field, quick=False):
     model = build(case, params)
     p = np.array(model.p)
     y0 = np.asarray(y0, dtype=float)
     ref = Taylor(model.model, p, y0, tol=1e-18, fp="longdouble").run(y0, [0.0, T])[1][-1]
     ref = np.asarray(ref, dtype=float)
+    repeats = 3 if quick else 5
 
     def err(y):
         return float(np.max(np.abs(np.asarray(y, dtype=float) - ref)))
 
-    rtols = [10.0 ** -k for k in (6, 7, 8, 9, 10, 11, 12)]
-    res = {}
-    runners = {}
+    rtols = [10.0 ** -k for k in ((6, 8, 10, 11, 12) if quick else (6, 7, 8, 9, 10, 11, 12))]
     gen_field = generated(model.model, p).field
 
     @numba.njit(inline="always")
     def lean_field(y, p, f):      # the generated field takes (p, y, dydt)
         return gen_field(p, y, f)
 
-    lean = make_dop853(lean_field)
+    # each runner: rt -> (final state, steps, rhs calls)
+    runners = {}
     if limit_field is not None:
-        runners["limit"] = make_dop853(limit_field)
-    runners["lean-dop853"] = lean
+        hand = make_dop853(limit_field)
+        runners["limit"] = lambda rt, f=hand: f(y0, p, T, rt, rt * 1e-3)
+    lean = make_dop853(lean_field)
+    runners["lean-dop853"] = lambda rt: lean(y0, p, T, rt, rt * 1e-3)
+
+    def ours(gen):
+        def run(rt):
+            r = integrate(model.model, p, y0, [0.0, T], rtol=rt, atol=rt * 1e-3,
+                          generated=gen)
+            return r.y[-1], r.steps, r.rhs_calls
+        return run
+
+    runners["ours"] = ours(False)
+    runners["ours-generated"] = ours(True)
+    loops = generated_integrator(model.model, p)
+    unrolled = generated_integrator(model.model, p, unrolled="dop853")
+    runners["gen-loops"] = kernel_runner(loops.rk_integrate, model.model, p, y0, T)
+    runners["gen-unrolled"] = kernel_runner(unrolled.rk_integrate, model.model, p, y0, T)
+    compile_s = {}
     for name, run in runners.items():
-        run(y0, p, 1.0, 1e-6, 1e-9)       # compile
-        pts = []
-        for rt in rtols:
-            w, (y, _, _) = best_of(lambda run=run, rt=rt: run(y0, p, T, rt, rt * 1e-3), 3)
-            pts.append((err(y), w))
-        res[name] = pts
-    for name, gen in (("ours", False), ("ours-generated", True)):
-        integrate(model.model, p, y0, [0.0, 1.0], generated=gen)
-        pts = []
-        for rt in rtols:
-            w, r = best_of(lambda rt=rt, gen=gen: integrate(
-                model.model, p, y0, [0.0, T], rtol=rt, atol=rt * 1e-3, generated=gen), 3)
-            pts.append((err(r.y[-1]), w))
-        res[name] = pts
-    for name, system in (("heyoka-lean", None), ("heyoka-gen", "general")):
-        pts = []
-        for tol in (1e-5, 1e-6, 1e-7, 1e-9, 1e-11):
-            if system is None:
-                import heyoka as hy
+        t0 = time.perf_counter()
+        run(1e-6)
+        compile_s[name] = time.perf_counter() - t0
+    best = {name: [math.inf] * len(rtols) for name in runners}
+    outs = {name: [None] * len(rtols) for name in runners}
+    for i, rt in enumerate(rtols):
+        for _ in range(repeats):
+            for name, run in runners.items():       # interleaved: A B C A B C ...
+                t0 = time.perf_counter()
+                o = run(rt)
+                best[name][i] = min(best[name][i], time.perf_counter() - t0)
+                outs[name][i] = o
+    res = {name: [(err(outs[name][i][0]), best[name][i]) for i in range(len(rtols))]
+           for name in runners}
+    work = {name: [(int(o[1]), int(o[2])) for o in outs[name]] for name in runners}
 
-                v, f, _ = heyoka_system(model.model, p, fold=True)
-                ta = hy.taylor_adaptive(list(zip(v, f, strict=True)), y0, tol=tol)
+    import heyoka as hy
 
-                def go(ta=ta):
-                    ta.time = 0.0
-                    ta.state[:] = y0
-                    ta.propagate_until(T)
-                    return ta.state.copy()
-                w, y = best_of(go, 3)
-            else:
-                tay = Taylor(model.model, p, y0, tol=tol)
-                w, out = best_of(lambda tay=tay: tay.run(y0, [0.0, T]), 3)
-                y = out[0][-1]
-            pts.append((err(y), w))
-        res[name] = pts
+    v, f, _ = heyoka_system(model.model, p, fold=True)
+    hruns = {}
+    for tol in (1e-5, 1e-6, 1e-7, 1e-9, 1e-11):
+        ta = hy.taylor_adaptive(list(zip(v, f, strict=True)), y0, tol=tol)
+
+        def go(ta=ta):
+            ta.time = 0.0
+            ta.state[:] = y0
+            steps = ta.propagate_until(T)[3]
+            return ta.state.copy(), steps
+        hruns[("heyoka-lean", tol)] = go
+        if not quick:
+            tay = Taylor(model.model, p, y0, tol=tol)
+            hruns[("heyoka-gen", tol)] = lambda tay=tay: (tay.run(y0, [0.0, T])[0][-1], 0)
+    hbest = dict.fromkeys(hruns, math.inf)
+    hout = {}
+    for _ in range(repeats):
+        for key, go in hruns.items():
+            t0 = time.perf_counter()
+            hout[key] = go()
+            hbest[key] = min(hbest[key], time.perf_counter() - t0)
+    for (name, tol), w in hbest.items():
+        res.setdefault(name, [])
+        res[name].append((err(hout[(name, tol)][0]), w))
+    # robust to the load: rhs calls at the matched error times the lowest cost per call
+    # seen on the front (a run slowed by another job only raises its cost per call; the
+    # calls are deterministic). Not for heyoka: its cost per step grows with the order,
+    # which its tolerance sets.
+    work_pts = {name: [(res[name][i][0], outs[name][i][2], best[name][i])
+                       for i in range(len(rtols))] for name in runners}
+    robust = {}
+    for name, pts in work_pts.items():
+        unit = min(w / max(1, u) for _, u, w in pts)
+        robust[name] = {}
+        for t in targets:
+            u = at_error([(e, u) for e, u, _ in pts], t)
+            robust[name][f"{t:.0e}"] = None if u is None else u * unit
     scal = ball_scalar(p) if limit_field is ball_field else None
     for name, fun in (("scipy-scalar", scal), ("scipy-numpy", None)):
-        if name == "scipy-scalar" and fun is None:
+        if (name == "scipy-scalar" and fun is None) or (name == "scipy-numpy" and quick):
             continue
         if fun is None:
             def fun(t, y):
@@ -323,7 +394,43 @@ def front(case, params, y0, T, targets, limit_field, quick=False):
             pts.append((err(sol.y[:, -1]), w))
         res[name] = pts
     table = {name: {f"{t:.0e}": at_error(pts, t) for t in targets} for name, pts in res.items()}
-    return res, table
+    breakdown = {name: [{"rtol": rt, "time_s": best[name][i], "steps": work[name][i][0],
+                         "rhs_calls": work[name][i][1],
+                         "ns_per_rhs": best[name][i] / max(1, work[name][i][1]) * 1e9}
+                        for i, rt in enumerate(rtols)] for name in runners}
+    return res, table, breakdown, compile_s, robust
+
+
+@numba.njit(nogil=True)
+def _field_loop(field, y, p, d, N):
+    """N field calls on slightly moving states (the result feeds the next state, so the
+    calls are not hoisted): the field's cost alone, ns per call."""
+    acc = 0.0
+    for _ in range(N):
+        y[0] += 1e-13 * acc
+        field(y, p, d)
+        acc = d[0]
+    return acc
+
+
+def field_cost(case, params, y0, limit_field):
+    model = build(case, params)
+    p = np.array(model.p)
+    gen_field = generated(model.model, p).field
+
+    @numba.njit(inline="always")
+    def lean_field(y, p, f):
+        return gen_field(p, y, f)
+
+    out = {}
+    for name, f in (("hand", limit_field), ("generated", lean_field)):
+        if f is None:
+            continue
+        y, d = np.array(y0, dtype=float), np.empty(len(y0))
+        _field_loop(f, y, p, d, 10)
+        w, _ = best_of(lambda f=f, y=y, d=d: _field_loop(f, y, p, d, 200_000), 5)
+        out[name] = w / 200_000 * 1e9
+    return out
 
 
 def main():
@@ -337,35 +444,68 @@ def main():
         ("sphere/flat-base", registry()["sphere/flat-base"].example,
          registry()["sphere/flat-base"].state, 1000.0, (1e-8,), None),
     ]
-    lines = ["bench/limit.py: time at matched final-state error (log-log interpolation on each "
-             "front), best of 3 (scipy: 1 run), one process; error vs heyoka long double tol "
-             "1e-18. Ratios: time / time of the limit (or of ours)."]
-    out = {}
+    load0 = os.getloadavg()
+    lines = [f"bench/limit.py{' --quick' if quick else ''}: time at matched final-state error "
+             "(log-log interpolation on each front); per tolerance the competitors run "
+             f"interleaved, best of {3 if quick else 5} (scipy: 1 run); one process; error vs "
+             "heyoka long double tol 1e-18.",
+             f"load average at the start: {load0[0]:.2f} {load0[1]:.2f} {load0[2]:.2f} "
+             f"({os.cpu_count()} cores)"]
+    out = {"quick": quick, "load_start": load0}
     for case, prm, y0, T, targets, lf in cases:
-        res, table = front(case, prm, y0, T, targets, lf, quick)
+        res, table, breakdown, compile_s, robust = front(case, prm, y0, T, targets, lf,
+                                                         quick)
+        fc = field_cost(case, prm, y0, lf)
         out[case] = {"T": T, "state": [float(v) for v in y0], "params": prm,
-                     "fronts": res, "at_error": table}
-        lines.append(f"\n{case}, T = {T:g}, y0 = {np.round(np.asarray(y0, float), 6).tolist()}")
+                     "fronts": res, "at_error": table, "at_error_robust": robust,
+                     "breakdown": breakdown,
+                     "first_call_s": compile_s, "field_ns_per_call": fc,
+                     "load": os.getloadavg()}
+        lines.append(f"\n{case}, T = {T:g}, y0 = {np.round(np.asarray(y0, float), 6).tolist()}"
+                     f"  (load {os.getloadavg()[0]:.2f})")
         for name, pts in res.items():
-            lines.append(f"  front {name:13s} " + "  ".join(f"({e:.1e}, {w * 1e3:.2f} ms)"
-                                                          for e, w in pts))
+            lines.append(f"  front {name:14s} " + "  ".join(f"({e:.1e}, {w * 1e3:.2f} ms)"
+                                                           for e, w in pts))
         for t in targets:
             key = f"{t:.0e}"
-            base = (table.get("limit") or {}).get(key) or table["ours"][key] or math.nan
-            ours = table["ours"][key]
-            lines.append(f"  at error {key}: time [ms], x limit (or x ours), ours / that")
+            lim = (table.get("limit") or {}).get(key)
+            hey = table["heyoka-lean"][key]
+            rlim = (robust.get("limit") or {}).get(key)
+            lines.append(f"  at error {key}: time, x the limit, x heyoka-lean | robust: rhs "
+                         "calls at that error x best cost per call, x limit (robust), x heyoka")
             for name in table:
                 v = table[name][key]
                 if v is None:
-                    lines.append(f"    {name:13s}  outside its front")
+                    lines.append(f"    {name:14s}  outside its front")
                     continue
-                lines.append(f"    {name:13s} {v * 1e3:9.2f} ms  {v / base:7.2f} x base"
-                             + (f"  ours/this {ours / v:7.3f}" if ours else ""))
+                rl = f"{v / lim:6.2f}" if lim else "     -"
+                rh = f"{v / hey:6.2f}" if hey else "     -"
+                line = f"    {name:14s} {v * 1e3:9.2f} ms {rl} x limit {rh} x heyoka"
+                r = (robust.get(name) or {}).get(key)
+                if r is not None:
+                    a = f"{r / rlim:6.2f}" if rlim else "     -"
+                    b = f"{r / hey:6.2f}" if hey else "     -"
+                    line += f" | {r * 1e3:8.2f} ms {a} x limit {b} x heyoka"
+                lines.append(line)
+        lines.append("  where the time goes (per tolerance: ns per rhs call = (stepper + "
+                     "field) / calls; steps):")
+        for name, rows in breakdown.items():
+            lines.append(f"    {name:14s} " + "  ".join(
+                f"{r['rtol']:.0e}: {r['ns_per_rhs']:5.1f} ns {r['steps']:6d} st"
+                for r in rows))
+        lines.append("  field alone, ns per call (a loop of dependent calls): "
+                     + ", ".join(f"{k} {v:.1f}" for k, v in fc.items()))
+        lines.append("  first call (compile or cache load), s: "
+                     + ", ".join(f"{k} {v:.1f}" for k, v in compile_s.items()))
+    load1 = os.getloadavg()
+    lines.append(f"\nload average at the end: {load1[0]:.2f} {load1[1]:.2f} {load1[2]:.2f}")
+    out["load_end"] = load1
     text = "\n".join(lines) + "\n"
     OUT.mkdir(exist_ok=True)
     print(text)
-    (OUT / "limit.txt").write_text(text)
-    (OUT / "limit.json").write_text(json.dumps(out, indent=1))
+    stem = "limit.quick" if quick else "limit"
+    (OUT / f"{stem}.txt").write_text(text)
+    (OUT / f"{stem}.json").write_text(json.dumps(out, indent=1))
 
 
 if __name__ == "__main__":

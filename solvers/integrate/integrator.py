@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from solvers.integrate import collocation, tableaux
-from solvers.kernels import gauss, generate, rk
+from solvers.kernels import gauss, generate, rk, unroll
 from solvers.kernels import layout as L
 from solvers.kernels.fields import rhs
 
@@ -101,6 +101,10 @@ def method_arrays(name: str):
     meth = np.array([s, tab.new_stage, kind, tab.order, tab.error_order], dtype=np.int64)
     return (np.ascontiguousarray(tab.A), np.ascontiguousarray(tab.c),
             np.ascontiguousarray(tab.b), E, P, meth)
+
+
+# the generated kernels unroll these tableaux (the kernels layer cannot import this one)
+unroll.set_provider(lambda: {name: method_arrays(name) for name in tableaux.METHODS})
 
 
 def initial_integrals(model, p, y0, codes) -> np.ndarray:
