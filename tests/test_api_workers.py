@@ -114,7 +114,9 @@ def test_health_is_not_blocked_by_a_running_simulation(patient_server):
     the run of about a second took over 1.5 s on a loaded machine, the other's deadline.)"""
     server = patient_server
     wait_idle(server)
-    busy = {**SHORT, "t_end": 5e4}     # about a second of integration, then it returns
+    # about a second of integration, then it returns (the generated field runs the ball's
+    # 1e6 time units in ~1.2 s; 5e4 took that long on the general field)
+    busy = {**SHORT, "t_end": 1e6}
     done = {}
 
     def run():
