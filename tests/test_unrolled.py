@@ -40,6 +40,11 @@ def pair(monkeypatch, mod, model, p, y0, t_out, **kw):
         if model in generate.GENERATED_MODELS:
             monkeypatch.setattr(integrator.generate, "generated_integrator",
                                 lambda *a, fn=fn, **k: _Kernel(fn))
+            # integrate() memoizes the generated module per case and its readiness: fresh
+            # memos per call, so each call runs this fn and none outlives the test
+            monkeypatch.setattr(integrator, "_GEN_MODULES", {})
+            monkeypatch.setattr(integrator, "_GEN_READY", {})
+            monkeypatch.setattr(integrator, "_mark_ready", lambda *a: None)
             out.append(integrate(model, p, y0, t_out, generated=True, **kw))
         else:
             monkeypatch.setattr(integrator.rk, "rk_integrate", fn)
