@@ -23,9 +23,7 @@ use, at most NUMBA_NUM_THREADS).
 
 from __future__ import annotations
 
-import importlib.util
 import os
-import sys
 import threading
 import time
 from pathlib import Path
@@ -48,7 +46,6 @@ from solvers.kernels import generate, rk
 from solvers.kernels import layout as L
 
 _LAUNCH = threading.Lock()
-_LOADED: dict[str, object] = {}
 _CONTROL = StepControl()
 
 
@@ -87,25 +84,14 @@ def generated_ensemble(model: int, p):
     generate.cache_dir() with only its import line changed. Its name follows the
     integrator module's, which already hashes the structure and every kernel source."""
     rk_mod = generate.generated_integrator(model, p)
-    name = f"ens_{rk_mod.__name__}"
-    mod = _LOADED.get(name)
-    if mod is not None:
-        return mod
-    path = generate.cache_dir() / f"{name}.py"
-    if not path.exists():
+
+    def source():
         src = Path(kernels.__file__).read_text()
         old = "from solvers.kernels.rk import rk_integrate\n"
         assert old in src
-        src = src.replace(old, f"from {rk_mod.__name__} import rk_integrate\n")
-        tmp = path.with_suffix(f".{os.getpid()}.{threading.get_ident()}.tmp")
-        tmp.write_text(src)
-        os.replace(tmp, path)    # atomic: a concurrent writer sees all of it or nothing
-    spec = importlib.util.spec_from_file_location(name, path)
-    mod = importlib.util.module_from_spec(spec)
-    sys.modules[name] = mod
-    spec.loader.exec_module(mod)
-    _LOADED[name] = mod
-    return mod
+        return src.replace(old, f"from {rk_mod.__name__} import rk_integrate\n")
+
+    return generate.cached_module(f"ens_{rk_mod.__name__}", source)
 
 
 def _per_traj(value, n_traj, name, dtype):

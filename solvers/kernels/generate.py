@@ -37,6 +37,7 @@ import hashlib
 import importlib.util
 import os
 import sys
+import threading
 from functools import cache
 from pathlib import Path
 
@@ -338,25 +339,27 @@ _LOADED: dict[str, object] = {}
 def generated(model: int, p, fold: bool = False):
     """The generated module of the case (written on first use, then loaded from the cache):
     it holds `field(p, y, dydt)` and `rhs(model, t, y, p, dydt)`."""
-    name = module_name(model, p, fold)
+    return cached_module(module_name(model, p, fold), lambda: numba_source(model, p, fold))
+
+
+def cached_module(name: str, source):
+    """The module `name` of cache_dir(): loaded once per process; on first use anywhere
+    its text `source()` is written there (atomically: a concurrent process or thread sees
+    all of it or nothing). Registered in sys.modules, so other generated modules (the
+    integrator copy, the ensemble twin) import it by name."""
     mod = _LOADED.get(name)
     if mod is not None:
         return mod
     path = cache_dir() / f"{name}.py"
     if not path.exists():
-        tmp = path.with_suffix(f".{os.getpid()}.tmp")
-        tmp.write_text(numba_source(model, p, fold))
-        os.replace(tmp, path)   # atomic: a concurrent process sees all of it or nothing
-    mod = _load(name, path)
-    _LOADED[name] = mod
-    return mod
-
-
-def _load(name, path):
+        tmp = path.with_suffix(f".{os.getpid()}.{threading.get_ident()}.tmp")
+        tmp.write_text(source())
+        os.replace(tmp, path)
     spec = importlib.util.spec_from_file_location(name, path)
     mod = importlib.util.module_from_spec(spec)
-    sys.modules[name] = mod      # importable by name: the integrator copy imports it
+    sys.modules[name] = mod
     spec.loader.exec_module(mod)
+    _LOADED[name] = mod
     return mod
 
 
@@ -380,23 +383,15 @@ def generated_integrator(model: int, p, fold: bool = False, unrolled=()):
     names = (unrolled,) if isinstance(unrolled, str) else tuple(sorted(unrolled))
     tabs = unroll.baked_tableaux(names)
     stamp = unroll.tableaux_stamp(tabs) if tabs else "loops"
-    name = f"rk{field_mod.__name__[3:]}_{stamp}"
-    mod = _LOADED.get(name)
-    if mod is not None:
-        return mod
-    path = cache_dir() / f"{name}.py"
-    if not path.exists():
+
+    def source():
         src = (Path(__file__).resolve().parent / "rk.py").read_text()
         old = "from solvers.kernels.fields import rhs\n"
         assert old in src
         src = src.replace(old, f"from {field_mod.__name__} import rhs\n")
-        src = unroll.integrator_source(src, tabs, L.STATE_DIM[model])
-        tmp = path.with_suffix(f".{os.getpid()}.tmp")
-        tmp.write_text(src)
-        os.replace(tmp, path)
-    mod = _load(name, path)
-    _LOADED[name] = mod
-    return mod
+        return unroll.integrator_source(src, tabs, L.STATE_DIM[model])
+
+    return cached_module(f"rk{field_mod.__name__[3:]}_{stamp}", source)
 
 
 def unrolled_general(unrolled):
@@ -408,16 +403,8 @@ def unrolled_general(unrolled):
     names = (unrolled,) if isinstance(unrolled, str) else tuple(sorted(unrolled))
     tabs = unroll.baked_tableaux(names)
     name = f"rkgeneral_{unroll.tableaux_stamp(tabs)}_{_sources_stamp()}"
-    mod = _LOADED.get(name)
-    if mod is None:
-        path = cache_dir() / f"{name}.py"
-        if not path.exists():
-            src = (Path(__file__).resolve().parent / "rk.py").read_text()
-            tmp = path.with_suffix(f".{os.getpid()}.tmp")
-            tmp.write_text(unroll.integrator_source(src, tabs))
-            os.replace(tmp, path)
-        mod = _LOADED[name] = _load(name, path)
-    return mod
+    rk_src = Path(__file__).resolve().parent / "rk.py"
+    return cached_module(name, lambda: unroll.integrator_source(rk_src.read_text(), tabs))
 
 
 # --- heyoka ------------------------------------------------------------------------------------
