@@ -64,8 +64,12 @@ SAMPLES = 101
 REPEATS = 5
 TAYLOR_EXTENDED = (1e-14, 1e-15, 1e-16)   # the taylor backend also in long double here
 # --only-taylor also measures auto's candidates half a decade apart from 10^-8.5 to
-# 10^-13.5 (a Taylor method's error is not a smooth power of tol: its order steps with it)
-HALF_DECADES = tuple(10.0 ** -(k + 0.5) for k in range(8, 14))
+# 10^-10.5 and a quarter decade apart from 10^-11.25 to 10^-13.75, the grid the taylor
+# backend compiles for (taylor_backend.snap_tol): a Taylor method's error is not a smooth
+# power of tol (its order steps with it), so auto runs only measured tolerances, and
+# where the fronts cross (1e-11 ... 1e-14) the grid is the backend's own
+HALF_DECADES = (*(10.0 ** -(k + 0.5) for k in range(8, 11)),
+                *(10.0 ** -(k + q) for k in range(11, 14) for q in (0.25, 0.5, 0.75)))
 BUDGET_S = 60.0
 
 

@@ -133,6 +133,25 @@ def test_zero_terms_are_dropped():
     assert "p[" not in folded.split("def rhs")[0]
 
 
+def test_ball_needs_no_hessian_and_no_solve():
+    """A ball's support c |gamma| (+ (a, gamma)) has J = lam (E - gamma gamma^T / |gamma|^2):
+    the generator writes J dgamma/dt = lam dgamma/dt and solves (E - k J) dgamma/dt =
+    gamma x omega by one division. The centred Chaplygin ball on the plane takes no square
+    root and two divisions (1/|gamma|^2 and 1/det I_Q); in a sphere one square root (lam)
+    and one division more (1/(1 - k lam)), where the general 3x3 solve with refinement
+    took a dozen; with an offset centre (the unbalanced ball) r = lam gamma + a needs lam."""
+    def src(case, **kw):
+        c = registry()[case]
+        m = build(case, {**c.example, **kw})
+        return numba_source(m.model, m.p).split("def rhs")[0]
+
+    plane = src("plane/chaplygin-ball")
+    assert "np.sqrt" not in plane and plane.count("1.0/(") == 2
+    sphere = src("sphere/chaplygin-ball")
+    assert sphere.count("np.sqrt") == 1 and sphere.count("1.0/(") == 3
+    assert src("plane/unbalanced-ball").count("np.sqrt") == 1
+
+
 @pytest.mark.parametrize(("case", "params", "state"), [
     ("plane/round-disk", {}, [0.0, 0.3, 3.0, 1e-4, 0.0, math.sqrt(1 - 1e-8)]),
     ("plane/round-disk", {}, [0.0, 0.3, 3.0, 1e-9, 0.0, 1.0]),          # flat: SING_EDGE

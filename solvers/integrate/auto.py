@@ -9,7 +9,8 @@ long-double reference and its wall time. auto reads the requested rtol as the er
 wanted (the benchmark's error is relative to max(1, |y_ref|)).
 
 For each candidate, its cheapest measured run whose error is <= that level
-(workprecision.cost_at; the tolerances are half a decade apart from 10^-8.5 to 10^-13.5);
+(workprecision.cost_at; the tolerances are half a decade apart from 10^-8.5 to 10^-10.5,
+then a quarter decade apart, the Taylor backend's own grid, to 10^-13.75);
 the cheapest candidate wins and runs as the benchmark ran it: that run's tolerance
 (rtol = atol; compensated summation for dop853 / vern9; the run's precision for taylor).
 No interpolation: a log-log interpolation of the tolerance was tried and missed the error

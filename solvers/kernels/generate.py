@@ -16,6 +16,14 @@ What is derived here, not copied from fields.py:
             (the field is also evaluated off the sphere, by the checks' complex steps);
   omega = I_Q^-1 M (eq1.6), (E - k J) dgamma/dt = gamma x omega (eq1.2/eq1.3) by the
             adjugate (Cramer), k = 0: dgamma/dt = gamma x omega without a solve;
+  a ball    (h = c |gamma| + (a, gamma), no ellipsoid or disk part): J = lam (E - gamma
+            gamma^T / |gamma|^2), lam = c / |gamma|, written out instead of differentiated.
+            Since (gamma, gamma x omega) = 0 identically, J dgamma/dt = lam dgamma/dt and
+            (E - k J) dgamma/dt = gamma x omega is dgamma/dt = gamma x omega / (1 - k lam)
+            (det(E - k J) = (1 - k lam)^2): no Hessian, no solve; gamma x dU loses r's
+            part lam gamma. A centred ball (a = 0) needs no square root on the way to
+            omega: m (r^2 E - r r^T) = (m c^2 / |gamma|^2) (|gamma|^2 E - gamma gamma^T).
+            All of it holds for any gamma (complex ones too): |gamma| = 1 is not assumed;
   dU/dgamma = m g r + eps I gamma: the term m g J^T gamma of fields.py is dropped, since h
             is positively homogeneous of degree 1 and so Hess h . gamma = 0 identically
             (Euler), for any gamma, not only |gamma| = 1;
@@ -165,44 +173,88 @@ def equations(model: int, p, fold: bool = False):
         B = ((P[L.B11], P[L.B12], P[L.B13]), (P[L.B12], P[L.B22], P[L.B23]),
              (P[L.B13], P[L.B23], P[L.B33]))
         h = sp.Integer(0)
-        if any(p[s] != 0.0 for s in (L.B11, L.B22, L.B33)):     # ellipsoid, eq2.28
+        ellipsoid = any(p[s] != 0.0 for s in (L.B11, L.B22, L.B33))
+        if ellipsoid:                                             # ellipsoid, eq2.28
             h += sp.sqrt(sum(B[i][j] * g[i] * g[j] for i in range(3) for j in range(3)))
         h += P[L.BALL_C] * sp.sqrt(g[0] ** 2 + g[1] ** 2 + g[2] ** 2)   # ball, eq-d*1
         if p[L.DISK_D] != 0.0:                                    # disk, eq2.71
             checks["edge"] = sp.sqrt(g[0] ** 2 + g[1] ** 2)
             h += P[L.DISK_D] * checks["edge"]
         h += P[L.A1] * g[0] + P[L.A2] * g[1] + P[L.A3] * g[2]
-        r = [sp.diff(h, gi) for gi in g]                          # r = grad h
-        Jf = [[sp.diff(r[i], g[j]) for j in range(3)] for i in range(3)]   # J = Hess h
-        rJ = prog.let_all([*r, Jf[0][0], Jf[0][1], Jf[0][2], Jf[1][1], Jf[1][2], Jf[2][2]])
-        r, Js = rJ[:3], tuple(rJ[3:])
-        J = [[Js[0], Js[1], Js[2]], [Js[1], Js[3], Js[4]], [Js[2], Js[4], Js[5]]]
+        sphere = not ellipsoid and p[L.DISK_D] == 0.0
+        centred = sphere and not any(p[s] != 0.0 for s in (L.A1, L.A2, L.A3))
+        if sphere:     # h = c |gamma| + (a, gamma): J = lam (E - gamma gamma^T / |gamma|^2)
+            ig = prog.let(1 / prog.let(g[0] ** 2 + g[1] ** 2 + g[2] ** 2))
+            lam = prog.let(P[L.BALL_C] * sp.sqrt(ig))
+            r = [prog.let(lam * g[i] + P[L.A1 + i]) for i in range(3)]    # r = grad h
+        else:
+            r = [sp.diff(h, gi) for gi in g]                          # r = grad h
+            Jf = [[sp.diff(r[i], g[j]) for j in range(3)] for i in range(3)]   # J = Hess h
+            rJ = prog.let_all([*r, Jf[0][0], Jf[0][1], Jf[0][2], Jf[1][1], Jf[1][2],
+                               Jf[2][2]])
+            r, Js = rJ[:3], tuple(rJ[3:])
+            J = [[Js[0], Js[1], Js[2]], [Js[1], Js[3], Js[4]], [Js[2], Js[4], Js[5]]]
     else:
         raise ValueError(f"no generated field for model {model}")
-    mr = [prog.let(m * ri) for ri in r]
-    rr = prog.let(mr[0] * r[0] + mr[1] * r[1] + mr[2] * r[2])
-    IQ = (Iv[0] + rr - mr[0] * r[0], -mr[0] * r[1], -mr[0] * r[2],
-          Iv[1] + rr - mr[1] * r[1], -mr[1] * r[2], Iv[2] + rr - mr[2] * r[2])
+    if model == L.MODEL_FULL and centred:
+        # r = lam gamma: m (r^2 E - r r^T) = s (|gamma|^2 E - gamma gamma^T), s = m lam^2 =
+        # m c^2 / |gamma|^2, no square root on the way to omega; the diagonal as
+        # s (g_j^2 + g_k^2), so gamma stays its null vector to round-off (a tiny I, a
+        # heavy ball: omega's component along gamma rests on it)
+        sg = prog.let(m * P[L.BALL_C] ** 2 * ig)
+        mr = [prog.let(sg * gi) for gi in g]
+        sq = [prog.let(gi * gi) for gi in g]
+        IQ = (Iv[0] + sg * (sq[1] + sq[2]), -mr[0] * g[1], -mr[0] * g[2],
+              Iv[1] + sg * (sq[0] + sq[2]), -mr[1] * g[2], Iv[2] + sg * (sq[0] + sq[1]))
+        r = g
+    else:
+        mr = [prog.let(m * ri) for ri in r]
+        rr = prog.let(mr[0] * r[0] + mr[1] * r[1] + mr[2] * r[2])
+        IQ = (Iv[0] + rr - mr[0] * r[0], -mr[0] * r[1], -mr[0] * r[2],
+              Iv[1] + rr - mr[1] * r[1], -mr[1] * r[2], Iv[2] + rr - mr[2] * r[2])
     checks["iq"], w = _solve_sym(prog, [prog.let(a) for a in IQ], M)   # eq1.6
     a = [M[i] + S[i] for i in range(3)]
     if model == L.MODEL_FLAT:
-        rd = [prog.let(w[1] / k), prog.let(-w[0] / k), sp.Integer(0)]   # eq3.15
+        ik = prog.let(1 / k)
+        rd = [prog.let(w[1] * ik), prog.let(-w[0] * ik), sp.Integer(0)]   # eq3.15
         wr = [prog.let(e) for e in _cross(w, r)]
         Md = [x + m * y for x, y in zip(_cross(a, w), _cross(rd, wr), strict=True)]
         return prog, state, _used(P), [*Md, rd[0], rd[1]], checks
     u = [prog.let(e) for e in _cross(g, w)]
-    if k == 0:
+    if sphere:
+        # (gamma, gamma x omega) = 0 identically (for any gamma, complex ones too), so
+        # J u = lam u, and E - k J has the eigenvalues 1 - k lam on the plane normal to
+        # gamma and 1 along it: no solve, det(E - k J) = (1 - k lam)^2 (eq1.2/eq1.3)
+        if k == 0:
+            gd = u
+        else:
+            fk = prog.let(1 - k * lam)
+            checks["fit"] = prog.let(fk * fk)
+            fi = prog.let(1 / fk)
+            gd = [prog.let(ui * fi) for ui in u]
+        # dr/dt = J dgamma/dt = lam dgamma/dt; centred: m dr x (omega x r) is
+        # (m lam^2) dgamma/dt x (omega x gamma), m lam^2 = sg
+        rd = [prog.let(sg * gi) for gi in gd] if centred else [prog.let(lam * gi) for gi in gd]
+    elif k == 0:
         gd = u                                                    # eq1.2
     else:
         EkJ = tuple(prog.let((1 if i in (0, 3, 5) else 0) - k * Js[i]) for i in range(6))
         checks["fit"], gd = _solve_sym(prog, EkJ, u, True)             # eq1.3
-    rd = [prog.let(J[i][0] * gd[0] + J[i][1] * gd[1] + J[i][2] * gd[2]) for i in range(3)]
+    if not sphere:
+        rd = [prog.let(J[i][0] * gd[0] + J[i][1] * gd[1] + J[i][2] * gd[2])
+              for i in range(3)]
     wr = [prog.let(e) for e in _cross(w, r)]
-    Md = [x + m * y for x, y in zip(_cross(a, w), _cross(rd, wr), strict=True)]
+    mrd = 1 if sphere and centred else m
+    Md = [x + mrd * y for x, y in zip(_cross(a, w), _cross(rd, wr), strict=True)]
     mg, eps = m * P[L.GRAV], P[L.BRUN]
-    if mg != 0 or eps != 0:
-        dU = [prog.let(mg * r[i] + eps * Iv[i] * g[i]) for i in range(3)]  # Hess h.gamma = 0
-        if k != 0:
+    # dU/dgamma = m g r + eps I gamma (Hess h . gamma = 0); only gamma x dU enters, and
+    # for a sphere gamma x (lam gamma) = 0: r's part lam gamma is dropped, r -> a
+    rU = [P[L.A1 + i] for i in range(3)] if sphere else r
+    if (mg != 0 and any(x != 0 for x in rU)) or eps != 0:
+        dU = [prog.let(mg * rU[i] + eps * Iv[i] * g[i]) for i in range(3)]
+        if k != 0 and sphere:   # gamma x (E - k J)^-1 dU = gamma x dU / (1 - k lam)
+            dU = [prog.let(x * fi) for x in dU]
+        elif k != 0:
             dU = _solve_sym(prog, EkJ, dU, True)[1]                 # (E - k J^T)^-1 dU
         Md = [x + y for x, y in zip(Md, _cross(g, dU), strict=True)]
     return prog, state, _used(P), [*Md, *gd], checks
@@ -265,6 +317,43 @@ def _live(prog, roots):
     return keep[::-1]
 
 
+def _share_roots(assign, extra):
+    """One reciprocal square root per base: where a bound symbol b appears under a
+    half-integer power, `q = 1/sqrt(b)` is bound after b and every power of b with a
+    half-integer or negative integer exponent becomes a product of q's (b^-1/2 = q,
+    b^-1 = q q, b^-3/2 = q q q, b^1/2 = b q): one sqrt and one division instead of one
+    per power. Returns (assignments, extra expressions), both rewritten."""
+    import sympy as sp
+
+    exprs = [ex for _, ex in assign] + list(extra)
+    pows = [pw for e in exprs for pw in e.atoms(sp.Pow)
+            if pw.base.is_Symbol and pw.exp.is_Rational]
+    # a base under a negative half-integer power (a sqrt alone stays a sqrt)
+    bases = {pw.base for pw in pows if pw.exp.q == 2 and pw.exp < 0}
+    if not bases:
+        return assign, list(extra)
+    q = {b: sp.Symbol(f"q_{b.name}") for b in bases}
+
+    def rewrite(e):
+        reps = {}
+        for pw in e.atoms(sp.Pow):
+            b, x = pw.base, pw.exp
+            if b not in q or not x.is_Rational or not (x.q == 2 or (x.q == 1 and x < 0)):
+                continue
+            if x < 0:
+                reps[pw] = sp.Mul(*([q[b]] * int(-2 * x)), evaluate=False)
+            else:      # b^(n/2), n odd > 0: b^((n+1)/2) q
+                reps[pw] = sp.Mul(*([b] * int((x.p + 1) // 2) + [q[b]]), evaluate=False)
+        return e.xreplace(reps) if reps else e
+
+    out = []
+    for sym, ex in assign:
+        out.append((sym, rewrite(ex)))
+        if sym in q:
+            out.append((q[sym], sp.Pow(sp.sqrt(sym), -1, evaluate=False)))
+    return out, [rewrite(e) for e in extra]
+
+
 def numba_source(model: int, p, fold: bool = False) -> str:
     """A module with `field(p, y, dydt) -> status` and `rhs(model, t, y, p, dydt)` (the
     signature of fields.rhs) for the case's structure."""
@@ -288,12 +377,14 @@ def numba_source(model: int, p, fold: bool = False) -> str:
     if "edge" in checks:   # before anything divides by sin theta (support.py)
         lines.append(f"{ind}if abs(np.sqrt(y3 * y3 + y4 * y4).real) < {FLAT_DISK!r}:")
         lines.append(f"{ind}    return {L.SING_EDGE}")
-    for sym, ex in _live(prog, [*outs, *tests]):
+    body, shared = _share_roots(_live(prog, [*outs, *tests]), [*outs, *tests])
+    outs, tests = shared[:len(outs)], shared[len(outs):]
+    for sym, ex in body:
         lines.append(f"{ind}{sym.name} = {_code(ex)}")
     lines.append(f"{ind}if {_code(checks['iq'])} == 0:")
     lines.append(f"{ind}    return {L.SING_INERTIA}")
     if "fit" in checks:
-        lines.append(f"{ind}if not {_code(checks['fit'])}.real > 0.0:")
+        lines.append(f"{ind}if not {_code(tests[-1])}.real > 0.0:")
         lines.append(f"{ind}    return {L.SING_FIT}")
     for i, ex in enumerate(outs):
         lines.append(f"{ind}d{i} = {_code(ex)} + 0.0 * y0")
