@@ -150,6 +150,9 @@ def test_ball_needs_no_hessian_and_no_solve():
     sphere = src("sphere/chaplygin-ball")
     assert sphere.count("np.sqrt") == 1 and sphere.count("1.0/(") == 3
     assert src("plane/unbalanced-ball").count("np.sqrt") == 1
+    # the disk: the flat-disk check and gravity's d/s; none on the way to omega
+    disk = src("plane/round-disk")
+    assert disk.count("np.sqrt") == 2 and disk.count("1.0/(") == 2
 
 
 @pytest.mark.parametrize(("case", "params", "state"), [

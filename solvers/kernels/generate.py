@@ -24,6 +24,9 @@ What is derived here, not copied from fields.py:
             part lam gamma. A centred ball (a = 0) needs no square root on the way to
             omega: m (r^2 E - r r^T) = (m c^2 / |gamma|^2) (|gamma|^2 E - gamma gamma^T).
             All of it holds for any gamma (complex ones too): |gamma| = 1 is not assumed;
+  a disk    (h = d |(g1, g2)|, centred, on the plane): r = (d/s) rho, rho = (g1, g2, 0),
+            J = (d/s^3) t t^T with the edge's tangent t = (-g2, g1, 0); as for the ball,
+            omega needs no square root (only gravity's torque takes d/s);
   dU/dgamma = m g r + eps I gamma: the term m g J^T gamma of fields.py is dropped, since h
             is positively homogeneous of degree 1 and so Hess h . gamma = 0 identically
             (Euler), for any gamma, not only |gamma| = 1;
@@ -182,8 +185,16 @@ def equations(model: int, p, fold: bool = False):
             h += P[L.DISK_D] * checks["edge"]
         h += P[L.A1] * g[0] + P[L.A2] * g[1] + P[L.A3] * g[2]
         sphere = not ellipsoid and p[L.DISK_D] == 0.0
-        centred = sphere and not any(p[s] != 0.0 for s in (L.A1, L.A2, L.A3))
-        if sphere:     # h = c |gamma| + (a, gamma): J = lam (E - gamma gamma^T / |gamma|^2)
+        offset = any(p[s] != 0.0 for s in (L.A1, L.A2, L.A3))
+        centred = sphere and not offset
+        # a sharp-edged disk alone, centred, on the plane: h = d s, s = |(g1, g2)|
+        disk = (not ellipsoid and p[L.DISK_D] != 0.0 and p[L.BALL_C] == 0.0 and not offset
+                and k == 0)
+        if disk:
+            rho = [g[0], g[1], sp.Integer(0)]
+            is2 = prog.let(1 / prog.let(g[0] ** 2 + g[1] ** 2))
+            r = rho
+        elif sphere:     # h = c |gamma| + (a, gamma): J = lam (E - gamma gamma^T / |gamma|^2)
             ig = prog.let(1 / prog.let(g[0] ** 2 + g[1] ** 2 + g[2] ** 2))
             lam = prog.let(P[L.BALL_C] * sp.sqrt(ig))
             r = [prog.let(lam * g[i] + P[L.A1 + i]) for i in range(3)]    # r = grad h
@@ -196,7 +207,14 @@ def equations(model: int, p, fold: bool = False):
             J = [[Js[0], Js[1], Js[2]], [Js[1], Js[3], Js[4]], [Js[2], Js[4], Js[5]]]
     else:
         raise ValueError(f"no generated field for model {model}")
-    if model == L.MODEL_FULL and centred:
+    if model == L.MODEL_FULL and disk:
+        # r = (d/s) rho, rho = (g1, g2, 0): m (r^2 E - r r^T) = sg (s^2 E - rho rho^T),
+        # sg = m d^2 / s^2: no square root on the way to omega
+        sg = prog.let(m * P[L.DISK_D] ** 2 * is2)
+        mr = [prog.let(sg * g[0]), prog.let(sg * g[1]), sp.Integer(0)]
+        IQ = (Iv[0] + sg * g[1] ** 2, -mr[0] * g[1], 0, Iv[1] + sg * g[0] ** 2, 0,
+              Iv[2] + m * P[L.DISK_D] ** 2)
+    elif model == L.MODEL_FULL and centred:
         # r = lam gamma: m (r^2 E - r r^T) = s (|gamma|^2 E - gamma gamma^T), s = m lam^2 =
         # m c^2 / |gamma|^2, no square root on the way to omega; the diagonal as
         # s (g_j^2 + g_k^2), so gamma stays its null vector to round-off (a tiny I, a
@@ -237,19 +255,31 @@ def equations(model: int, p, fold: bool = False):
         rd = [prog.let(sg * gi) for gi in gd] if centred else [prog.let(lam * gi) for gi in gd]
     elif k == 0:
         gd = u                                                    # eq1.2
+        if disk:
+            # J = (d/s) (P - rho rho^T / s^2) = (d/s^3) t t^T, P = diag(1, 1, 0), t = (-g2,
+            # g1, 0) (the edge's tangent: no difference of near-equal vectors), so
+            # m dr x (omega x r) = sg (t (t, dgamma) / s^2) x (omega x rho)
+            tq = prog.let(sg * (rho[0] * gd[1] - rho[1] * gd[0]) * is2)
+            rd = [prog.let(-rho[1] * tq), prog.let(rho[0] * tq), sp.Integer(0)]
     else:
         EkJ = tuple(prog.let((1 if i in (0, 3, 5) else 0) - k * Js[i]) for i in range(6))
         checks["fit"], gd = _solve_sym(prog, EkJ, u, True)             # eq1.3
-    if not sphere:
+    if not sphere and not disk:
         rd = [prog.let(J[i][0] * gd[0] + J[i][1] * gd[1] + J[i][2] * gd[2])
               for i in range(3)]
     wr = [prog.let(e) for e in _cross(w, r)]
-    mrd = 1 if sphere and centred else m
+    mrd = 1 if (sphere and centred) or disk else m
     Md = [x + mrd * y for x, y in zip(_cross(a, w), _cross(rd, wr), strict=True)]
     mg, eps = m * P[L.GRAV], P[L.BRUN]
     # dU/dgamma = m g r + eps I gamma (Hess h . gamma = 0); only gamma x dU enters, and
     # for a sphere gamma x (lam gamma) = 0: r's part lam gamma is dropped, r -> a
-    rU = [P[L.A1 + i] for i in range(3)] if sphere else r
+    if sphere:
+        rU = [P[L.A1 + i] for i in range(3)]
+    elif disk:         # r = (d/s) rho: the one square root, off the way to omega
+        lam_d = prog.let(P[L.DISK_D] * sp.sqrt(is2))
+        rU = [lam_d * x for x in rho]
+    else:
+        rU = r
     if (mg != 0 and any(x != 0 for x in rU)) or eps != 0:
         dU = [prog.let(mg * rU[i] + eps * Iv[i] * g[i]) for i in range(3)]
         if k != 0 and sphere:   # gamma x (E - k J)^-1 dU = gamma x dU / (1 - k lam)
