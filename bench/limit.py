@@ -9,10 +9,13 @@ a matched final-state error interpolated (log-log) on that front:
   lean-dop853  the same hand-written DOP853 on the generated field of the case
                (solvers/kernels/generate.py): what the generated field alone buys;
   ours         the project's integrate(): general rk_integrate kernel, general field;
-  ours-generated  integrate(generated=True): rk.py's loop kernel compiled against the
-               case's generated field, inlined (through the Python entry);
-  gen-loops    the same compiled kernel called directly (packed arrays reused: no entry);
-  gen-unrolled the kernel with DOP853 unrolled (solvers/kernels/unroll.py), called directly;
+  ours-generated  integrate(generated=True), what integrate() and simulate() run by default
+               once the warm-up compiled the case: rk.py compiled against the case's
+               generated field, inlined, DOP853 unrolled (solvers/kernels/unroll.py;
+               integrator.GENERATED_UNROLLED), through the Python entry;
+  gen-loops    rk.py's loop kernel on the generated field (no tableau unrolled), called
+               directly (packed arrays reused: no entry);
+  gen-unrolled the default kernel (DOP853 unrolled) called directly;
   heyoka-lean  heyoka's Taylor integrator on the generated lean expressions;
   heyoka-gen   heyoka on the general expression system (solvers/integrate/taylor.py);
   scipy-scalar scipy DOP853 on the best plain-Python scalar field (math.sqrt, tuples);

@@ -33,6 +33,7 @@ import numpy as np
 
 from solvers.integrate import collocation, tableaux
 from solvers.integrate.integrator import (
+    GENERATED_UNROLLED,
     IntegrationResult,
     Section,
     StepControl,
@@ -83,7 +84,7 @@ def generated_ensemble(model: int, p):
     (generate.generated_integrator): solvers/kernels/ensemble.py written next to it in
     generate.cache_dir() with only its import line changed. Its name follows the
     integrator module's, which already hashes the structure and every kernel source."""
-    rk_mod = generate.generated_integrator(model, p)
+    rk_mod = generate.generated_integrator(model, p, unrolled=GENERATED_UNROLLED)
 
     def source():
         src = Path(kernels.__file__).read_text()

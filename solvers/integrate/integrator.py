@@ -188,6 +188,12 @@ def _option_arrays(iopt: tuple, fopt: tuple):
 
 # generated integrators: (model, p bytes) -> module, and whether a structure's compiled
 # code is ready (True), or not (the monotonic time until which that answer stands)
+# The tableaux the generated integrators run unrolled (solvers/kernels/unroll.py): the
+# default method's. It costs ~9 s more compile per case structure (27 s against 18 s,
+# one process, load 1) and gives ~1.1-1.2x less time per rhs call (bench/limit.py,
+# gen-unrolled vs gen-loops); every other tableau runs rk.py's loops in the same module,
+# and the unrolled stages equal the loops bit for bit (tests/test_unrolled.py).
+GENERATED_UNROLLED = ("dop853",)
 _GEN_MODULES: dict = {}
 _GEN_READY: dict = {}
 NOT_READY_RECHECK_S = 30.0
@@ -198,7 +204,8 @@ def _generated_module(model: int, p: np.ndarray, key):
     if mod is None:
         if len(_GEN_MODULES) > _CACHE_MAX:
             _GEN_MODULES.clear()
-        mod = _GEN_MODULES[key] = generate.generated_integrator(model, p)
+        mod = _GEN_MODULES[key] = generate.generated_integrator(
+            model, p, unrolled=GENERATED_UNROLLED)
     return mod
 
 

@@ -493,10 +493,11 @@ def generated_integrator(model: int, p, fold: bool = False, unrolled=()):
 
     unrolled: names of tableaux (those the integrate layer provides, unroll.set_provider)
     written out as straight-line code (solvers/kernels/unroll.py); `rk_integrate` then
-    runs them unrolled, and any other tableau with rk.py's loops. Not the default: on the
-    generated fields it takes ~1.1-1.2x less time per rhs call (bench/results/limit.txt,
-    gen-unrolled vs gen-loops) but compiles far longer (measured at load ~6 on 2 cores:
-    ~90 s with dop853 unrolled against ~19 s for the loop kernel).
+    runs them unrolled, and any other tableau with rk.py's loops. On the generated fields
+    it takes ~1.1-1.2x less time per rhs call (bench/results/limit.txt, gen-unrolled vs
+    gen-loops) and compiles longer (one process at load 1: 27 s with dop853 unrolled
+    against 18 s for the loop kernel); the integrate layer asks for the default method's
+    (integrator.GENERATED_UNROLLED).
     One numba compile per structure (and unrolled set), then numba's on-disk cache."""
     from solvers.kernels import unroll
 

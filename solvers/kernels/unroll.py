@@ -22,9 +22,10 @@ rk.py's loops, for any other tableau. The copy keeps the loop kernel as
 `rk_integrate_generic` (the tests' reference; compiled only if called).
 
 What it buys (bench/limit.py, "gen-unrolled" against "gen-loops"): with the generated
-field inlined into the stages, ~1.1x per step on the Chaplygin ball; with the field
-called, nothing. It costs compile time (~80 s more per case and tableau than the loop
-kernel's ~18 s), so solvers/kernels/generate.py uses it only when asked (unrolled=...).
+field inlined into the stages, ~1.1-1.2x per rhs call on the Chaplygin ball and the disk;
+with the field called, nothing. It costs compile time (27 s against the loop kernel's 18 s
+for one case with dop853 unrolled, one process at load 1), so the generated integrators
+unroll only the default method's tableau (solvers/integrate/integrator.GENERATED_UNROLLED).
 
 The tableaux are data of solvers/integrate (a layer above this one): that layer hands them
 in with `set_provider(fn)`, fn() -> {name: (A, c, b, E, P, meth)} (integrator.method_arrays).
