@@ -11,11 +11,11 @@ a matched final-state error interpolated (log-log) on that front:
   ours         the project's integrate(): general rk_integrate kernel, general field;
   ours-generated  integrate(generated=True), what integrate() and simulate() run by default
                once the warm-up compiled the case: rk.py compiled against the case's
-               generated field, inlined, DOP853 unrolled (solvers/kernels/unroll.py;
+               generated field, inlined, DOP853 (and Vern9) unrolled (unroll.py;
                integrator.GENERATED_UNROLLED), through the Python entry;
   gen-loops    rk.py's loop kernel on the generated field (no tableau unrolled), called
                directly (packed arrays reused: no entry);
-  gen-unrolled the default kernel (DOP853 unrolled) called directly;
+  gen-unrolled the default kernel (DOP853 and Vern9 unrolled) called directly;
   heyoka-lean  heyoka's Taylor integrator on the generated lean expressions;
   heyoka-gen   heyoka on the general expression system (solvers/integrate/taylor.py);
   scipy-scalar scipy DOP853 on the best plain-Python scalar field (math.sqrt, tuples);
@@ -46,7 +46,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.integrate._ivp import dop853_coefficients as DC
 
-from solvers.integrate.integrator import integrate, method_arrays
+from solvers.integrate.integrator import GENERATED_UNROLLED, integrate, method_arrays
 from solvers.integrate.taylor import Taylor
 from solvers.kernels.generate import generated, generated_integrator, heyoka_system
 from solvers.models.cases import build, registry
@@ -362,7 +362,7 @@ def front(case, params, y0, T, targets, limit_field, quick=False):
     runners["ours"] = ours(False)
     runners["ours-generated"] = ours(True)
     loops = generated_integrator(model.model, p)
-    unrolled = generated_integrator(model.model, p, unrolled="dop853")
+    unrolled = generated_integrator(model.model, p, unrolled=GENERATED_UNROLLED)
     runners["gen-loops"] = kernel_runner(loops.rk_integrate, model.model, p, y0, T)
     runners["gen-unrolled"] = kernel_runner(unrolled.rk_integrate, model.model, p, y0, T)
     compile_s = {}

@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 from solvers.integrate import integrator
-from solvers.integrate.integrator import Section, integrate, method_arrays
+from solvers.integrate.integrator import GENERATED_UNROLLED, Section, integrate, method_arrays
 from solvers.integrate.tableaux import METHODS
 from solvers.kernels import generate, rk
 from solvers.kernels import layout as L
@@ -177,7 +177,7 @@ def test_generated_case_module_unrolled(monkeypatch):
     case = "plane/chaplygin-ball"
     c = registry()[case]
     m = build(case, c.example)
-    mod = generate.generated_integrator(m.model, m.p, unrolled="dop853")
+    mod = generate.generated_integrator(m.model, m.p, unrolled=GENERATED_UNROLLED)
     t = np.linspace(0.0, 50.0, 101)
     for kw in ({}, dict(section=Section(coef=(0, 0, 0, 1.0, 0, 0)), max_crossings=3),
                dict(project_codes=(ENERGY,))):

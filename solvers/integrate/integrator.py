@@ -189,11 +189,14 @@ def _option_arrays(iopt: tuple, fopt: tuple):
 # generated integrators: (model, p bytes) -> module, and whether a structure's compiled
 # code is ready (True), or not (the monotonic time until which that answer stands)
 # The tableaux the generated integrators run unrolled (solvers/kernels/unroll.py): the
-# default method's. It costs ~9 s more compile per case structure (27 s against 18 s,
-# one process, load 1) and gives ~1.1-1.2x less time per rhs call (bench/limit.py,
-# gen-unrolled vs gen-loops); every other tableau runs rk.py's loops in the same module,
-# and the unrolled stages equal the loops bit for bit (tests/test_unrolled.py).
-GENERATED_UNROLLED = ("dop853",)
+# default method's and vern9, auto's other Runge-Kutta candidate. ~1.1-1.2x less time per
+# rhs call (bench/limit.py, gen-unrolled vs gen-loops). A tableau left to rk.py's loops in
+# an unrolled module runs ~10% slower than in the loop kernel (vern9 with only dop853
+# unrolled, measured), so both are unrolled: one case structure compiles in 37 s against
+# 18 s for the loop kernel (27 s with dop853 alone; one process, load 1). rk45 and any
+# other tableau run the loops. The unrolled stages equal the loops bit for bit
+# (tests/test_unrolled.py).
+GENERATED_UNROLLED = ("dop853", "vern9")
 _GEN_MODULES: dict = {}
 _GEN_READY: dict = {}
 NOT_READY_RECHECK_S = 30.0

@@ -495,9 +495,9 @@ def generated_integrator(model: int, p, fold: bool = False, unrolled=()):
     written out as straight-line code (solvers/kernels/unroll.py); `rk_integrate` then
     runs them unrolled, and any other tableau with rk.py's loops. On the generated fields
     it takes ~1.1-1.2x less time per rhs call (bench/results/limit.txt, gen-unrolled vs
-    gen-loops) and compiles longer (one process at load 1: 27 s with dop853 unrolled
-    against 18 s for the loop kernel); the integrate layer asks for the default method's
-    (integrator.GENERATED_UNROLLED).
+    gen-loops) and compiles longer (one process at load 1: 27 s with dop853 unrolled,
+    37 s with dop853 and vern9, against 18 s for the loop kernel); the integrate layer
+    names the tableaux (integrator.GENERATED_UNROLLED).
     One numba compile per structure (and unrolled set), then numba's on-disk cache."""
     from solvers.kernels import unroll
 
