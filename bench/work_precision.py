@@ -185,7 +185,7 @@ def run_auto_candidates(case, model, y0, t, Yref, tols) -> list[dict]:
         for key, r in best.items():
             if key in wp.PLAIN:
                 runs.append(_record(case, key, tol, r.y, Yref, r.wall_s, r.rhs_calls,
-                                    r.steps, r.success, r.message))
+                                    r.steps, r.success, r.message, field=r.vector_field))
             else:
                 runs.append(_taylor_record(case, tol, key, r, firsts[(tol, key)], Yref))
     return runs
@@ -229,7 +229,7 @@ def run_case(case: WPCase, tols, quick: bool, say, only_taylor=False) -> list[di
             for tol in tols:
                 r = run_ours(model, y0, t, method, tol, project)
                 runs.append(_record(case, name, tol, r.y, Yref, r.wall_s, r.rhs_calls, r.steps,
-                                    r.success, r.message))
+                                    r.success, r.message, field=r.vector_field))
     # the symmetric method, constant steps
     integrate(model.model, model.p, y0, t[:3], method="gauss8", h_fixed=0.01)
     for h in (STEPS[:3] if quick else STEPS):
@@ -383,7 +383,8 @@ def merge_taylor(args) -> int:
             what = (f"taylor {r['precision']:11s}" if r["method"] == wp.TAYLOR
                     else f"{r['method']:18s}")
             extra = (f" order {r['order']:2d} compile {r['compile_s']:.1f} s"
-                     if r["method"] == wp.TAYLOR else f" rhs {r['rhs_calls']}")
+                     if r["method"] == wp.TAYLOR
+                     else f" rhs {r['rhs_calls']} {r.get('field', '')} field")
             lines.append(f"{c['id']:24s} {what} tol {r['tol']:.1e} error {e:>8s}"
                          f" wall {r['wall_s'] * 1e3:8.2f} ms" + extra
                          + (f" [{r['load']}]" if "load" in r else ""))

@@ -43,41 +43,56 @@ def _general() -> None:
         integral_gradient(ENERGY, m.model, m.p, y)
 
 
-def pending() -> dict[tuple, list[str]]:
-    """structure -> the cases (with their example parameters) whose generated integrator
-    is not compiled yet for some compiled method."""
+# Structures compiled besides the cases' examples: the work-precision benchmark's
+# unbalanced ball runs with gravity (bench/work_precision.py), and method "auto" reads its
+# front there (solvers/integrate/auto.py), so it is measured and run on the same field.
+EXTRA = (("plane/unbalanced-ball", {"g": 1.0}),)
+
+
+def _targets() -> list[tuple[str, dict]]:
+    from solvers.models.cases import registry
+
+    return [(cid, dict(case.example)) for cid, case in registry().items()] + \
+        [(cid, {**registry()[cid].example, **over}) for cid, over in EXTRA]
+
+
+def pending() -> dict[tuple, list[tuple[str, dict]]]:
+    """structure -> the (case, parameters) whose generated integrator is not compiled yet
+    for some compiled method: every case's example parameters and EXTRA."""
     from solvers.integrate.integrator import generated_ready
     from solvers.kernels import generate
-    from solvers.models.cases import build, registry
+    from solvers.models.cases import build
     from solvers.simulate import compiled_methods
 
-    out: dict[tuple, list[str]] = {}
-    for cid, case in registry().items():
-        m = build(cid, case.example)
+    out: dict[tuple, list] = {}
+    for cid, params in _targets():
+        m = build(cid, params)
         if m.model not in generate.GENERATED_MODELS:
             continue
         if not all(generated_ready(m.model, m.p, meth) for meth in compiled_methods()):
-            out.setdefault(generate.structure(m.model, m.p), []).append(cid)
+            out.setdefault(generate.structure(m.model, m.p), []).append((cid, params))
     return out
 
 
-def compile_generated(case_id: str) -> str:
-    """Run the case's generated integrator once per compiled method (compiling it into
-    the on-disk cache) and check it against the general field."""
+def compile_generated(target) -> str:
+    """Run the generated integrator of a case (an id, with its example parameters, or
+    (id, parameters)) once per compiled method, compiling it into the on-disk cache."""
     from solvers.models.cases import registry
     from solvers.simulate import compiled_methods, simulate
 
+    case_id, params = (target, None) if isinstance(target, str) else target
     case = registry()[case_id]
+    params = case.example if params is None else params
     for method in compiled_methods():
-        r = simulate(case_id, case.example, case.state, 0.01, method=method, samples=3,
+        r = simulate(case_id, params, case.state, 0.01, method=method, samples=3,
                      field="generated")
-        simulate(case_id, case.example, case.state, 0.01, method=method, samples=3,
+        simulate(case_id, params, case.state, 0.01, method=method, samples=3,
                  project=True, field="generated")
         assert r.stats["field"] == "generated", r.stats
     from solvers.integrate.ensemble import integrate_ensemble  # and its ensemble twin
     from solvers.models.cases import build
 
-    m = build(case_id, case.example)
+    m = build(case_id, params)
     integrate_ensemble(m.model, m.p, [case.state], [0.0, 0.01], generated=True)
     return case_id
 
@@ -127,8 +142,9 @@ def warm_ensembles() -> None:
     from solvers.models.cases import build, registry
 
     seen = set()
-    for cid, case in registry().items():
-        m = build(cid, case.example)
+    for cid, params in _targets():
+        case = registry()[cid]
+        m = build(cid, params)
         if (m.model,) not in seen:     # the general field: one specialization per model
             seen.add((m.model,))
             integrate_ensemble(m.model, m.p, [case.state], [0.0, 0.01], generated=False)
