@@ -186,3 +186,22 @@ def test_generated_case_module_unrolled(monkeypatch):
         assert_same(a, b)
     src = open(mod.__file__).read()
     assert "A[i, j]" in src and "0.05260015195876773 * K[0, m]" in src
+
+
+def test_default_generated_integrator_unrolls_dop853_and_vern9():
+    """What integrate() runs by default on a compiled case: the generated module with the
+    tableaux of GENERATED_UNROLLED written out (their first coefficients as literals), the
+    same module the ensemble twin imports."""
+    from solvers.integrate import ensemble
+
+    c = registry()["plane/chaplygin-ball"]
+    m = build(c.id, c.example)
+    p = np.asarray(m.p, dtype=np.float64)
+    mod = integrator._generated_module(m.model, p, (m.model, p.tobytes()))
+    assert mod is generate.generated_integrator(m.model, p, unrolled=GENERATED_UNROLLED)
+    src = open(mod.__file__).read()
+    for name in GENERATED_UNROLLED:
+        a21 = method_arrays(name)[0][1, 0]
+        assert f"{float(a21)!r} * K[0, m]" in src, name
+    twin = open(ensemble.generated_ensemble(m.model, p).__file__).read()
+    assert f"from {mod.__name__} import rk_integrate" in twin
