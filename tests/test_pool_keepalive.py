@@ -4,6 +4,7 @@ pool keeps its workers: after a long idle time the same processes answer."""
 
 import os
 import time
+from concurrent.futures import ThreadPoolExecutor
 
 import anyio
 import anyio.to_process
@@ -39,7 +40,10 @@ def test_idle_workers_are_kept(monkeypatch):
             tg.start_soon(one, later)
         assert later == first, "a worker was pruned and replaced by a cold one"
 
-    anyio.run(main)
+    # in a thread of its own: in one process with the browser tests, Playwright's sync API
+    # leaves an asyncio loop running in the main thread, and anyio.run refuses to nest
+    with ThreadPoolExecutor(1) as ex:
+        ex.submit(anyio.run, main).result()
 
 
 @pytest.fixture(autouse=True)
