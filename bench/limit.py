@@ -62,6 +62,22 @@ E5 = np.ascontiguousarray(DC.E5)
 
 # --- the hand-written fields --------------------------------------------------------------
 @numba.njit(inline="always")
+def solve_sym3(a00, a01, a02, a11, a12, a22, M0, M1, M2):
+    """omega = I_Q^-1 M for the symmetric I_Q by Cramer's rule (one division)."""
+    c00 = a11 * a22 - a12 * a12
+    c01 = a12 * a02 - a01 * a22
+    c02 = a01 * a12 - a11 * a02
+    inv = 1.0 / (a00 * c00 + a01 * c01 + a02 * c02)
+    c11 = a00 * a22 - a02 * a02
+    c12 = a01 * a02 - a00 * a12
+    c22 = a00 * a11 - a01 * a01
+    w0 = (c00 * M0 + c01 * M1 + c02 * M2) * inv
+    w1 = (c01 * M0 + c11 * M1 + c12 * M2) * inv
+    w2 = (c02 * M0 + c12 * M1 + c22 * M2) * inv
+    return w0, w1, w2
+
+
+@numba.njit(inline="always")
 def ball_field(y, p, f):
     """Chaplygin ball on the plane as a user writes it for |gamma| = 1: r = R gamma,
     I_Q = I + m R^2 (E - gamma gamma^T), omega = I_Q^-1 M (Cramer), dgamma = gamma x omega,
@@ -75,16 +91,7 @@ def ball_field(y, p, f):
     a01 = -mR2 * g0 * g1
     a02 = -mR2 * g0 * g2
     a12 = -mR2 * g1 * g2
-    c00 = a11 * a22 - a12 * a12
-    c01 = a12 * a02 - a01 * a22
-    c02 = a01 * a12 - a11 * a02
-    inv = 1.0 / (a00 * c00 + a01 * c01 + a02 * c02)
-    c11 = a00 * a22 - a02 * a02
-    c12 = a01 * a02 - a00 * a12
-    c22 = a00 * a11 - a01 * a01
-    w0 = (c00 * M0 + c01 * M1 + c02 * M2) * inv
-    w1 = (c01 * M0 + c11 * M1 + c12 * M2) * inv
-    w2 = (c02 * M0 + c12 * M1 + c22 * M2) * inv
+    w0, w1, w2 = solve_sym3(a00, a01, a02, a11, a12, a22, M0, M1, M2)
     d0 = g1 * w2 - g2 * w1
     d1 = g2 * w0 - g0 * w2
     d2 = g0 * w1 - g1 * w0
@@ -157,16 +164,7 @@ def flat_field(y, p, f):
     a01 = -m * r0 * r1
     a02 = -m * r0 * z
     a12 = -m * r1 * z
-    c00 = a11 * a22 - a12 * a12
-    c01 = a12 * a02 - a01 * a22
-    c02 = a01 * a12 - a11 * a02
-    inv = 1.0 / (a00 * c00 + a01 * c01 + a02 * c02)
-    c11 = a00 * a22 - a02 * a02
-    c12 = a01 * a02 - a00 * a12
-    c22 = a00 * a11 - a01 * a01
-    w0 = (c00 * M0 + c01 * M1 + c02 * M2) * inv
-    w1 = (c01 * M0 + c11 * M1 + c12 * M2) * inv
-    w2 = (c02 * M0 + c12 * M1 + c22 * M2) * inv
+    w0, w1, w2 = solve_sym3(a00, a01, a02, a11, a12, a22, M0, M1, M2)
     ik = 1.0 / k
     v0 = w1 * ik
     v1 = -w0 * ik
