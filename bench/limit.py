@@ -48,6 +48,7 @@ from scipy.integrate._ivp import dop853_coefficients as DC
 
 from solvers.integrate.integrator import GENERATED_UNROLLED, integrate, method_arrays
 from solvers.integrate.taylor import Taylor
+from solvers.kernels import layout as L
 from solvers.kernels.generate import generated, generated_integrator, heyoka_system
 from solvers.models.cases import build, registry
 from solvers.models.reference import field as ref_field
@@ -78,12 +79,11 @@ def solve_sym3(a00, a01, a02, a11, a12, a22, M0, M1, M2):
 
 
 @numba.njit(inline="always")
-def ball_field(y, p, f):
+def ball_s(p, M0, M1, M2, g0, g1, g2):
     """Chaplygin ball on the plane as a user writes it for |gamma| = 1: r = R gamma,
     I_Q = I + m R^2 (E - gamma gamma^T), omega = I_Q^-1 M (Cramer), dgamma = gamma x omega,
     dr = R dgamma, dM = M x omega + m dr x (omega x r)."""
     I1, I2, I3, m, R = p[0], p[1], p[2], p[3], p[16]
-    M0, M1, M2, g0, g1, g2 = y[0], y[1], y[2], y[3], y[4], y[5]
     mR2 = m * R * R
     a00 = I1 + mR2 * (1.0 - g0 * g0)
     a11 = I2 + mR2 * (1.0 - g1 * g1)
@@ -100,22 +100,23 @@ def ball_field(y, p, f):
     x1 = w2 * r0 - w0 * r2
     x2 = w0 * r1 - w1 * r0
     mR = m * R
-    f[0] = M1 * w2 - M2 * w1 + mR * (d1 * x2 - d2 * x1)
-    f[1] = M2 * w0 - M0 * w2 + mR * (d2 * x0 - d0 * x2)
-    f[2] = M0 * w1 - M1 * w0 + mR * (d0 * x1 - d1 * x0)
-    f[3] = d0
-    f[4] = d1
-    f[5] = d2
+    return (M1 * w2 - M2 * w1 + mR * (d1 * x2 - d2 * x1),
+            M2 * w0 - M0 * w2 + mR * (d2 * x0 - d0 * x2),
+            M0 * w1 - M1 * w0 + mR * (d0 * x1 - d1 * x0), d0, d1, d2)
+
+
+@numba.njit(inline="always")
+def ball_field(y, p, f):
+    f[0], f[1], f[2], f[3], f[4], f[5] = ball_s(p, y[0], y[1], y[2], y[3], y[4], y[5])
     return 0
 
 
 @numba.njit(inline="always")
-def disk_field(y, p, f):
+def disk_s(p, M0, M1, M2, g0, g1, g2):
     """Round disk (radius R, centre of mass at the centre) on the plane with gravity:
     r = R (g1, g2, 0)/s, s = sqrt(g1^2 + g2^2), J = R/s^3 [[g2^2, -g1 g2, 0], [-g1 g2,
     g1^2, 0], [0, 0, 0]], dM = M x omega + m dr x (omega x r) + m g gamma x r."""
     I1, I2, I3, m, grav, R = p[0], p[1], p[2], p[3], p[8], p[17]
-    M0, M1, M2, g0, g1, g2 = y[0], y[1], y[2], y[3], y[4], y[5]
     s2 = g0 * g0 + g1 * g1
     s = math.sqrt(s2)
     Rs = R / s
@@ -140,23 +141,25 @@ def disk_field(y, p, f):
     x1 = w2 * r0
     x2 = w0 * r1 - w1 * r0
     mg = m * grav
-    f[0] = M1 * w2 - M2 * w1 + m * (rd1 * x2) + mg * (-g2 * r1)
-    f[1] = M2 * w0 - M0 * w2 + m * (-rd0 * x2) + mg * (g2 * r0)
-    f[2] = M0 * w1 - M1 * w0 + m * (rd0 * x1 - rd1 * x0) + mg * (g0 * r1 - g1 * r0)
-    f[3] = d0
-    f[4] = d1
-    f[5] = d2
+    return (M1 * w2 - M2 * w1 + m * (rd1 * x2) + mg * (-g2 * r1),
+            M2 * w0 - M0 * w2 + m * (-rd0 * x2) + mg * (g2 * r0),
+            M0 * w1 - M1 * w0 + m * (rd0 * x1 - rd1 * x0) + mg * (g0 * r1 - g1 * r0),
+            d0, d1, d2)
+
+
+@numba.njit(inline="always")
+def disk_field(y, p, f):
+    f[0], f[1], f[2], f[3], f[4], f[5] = disk_s(p, y[0], y[1], y[2], y[3], y[4], y[5])
     return 0
 
 
 @numba.njit(inline="always")
-def flat_field(y, p, f):
+def flat_s(p, M0, M1, M2, r0, r1):
     """Body with a flat base on a sphere of curvature k (eq3.14-3.15) as a user writes it:
     state (M, r1, r2), r = (r1, r2, z) from the point of contact to the centre of mass,
     I_Q = I + m (r^2 E - r r^T), omega = I_Q^-1 M (Cramer), dr/dt = (omega2, -omega1, 0)/k,
     dM = M x omega + m dr x (omega x r)."""
     I1, I2, I3, m, k, z = p[0], p[1], p[2], p[3], p[4], p[21]
-    M0, M1, M2, r0, r1 = y[0], y[1], y[2], y[3], y[4]
     rr = r0 * r0 + r1 * r1 + z * z
     a00 = I1 + m * (rr - r0 * r0)
     a11 = I2 + m * (rr - r1 * r1)
@@ -171,11 +174,13 @@ def flat_field(y, p, f):
     x0 = w1 * z - w2 * r1
     x1 = w2 * r0 - w0 * z
     x2 = w0 * r1 - w1 * r0
-    f[0] = M1 * w2 - M2 * w1 + m * (v1 * x2)
-    f[1] = M2 * w0 - M0 * w2 - m * (v0 * x2)
-    f[2] = M0 * w1 - M1 * w0 + m * (v0 * x1 - v1 * x0)
-    f[3] = v0
-    f[4] = v1
+    return (M1 * w2 - M2 * w1 + m * (v1 * x2), M2 * w0 - M0 * w2 - m * (v0 * x2),
+            M0 * w1 - M1 * w0 + m * (v0 * x1 - v1 * x0), v0, v1)
+
+
+@numba.njit(inline="always")
+def flat_field(y, p, f):
+    f[0], f[1], f[2], f[3], f[4] = flat_s(p, y[0], y[1], y[2], y[3], y[4])
     return 0
 
 
@@ -476,8 +481,277 @@ def field_cost(case, params, y0, limit_field):
     return out
 
 
+# --- the limit: a scalar DOP853, its field inlined ----------------------------------------
+def make_scalar_dop853(field, n, params=None):
+    """The limit (issue 19): DOP853 written for one state dimension n with the state, the
+    stages and the error terms in scalar locals, the field a numba function of scalars
+    returning the derivative as a tuple, inlined by LLVM. Written here, independently of
+    the project's generators: scipy's coefficients (DC), Hairer's error norm, the plain
+    controller (safety 0.9, factors in [0.2, 10], err^(-1/8)), Hairer's starting step, no
+    dense output, no statuses (the final state at T only). params: for a field with the
+    project's signature fs(slots..., y...) -> (status, dy...), the parameter slots it takes
+    (read from p once)."""
+    R = range(n)
+    ys = [f"y{m}" for m in R]
+
+    def lit(x):
+        return repr(float(x))
+
+    def comb(coef, names):
+        t = [f"{lit(a)} * {nm}" for a, nm in zip(coef, names, strict=False) if a != 0.0]
+        return " + ".join(t) if t else "0.0"
+
+    if params is None:
+        head = "    pv = p\n"
+        call = "F(pv, {})"
+    else:
+        head = "".join(f"    q{i} = p[{s}]\n" for i, s in enumerate(params))
+        call = "F(" + "".join(f"q{i}, " for i in range(len(params))) + "{})[1:]"
+    src = ["def run(Y0, p, T, rtol, atol):", head.rstrip("\n")]
+    src += [f"    y{m} = Y0[{m}]" for m in R]
+    src.append(f"    {', '.join(f'k0_{m}' for m in R)} = " + call.format(", ".join(ys)))
+    # Hairer's starting step (Solving ODEs I, II.4)
+    src += ["    d0 = 0.0", "    d1 = 0.0"]
+    for m in R:
+        src += [f"    sc = atol + rtol * abs(y{m})", f"    d0 += (y{m} / sc) ** 2",
+                f"    d1 += (k0_{m} / sc) ** 2"]
+    src += [f"    d0 = math.sqrt(d0 / {n})", f"    d1 = math.sqrt(d1 / {n})",
+            "    h0 = 1e-6 if (d0 < 1e-5 or d1 < 1e-5) else 0.01 * d0 / d1"]
+    src += [f"    z{m} = y{m} + h0 * k0_{m}" for m in R]
+    src.append(f"    {', '.join(f'f{m}' for m in R)} = "
+               + call.format(", ".join(f"z{m}" for m in R)))
+    src.append("    d2 = 0.0")
+    for m in R:
+        src += [f"    sc = atol + rtol * abs(y{m})", f"    d2 += ((f{m} - k0_{m}) / sc) ** 2"]
+    src += [f"    d2 = math.sqrt(d2 / {n}) / h0",
+            "    h1 = max(1e-6, h0 * 1e-3) if max(d1, d2) <= 1e-15 else "
+            "(0.01 / max(d1, d2)) ** 0.125",
+            "    h = min(100.0 * h0, h1, T)", "    t = 0.0", "    nfev = 2", "    steps = 0",
+            "    while t < T:", "        if t + h > T:", "            h = T - t"]
+    for i in range(1, 12):
+        for m in R:
+            ks = [f"k{j}_{m}" for j in range(i)]
+            src.append(f"        z{m} = y{m} + h * ({comb(A[i, :i], ks)})")
+        src.append(f"        {', '.join(f'k{i}_{m}' for m in R)} = "
+                   + call.format(", ".join(f"z{m}" for m in R)))
+    for m in R:
+        src.append(f"        yn{m} = y{m} + h * ({comb(B, [f'k{j}_{m}' for j in range(12)])})")
+    src.append(f"        {', '.join(f'k12_{m}' for m in R)} = "
+               + call.format(", ".join(f"yn{m}" for m in R)))
+    src += ["        nfev += 12", "        e5 = 0.0", "        e3 = 0.0"]
+    for m in R:
+        names = [f"k{j}_{m}" for j in range(13)]
+        src += [f"        sc = atol + rtol * max(abs(y{m}), abs(yn{m}))",
+                f"        a5 = {comb(E5, names)}", f"        a3 = {comb(E3, names)}",
+                "        e5 += (a5 / sc) ** 2", "        e3 += (a3 / sc) ** 2"]
+    src += ["        den = e5 + 0.01 * e3",
+            f"        err = 0.0 if den == 0.0 else abs(h) * e5 / math.sqrt(den * {n})",
+            "        if err <= 1.0:", "            t += h", "            steps += 1"]
+    for m in R:
+        src += [f"            y{m} = yn{m}", f"            k0_{m} = k12_{m}"]
+    src += ["            fac = 10.0 if err == 0.0 else min(10.0, 0.9 * err ** -0.125)",
+            "        else:", "            fac = max(0.2, 0.9 * err ** -0.125)",
+            "        h *= fac",
+            f"    return np.array([{', '.join(ys)}]), steps, nfev"]
+    ns = {"F": field, "np": np, "math": math}
+    exec("\n".join(src), ns)
+    return numba.njit(nogil=True)(ns["run"])
+
+
+def generated_scalar_field(model, p):
+    """The project's generated field on scalars (small.py's `fs`, forceinline), for the
+    cases without a hand-written field, and the parameter slots it takes."""
+    from solvers.integrate.integrator import small_module
+    from solvers.kernels.generate import SLOT_NAMES, field_body
+
+    params = [SLOT_NAMES.index(x.name) for x in field_body(model, p)[0]]
+    return small_module(model, p, "dop853").fs, params
+
+
+# --- many starts ------------------------------------------------------------------------------
+HAND = {"plane/chaplygin-ball": (ball_s, 6), "plane/round-disk": (disk_s, 6),
+        "sphere/flat-base": (flat_s, 5)}
+
+
+def random_starts(case_id, params, k, rng):
+    """k starts of the case: M in a uniformly random direction with |M| spread
+    log-uniformly over two decades around the example's |M| (x 0.1 ... x 10); gamma a
+    uniformly random unit vector (the disk: its edge at least 0.3 from flat; gamma's
+    component along the axis kept for the others); the flat base: (r1, r2) the example's
+    times uniform factors in [-1.5, 1.5]."""
+    from solvers.models.cases import initial_state
+
+    c = registry()[case_id]
+    model = build(case_id, params)
+    y_ex = np.asarray(initial_state(model, c.state), dtype=float)
+    m_ex = float(np.linalg.norm(y_ex[:3])) or 1.0
+    out = []
+    while len(out) < k:
+        d = rng.normal(size=3)
+        M = d / np.linalg.norm(d) * m_ex * 10.0 ** rng.uniform(-1.0, 1.0)
+        if model.model == 3:   # flat base: state (M, r1, r2)
+            r = y_ex[3:] * rng.uniform(-1.5, 1.5, size=2)
+            out.append(np.concatenate([M, r]))
+            continue
+        g = rng.normal(size=3)
+        g /= np.linalg.norm(g)
+        if case_id.endswith("round-disk") and math.hypot(g[0], g[1]) < 0.3:
+            continue
+        out.append(np.concatenate([M, g]))
+    return out
+
+
+def matched(front_pts, target):
+    """(time at the target error, log-log interpolated on the front), None outside."""
+    return at_error(front_pts, target)
+
+
+def many_starts(quick=False, only=None):
+    """For each of the six work-precision cases, random starts (20; --quick 5 over at most
+    T = 200): the time at matched final-state errors 1e-6 and 1e-10 of ours (integrate(),
+    the default route: the small kernel), the limit (the scalar DOP853 above) and heyoka on
+    the lean equations; median and worst ratio over the starts. The table is written after
+    every case (a partial run keeps what it measured). only: case ids to run."""
+    sys.path.insert(0, str(Path(__file__).parent))
+    from work_precision import CASES
+
+    n_starts = 5 if quick else 20
+    targets = (1e-6, 1e-10)
+    rtols = [10.0 ** (-k / 2) for k in range(8, 29)]      # 1e-4 ... 1e-14, half decades
+    htols = [10.0 ** -k for k in range(4, 16)]
+    repeats = 3
+    rng = np.random.default_rng(19)
+    import heyoka as hy
+
+    load0 = os.getloadavg()
+    lines = [f"bench/limit.py{' --quick' if quick else ''}: many starts. Per case {n_starts} "
+             "random starts, |M| log-uniform over two decades (0.1x ... 10x the example's), "
+             "gamma uniform on the sphere; final-state error (max-norm / max(1, |y|)) at T "
+             "against heyoka long double tol 1e-18; time at matched error 1e-6 and 1e-10 "
+             "interpolated log-log on each front (rtol = atol 1e-4 ... 1e-14 every half "
+             "decade; heyoka tol 1e-4 ... 1e-15), best of 3 interleaved.",
+             "  ours  = integrate() by default (dop853, the small kernel of the structure)",
+             "  limit = a scalar DOP853 written in bench/limit.py (state and stages in "
+             "locals), its field inlined: written by hand for the ball, the disk and the "
+             "flat base, the project's generated scalar field for the others",
+             "  heyoka = heyoka's Taylor integrator on the lean generated equations",
+             f"load average at the start: {load0[0]:.2f} {load0[1]:.2f} {load0[2]:.2f} "
+             f"({os.cpu_count()} cores)"]
+    out = {"quick": quick, "starts": n_starts, "load_start": load0, "cases": {}}
+    summary = []
+    for wp in CASES:
+        if only and wp.id not in only:
+            continue
+        c = registry()[wp.id]
+        prm = {**c.example, **wp.overrides}
+        model = build(wp.id, prm)
+        p = np.asarray(model.p, dtype=float)
+        T = min(wp.t_end, 200.0) if quick else wp.t_end
+        if wp.id in HAND:
+            fld, _ = HAND[wp.id]
+            limit = make_scalar_dop853(fld, L.STATE_DIM[model.model])
+            limit_kind = "hand"
+        else:
+            fs, slots = generated_scalar_field(model.model, p)
+            limit = make_scalar_dop853(fs, L.STATE_DIM[model.model], slots)
+            limit_kind = "generated"
+        v, f, _ = heyoka_system(model.model, p, fold=True)
+        sys_h = list(zip(v, f, strict=True))
+        # one compiled Taylor integrator per tolerance, reused for every start
+        y_any = random_starts(wp.id, prm, 1, np.random.default_rng(0))[0]
+        tas = {tol: hy.taylor_adaptive(sys_h, y_any, tol=tol) for tol in htols}
+        rows = []
+        for y0 in random_starts(wp.id, prm, n_starts, rng):
+            ref = Taylor(model.model, p, y0, tol=1e-18, fp="longdouble").run(y0, [0.0, T])[1][-1]
+            ref = np.asarray(ref, dtype=float)
+
+            def err(y, ref=ref):
+                return float(np.max(np.abs(np.asarray(y, dtype=float) - ref))
+                             / max(1.0, float(np.max(np.abs(ref)))))
+
+            def ours(rt, y0=y0, model=model, p=p, T=T):
+                r = integrate(model.model, p, y0, [0.0, T], rtol=rt, atol=rt)
+                return r.y[-1], r.success
+
+            def lim(rt, y0=y0, limit=limit, p=p, T=T):
+                y, _, _ = limit(y0, p, T, rt, rt)
+                return y, True
+
+            def hey(tol, y0=y0, tas=tas, T=T):
+                ta = tas[tol]
+                ta.time = 0.0
+                ta.state[:] = y0
+                o = ta.propagate_until(T)
+                return ta.state.copy(), str(o[0]).endswith("time_limit")
+
+            comp = {"ours": (ours, rtols), "limit": (lim, rtols), "heyoka": (hey, htols)}
+            for fn, grid in comp.values():     # compile / warm
+                fn(grid[0])
+            best = {k: [math.inf] * len(g) for k, (_, g) in comp.items()}
+            errs = {k: [None] * len(g) for k, (_, g) in comp.items()}
+            for _ in range(repeats):
+                for i in range(max(len(g) for _, g in comp.values())):
+                    for k, (fn, grid) in comp.items():    # interleaved
+                        if i >= len(grid):
+                            continue
+                        t0 = time.perf_counter()
+                        y, ok = fn(grid[i])
+                        w = time.perf_counter() - t0
+                        best[k][i] = min(best[k][i], w)
+                        errs[k][i] = err(y) if ok else math.nan
+            row = {"y0": [float(x) for x in y0], "M": float(np.linalg.norm(y0[:3]))}
+            for k in comp:
+                row[k] = {f"{t:.0e}": matched(list(zip(errs[k], best[k], strict=True)), t)
+                          for t in targets}
+                row[k + "_front"] = list(zip(errs[k], best[k], strict=True))
+            rows.append(row)
+        res = {}
+        for t in targets:
+            key = f"{t:.0e}"
+            rl = [r["ours"][key] / r["limit"][key] for r in rows
+                  if r["ours"][key] and r["limit"][key]]
+            rh = [r["ours"][key] / r["heyoka"][key] for r in rows
+                  if r["ours"][key] and r["heyoka"][key]]
+            res[key] = {"vs_limit": rl, "vs_heyoka": rh}
+            summary.append((wp.id, key, limit_kind, rl, rh, len(rows)))
+        out["cases"][wp.id] = {"T": T, "params": prm, "limit_field": limit_kind,
+                               "rows": rows, "ratios": res}
+        print(f"{wp.id} done (load {os.getloadavg()[0]:.2f})", flush=True)
+        _write_starts(quick, lines, summary, out)
+
+
+def _write_starts(quick, head, summary, out):
+    lines = list(head)
+    lines.append("")
+    lines.append(f"{'case':28s} {'error':6s} {'limit':9s} {'ours/limit median':>17s} "
+                 f"{'worst':>6s} {'ours/heyoka median':>18s} {'worst':>6s}  starts matched")
+    for cid, key, kind, rl, rh, n in summary:
+        def fmt(v, f):
+            return f"{f(v):.2f}" if v else "-"
+        lines.append(f"{cid:28s} {key:6s} {kind:9s} {fmt(rl, np.median):>17s} "
+                     f"{fmt(rl, max):>6s} {fmt(rh, np.median):>18s} {fmt(rh, max):>6s}  "
+                     f"{len(rl)}/{n}, {len(rh)}/{n}")
+    load1 = os.getloadavg()
+    ts = ", ".join(f"{k} {v['T']:g}" for k, v in out["cases"].items())
+    lines.append(f"\nA start counts where both fronts reach the error (else it is outside a "
+                 f"front and left out). T: {ts}"
+                 f"\nload average at the end: {load1[0]:.2f} {load1[1]:.2f} {load1[2]:.2f}")
+    out["load_end"] = load1
+    text = "\n".join(lines) + "\n"
+    print(text, flush=True)
+    OUT.mkdir(exist_ok=True)
+    stem = "limit_starts.quick" if quick else "limit_starts"
+    (OUT / f"{stem}.txt").write_text(text)
+    (OUT / f"{stem}.json").write_text(json.dumps(out, indent=1))
+
+
 def main():
     quick = "--quick" in sys.argv
+    if "--fronts" not in sys.argv:
+        only = sys.argv[sys.argv.index("--cases") + 1].split(",") if "--cases" in sys.argv \
+            else None
+        many_starts(quick, only)
+        return
     cases = [
         ("plane/chaplygin-ball", {"I1": 1.0, "I2": 2.0, "I3": 3.0, "m": 1.0, "R": 1.0},
          [1.2, -0.7, 1.6, *(np.array([0.3, -0.5, 0.8]) / np.linalg.norm([0.3, -0.5, 0.8]))],

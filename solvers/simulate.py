@@ -285,6 +285,7 @@ def simulate(case: str, params: dict | None, state0, t_end: float, *,
                     "generated (heyoka)" if method == "taylor" else res.vector_field)
     stats = {"steps": res.steps, "rejected": res.rejected, "rhs_calls": res.rhs_calls,
              "wall_s": res.wall_s, "method": method, "field": vector_field,
+             "kernel": getattr(res, "kernel", method),
              "rtol": rtol, "atol": atol, "projected": bool(project), "samples": len(t)}
     stats.update(getattr(res, "extra", {}))
     if auto is not None:

@@ -2,14 +2,19 @@
 
 Run by the README's commands (`./dev ...`) after installation: `python -m solvers.warmup`.
 
-The general kernels (one specialization per state dimension and method kind), and the
-generated integrator of every case (solvers/kernels/generate.py: one compile per case
-*structure*, the set of its nonzero parameter slots: ~40 s with dop853 and vern9
-unrolled, then ~20 s for its ensemble twin), which `simulate()` runs by default once it is
-compiled (field="auto"). They are compiled as tasks of parallel processes
-(ROLLING_WARMUP_JOBS, default the number of CPUs, at most 4): the general kernels are one
-task, each structure another; a structure whose compiled code is already in the cache is
-skipped. Cold, on 2 cores: about 8 minutes; warm, seconds.
+The general kernels (one specialization per state dimension and method kind: projection,
+sections, scenes, Poincare maps and the reference run on them), and the small kernels of
+every case structure (solvers/kernels/small.py: one compile per *structure*, the set of
+its nonzero parameter slots, and tableau), which `simulate()` runs for a plain run
+(field="auto" or "generated"): dop853's, the default method (WARM_SMALL; ~13 s of CPU
+each); vern9's (~17 s), which only method="auto" at tight tolerances or an explicit
+vern9 run takes, compiles on its first use (the explorer does it before the request's
+deadline starts: app/api/routes/simulate.py), or here with --all. They are compiled as tasks of
+parallel processes (ROLLING_WARMUP_JOBS, default the number of CPUs, at most 4): the
+general kernels are one task, each structure another; a structure whose small kernels are
+already in the cache is skipped. The big generated integrators (rk.py on a generated field,
+~37 s a structure, and their ensemble twins) are no longer compiled here: no default route
+needs them (`python -m solvers.warmup --generated` still compiles them).
 """
 
 import os
@@ -56,10 +61,11 @@ def _targets() -> list[tuple[str, dict]]:
         [(cid, {**registry()[cid].example, **over}) for cid, over in EXTRA]
 
 
-def pending() -> dict[tuple, list[tuple[str, dict]]]:
-    """structure -> the (case, parameters) whose generated integrator is not compiled yet
-    for some compiled method: every case's example parameters and EXTRA."""
-    from solvers.integrate.integrator import generated_ready
+def pending(generated: bool = False) -> dict[tuple, list[tuple[str, dict]]]:
+    """structure -> the (case, parameters) whose small kernels (generated: the big
+    generated integrators) are not compiled yet for some method: every case's example
+    parameters and EXTRA."""
+    from solvers.integrate.integrator import generated_ready, small_ready
     from solvers.kernels import generate
     from solvers.models.cases import build
     from solvers.simulate import compiled_methods
@@ -69,9 +75,37 @@ def pending() -> dict[tuple, list[tuple[str, dict]]]:
         m = build(cid, params)
         if m.model not in generate.GENERATED_MODELS:
             continue
-        if not all(generated_ready(m.model, m.p, meth) for meth in compiled_methods()):
+        if generated:
+            ready = all(generated_ready(m.model, m.p, meth) for meth in compiled_methods())
+        else:
+            ready = all(small_ready(m.model, m.p, meth) for meth in _small_methods())
+        if not ready:
             out.setdefault(generate.structure(m.model, m.p), []).append((cid, params))
     return out
+
+
+WARM_SMALL = ("dop853",)
+
+
+def _small_methods() -> tuple:
+    from solvers.integrate.integrator import SMALL_METHODS
+
+    return SMALL_METHODS if os.environ.get("ROLLING_WARMUP_ALL") else WARM_SMALL
+
+
+def compile_small(target) -> str:
+    """Run the small kernels of a case (an id, with its example parameters, or (id,
+    parameters)) once per warmed method, compiling them into the on-disk cache."""
+    from solvers.models.cases import registry
+    from solvers.simulate import simulate
+
+    case_id, params = (target, None) if isinstance(target, str) else target
+    case = registry()[case_id]
+    params = case.example if params is None else params
+    for method in _small_methods():
+        r = simulate(case_id, params, case.state, 0.01, method=method, samples=3)
+        assert r.stats["kernel"] == "small", r.stats
+    return case_id
 
 
 def compile_generated(target) -> str:
@@ -102,20 +136,25 @@ def _jobs() -> int:
     return max(1, int(env)) if env else max(1, min(4, os.cpu_count() or 1))
 
 
-def _task(what: str) -> str:
-    """One unit of the parallel warm-up: the general kernels, or a case's structure."""
+def _task(what) -> str:
+    """One unit of the parallel warm-up: the general kernels, or a case's structure
+    (("generated", target): its big generated integrator and ensemble twin)."""
     if what == GENERAL:
         _general()
         return what
-    return compile_generated(what)
+    if isinstance(what, tuple) and what[0] == "generated":
+        return compile_generated(what[1])
+    return compile_small(what)
 
 
 GENERAL = "general kernels"
 
 
-def warm(jobs: int | None = None) -> float:
+def warm(jobs: int | None = None, generated: bool = False) -> float:
     t0 = time.perf_counter()
     todo = [cases[0] for cases in pending().values()]
+    if generated:
+        todo += [("generated", cases[0]) for cases in pending(generated=True).values()]
     jobs = min(jobs or _jobs(), len(todo) + 1)
     if jobs > 1 and todo:
         import multiprocessing as mp
@@ -128,15 +167,15 @@ def warm(jobs: int | None = None) -> float:
     else:
         for what in (GENERAL, *todo):
             _task(what)
-    warm_ensembles()
+    warm_ensembles(generated)
     return time.perf_counter() - t0
 
 
-def warm_ensembles() -> None:
+def warm_ensembles(generated: bool = False) -> None:
     """The compiled ensemble (solvers/kernels/ensemble.py) on the general field, one
-    specialization per model, and its generated twin for every case structure (compiled
-    by compile_generated in the parallel part when new; loaded here), so that the first
-    Poincare map of a server does not compile in a request."""
+    specialization per model (Poincare maps, sections: integrate()'s route for a run that
+    is not plain), so that the first Poincare map of a server does not compile in a
+    request; generated: the generated twins too (compiled by compile_generated)."""
     from solvers.integrate.ensemble import integrate_ensemble
     from solvers.kernels import generate
     from solvers.models.cases import build, registry
@@ -148,7 +187,7 @@ def warm_ensembles() -> None:
         if (m.model,) not in seen:     # the general field: one specialization per model
             seen.add((m.model,))
             integrate_ensemble(m.model, m.p, [case.state], [0.0, 0.01], generated=False)
-        if m.model not in generate.GENERATED_MODELS:
+        if not generated or m.model not in generate.GENERATED_MODELS:
             continue
         key = generate.structure(m.model, m.p)
         if key in seen:
@@ -158,4 +197,8 @@ def warm_ensembles() -> None:
 
 
 if __name__ == "__main__":
-    print(f"kernels ready in {warm():.1f} s")
+    import sys
+
+    if "--all" in sys.argv:     # inherited by the spawned processes
+        os.environ["ROLLING_WARMUP_ALL"] = "1"
+    print(f"kernels ready in {warm(generated='--generated' in sys.argv):.1f} s")

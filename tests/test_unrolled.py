@@ -45,7 +45,8 @@ def pair(monkeypatch, mod, model, p, y0, t_out, **kw):
             monkeypatch.setattr(integrator, "_GEN_MODULES", {})
             monkeypatch.setattr(integrator, "_GEN_READY", {})
             monkeypatch.setattr(integrator, "_mark_ready", lambda *a: None)
-            out.append(integrate(model, p, y0, t_out, generated=True, **kw))
+            # kernel="rk": a plain run would otherwise take the small kernel (issue 19)
+            out.append(integrate(model, p, y0, t_out, generated=True, kernel="rk", **kw))
         else:
             monkeypatch.setattr(integrator.rk, "rk_integrate", fn)
             out.append(integrate(model, p, y0, t_out, **kw))

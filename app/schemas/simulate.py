@@ -73,9 +73,11 @@ class SimulateRequest(BaseModel):
                           "state; given params / state override them")
     field: Literal["auto", "general"] = Field(
         "auto", description="vector field of the compiled Runge-Kutta methods: auto, the "
-        "case's generated field (solvers/kernels/generate.py) when it is compiled, else "
-        "the general one; general, the general support-function field (the reference). "
-        "stats.field says which ran")
+        "case's generated field (solvers/kernels/generate.py) in its small kernel for a "
+        "plain run (dop853 or vern9, no projection), else the general one, whatever is "
+        "compiled (the same request gives the same numbers); general, the general "
+        "support-function field (the reference). stats.field and stats.kernel say which "
+        "ran")
 
 
 class SceneRequest(SimulateRequest):

@@ -77,6 +77,28 @@ def _run(req: dict, max_steps: int):
                     field=req.get("field", "auto"), precision=req.get("precision"))
 
 
+def prepare_kernels(req: dict) -> int:
+    """Compile (or load) the small kernels a simulate request will run (issue 19: no
+    request pays a compile inside its deadline): the route runs this without a deadline
+    the first time it sees a case structure, method and projection choice; method "auto"
+    may pick dop853 or vern9, so both. Returns how many kernels are ready."""
+    _lower_priority()
+    from solvers.integrate.integrator import SMALL_METHODS, is_plain
+    from solvers.models.cases import build
+    from solvers.simulate import simulate
+
+    model = build(req["case"], req["params"], allow_any_inertia=req["allow_any_inertia"])
+    methods = SMALL_METHODS if req["method"] == "auto" else (req["method"],)
+    done = 0
+    for method in methods:
+        if req.get("field", "auto") != "general" and is_plain(
+                model.model, method, project=req["project"], fixed=req.get("step") is not None):
+            simulate(req["case"], req["params"], req["state"], 1e-6, method=method, samples=2,
+                     allow_any_inertia=req["allow_any_inertia"])
+            done += 1
+    return done
+
+
 def simulate_json(req: dict, max_steps: int) -> bytes:
     from app.services.payloads import json_bytes
 

@@ -37,9 +37,10 @@ from solvers.integrate.integrator import (
     IntegrationResult,
     Section,
     StepControl,
-    generated_ready,
     initial_integrals,
+    is_plain,
     method_arrays,
+    small_module,
     status_message,
 )
 from solvers.kernels import ensemble as kernels
@@ -70,13 +71,37 @@ def _choose_layer():
         numba.config.THREADING_LAYER = "workqueue"
 
 
-def _default_generated(model: int, p, method: str) -> bool:
-    """integrate()'s own rule for generated=None, so an ensemble runs the same field as
-    the one-by-one calls (bit for bit): the generated field when the case's generated
-    integrator for this tableau is compiled. solvers/warmup.py compiles the ensemble twin
-    with it; a structure compiled outside the warm-up (field="generated" from Python or
-    the CLI) compiles its twin at its first ensemble."""
-    return model in generate.GENERATED_MODELS and generated_ready(model, p, method)
+def _small_ensemble(model, p, Y0, T, counts, steps, compensated, FOPT, atol_v, method,
+                    workers) -> list[IntegrationResult]:
+    """integrate()'s route for a plain run (generated=None): the small kernel of the
+    structure (solvers/kernels/small.py) per trajectory, on a pool of threads (the kernel
+    is nogil): the same bits as integrate(model, p, Y0[i], ...) one by one."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    from solvers.integrate.integrator import _result
+
+    run = small_module(model, p, method).run
+    n = Y0.shape[1]
+    empty_t, empty_y = np.empty(0), np.empty((0, n))
+
+    def one(i):
+        t_out = np.ascontiguousarray(T[i, :counts[i]])
+        Y = np.empty((t_out.size, n))
+        y_stop = np.empty(n)
+        stats = np.zeros(5, dtype=np.int64)
+        t0 = time.perf_counter()
+        status, t_stop = run(p, np.ascontiguousarray(Y0[i]), t_out, int(steps[i]),
+                             bool(compensated), np.ascontiguousarray(FOPT[i]), atol_v, Y,
+                             y_stop, stats)
+        wall = time.perf_counter() - t0
+        return _result(t_out, Y, y_stop, stats, status, t_stop, wall, method, empty_t,
+                       empty_y, "generated", "small")
+
+    idx = range(Y0.shape[0])
+    if workers == 1 or Y0.shape[0] == 1:
+        return [one(i) for i in idx]
+    with ThreadPoolExecutor(max_workers=workers) as pool:
+        return list(pool.map(one, idx))
 
 
 def generated_ensemble(model: int, p):
@@ -133,7 +158,8 @@ def integrate_ensemble(model, p, Y0, t_out, *, method="dop853", rtol=1e-10, atol
                        control=_CONTROL, generated=None, n_out=None, h_max=None,
                        workers=None) -> list[IntegrationResult]:
     """`integrate(model, p, Y0[i], t_out, **options)` for every row of Y0 in one compiled
-    parallel call (module docstring); generated=None: integrate()'s default. Bad input
+    parallel call (module docstring); generated=None: integrate()'s default (a plain run:
+    the small kernel per trajectory on threads; any other: the general field). Bad input
     raises ValueError before anything runs. wall_s of each result is its share of the call
     (the call's wall time / the number of trajectories)."""
     model = int(model)
@@ -188,8 +214,13 @@ def integrate_ensemble(model, p, Y0, t_out, *, method="dop853", rtol=1e-10, atol
     workers = default_workers() if workers is None else int(workers)
     if workers < 1:
         raise ValueError(f"workers = {workers}: must be >= 1")
-    use_gen = (_default_generated(model, p, method) if generated is None
-               else bool(generated))
+    # integrate()'s rule (is_plain): a plain run with generated=None runs the small kernel,
+    # any other the general field unless generated=True (then the generated twin); the
+    # route depends on the request only, never on what is compiled
+    plain = generated is not False and is_plain(
+        model, method, project=bool(codes.size), section=section, compensated=compensated,
+        fixed=fixed, dense_output=dense_output)
+    use_gen = bool(generated)
     A, c, b, E, Pd, meth = method_arrays(method)
     if not dense_output:
         Pd = np.zeros((0, 1))
@@ -216,6 +247,9 @@ def integrate_ensemble(model, p, Y0, t_out, *, method="dop853", rtol=1e-10, atol
     t_stop = np.zeros(n_traj)
     if n_traj == 0:
         return []
+    if plain:
+        return _small_ensemble(model, p, Y0, T, counts, steps, compensated, FOPT, atol_v,
+                               method, workers)
     kern = kernels.rk_ensemble
     if use_gen and model in generate.GENERATED_MODELS:
         kern = generated_ensemble(model, p).rk_ensemble

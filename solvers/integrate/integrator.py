@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from solvers.integrate import collocation, tableaux
-from solvers.kernels import gauss, generate, rk, unroll
+from solvers.kernels import gauss, generate, rk, small, unroll
 from solvers.kernels import layout as L
 from solvers.kernels.fields import rhs
 
@@ -70,6 +70,8 @@ class IntegrationResult:
     crossings_t: np.ndarray = field(default_factory=lambda: np.empty(0))
     crossings_y: np.ndarray = field(default_factory=lambda: np.empty((0, 0)))
     vector_field: str = "general"   # what the kernel ran: generated | general
+    kernel: str = "rk"              # which compiled form: small | rk (rk.py's, general
+                                    # or generated) | gauss
 
     @property
     def success(self) -> bool:
@@ -218,10 +220,10 @@ def _ready_marker(model: int, p, method: str) -> Path:
     return generate.cache_dir() / f"{generate.module_name(model, p)}.{method}.ready"
 
 
-def _numba_cache_holds(mod) -> bool:
-    """Whether numba's on-disk index of the module's rk_integrate has a fresh entry for
+def _numba_cache_holds(mod, name: str = "rk_integrate") -> bool:
+    """Whether numba's on-disk index of the module's kernel `name` has a fresh entry for
     this machine (a marker alone would not see a wiped or stale __pycache__)."""
-    disp = getattr(mod, "rk_integrate", None)
+    disp = getattr(mod, name, None)
     try:
         if disp.signatures:
             return True
@@ -264,11 +266,47 @@ def _mark_ready(model: int, p, key) -> None:
     _GEN_READY[key] = True
 
 
+# The tableaux with small kernels (solvers/kernels/small.py): a plain run of a model with a
+# generated field and one of these runs its small kernel, whatever is compiled (issue 19).
+SMALL_METHODS = ("dop853", "vern9")
+_SMALL_MODULES: dict = {}
+
+
+def small_module(model: int, p, method: str):
+    """The small kernel of the case's structure and tableau (compiled on its first call,
+    then loaded from numba's on-disk cache), memoized per parameter vector."""
+    p = np.asarray(p, dtype=np.float64)
+    key = (int(model), p.tobytes(), method)
+    mod = _SMALL_MODULES.get(key)
+    if mod is None:
+        if len(_SMALL_MODULES) > _CACHE_MAX:
+            _SMALL_MODULES.clear()
+        mod = _SMALL_MODULES[key] = small.small_kernel(model, p, method)
+    return mod
+
+
+def small_ready(model: int, p, method: str = "dop853") -> bool:
+    """Whether the small kernel of the structure and tableau is compiled (in this process
+    or in numba's on-disk cache for this machine): the warm-up's test, never the route's."""
+    mod = small_module(model, p, method)
+    return _numba_cache_holds(mod, "run")
+
+
+def is_plain(model, method, *, project=False, section=None, compensated=False,
+             fixed=False, dense_output=True) -> bool:
+    """Whether integrate() runs the small kernel for these options (and generated is
+    not False): what the route depends on is the request, never the cache. Compensated
+    sums are a run-time flag of the small kernels (method "auto" uses them)."""
+    del compensated
+    return (model in generate.GENERATED_MODELS and method in SMALL_METHODS and not project
+            and section is None and not fixed and dense_output)
+
+
 def integrate(model, p, y0, t_out, *, method="dop853", rtol=1e-10, atol=1e-12,
               max_steps=10_000_000, compensated=False, project_codes=(), project_values=None,
               project_every=1, section=None, max_crossings=100_000, h_fixed=None,
               dense_output=True, control=StepControl(),
-              generated=None) -> IntegrationResult:
+              generated=None, kernel=None) -> IntegrationResult:
     """Integrate `model` from (t_out[0], y0) and return the states at the times t_out.
 
     rtol/atol: scaled RMS error per step (atol may be a vector); h_fixed: run with this
@@ -280,11 +318,18 @@ def integrate(model, p, y0, t_out, *, method="dop853", rtol=1e-10, atol=1e-12,
     interpolating (the states are then step endpoints; it costs steps).
     generated: which field the kernel is compiled against, for the models that have a
     generated one (solvers/kernels/generate.py; the others always run the general field).
-    None (default): the generated field when its compiled code is ready
-    (`generated_ready`: solvers/warmup.py compiles every case's), else the general field,
-    so that a call never pays a ~15 s LLVM compile; True: the generated field, compiled
-    on first use of a structure; False: the general support-function field, the reference.
-    The result's `vector_field` says which ran.
+    None (default): a plain run (`is_plain`: samples by dense output, no projection, no
+    section, not fixed, a tableau of SMALL_METHODS; compensated or not) runs the small
+    kernel of the case's structure (solvers/kernels/small.py: the generated field; a few
+    seconds of compile on the first use of a structure, then numba's cache), any other run
+    the general kernel: the route depends on the request only, so the same request gives
+    the same bits whatever the cache holds (the small kernel equals the generated rk.py
+    kernel bit for bit: tests/test_small.py). True: the generated field, by the small
+    kernel for a plain run, else by rk.py's generated integrator (compiled on first use
+    of a structure, ~37 s); False: the general support-function field, the reference.
+    The result's `vector_field` says which field ran, `kernel` which compiled form.
+    kernel: None (default) the rule above; "rk": rk.py's kernel whatever the run (the
+    tests' reference for the small kernels and the unrolled steppers).
     """
     t_out = _times(t_out)
     y0 = _f64(y0)
@@ -338,8 +383,20 @@ def integrate(model, p, y0, t_out, *, method="dop853", rtol=1e-10, atol=1e-12,
     cross_y = np.empty((n_cross, n))
     y_stop = np.empty(n)
     stats = np.zeros(5, dtype=np.int64)
+    if kernel not in (None, "rk"):
+        raise ValueError(f"kernel = {kernel!r}: None or 'rk'")
+    if kernel is None and generated is not False and is_plain(
+            model, method, project=bool(codes.size), section=section,
+            compensated=compensated, fixed=fixed, dense_output=dense_output):
+        run = small_module(model, p, method).run
+        t0 = time.perf_counter()
+        status, t_stop = run(p, y0, t_out, int(max_steps), bool(compensated), fopt, atol_v,
+                             Y, y_stop, stats)
+        wall = time.perf_counter() - t0
+        return _result(t_out, Y, y_stop, stats, status, t_stop, wall, method, cross_t,
+                       cross_y, "generated", "small")
     kern, used, fresh = rk.rk_integrate, "general", None
-    if generated is not False and model in generate.GENERATED_MODELS:
+    if generated and model in generate.GENERATED_MODELS:
         key = (int(model), p.tobytes(), method)
         if generated or _ready(key, model, p):
             kern, used = _generated_module(model, p, key[:2]).rk_integrate, "generated"
@@ -350,6 +407,12 @@ def integrate(model, p, y0, t_out, *, method="dop853", rtol=1e-10, atol=1e-12,
     wall = time.perf_counter() - t0
     if fresh is not None:   # compiled now: later calls (and processes) may use it
         _mark_ready(model, p, fresh)
+    return _result(t_out, Y, y_stop, stats, status, t_stop, wall, method, cross_t, cross_y,
+                   used, "rk")
+
+
+def _result(t_out, Y, y_stop, stats, status, t_stop, wall, method, cross_t, cross_y, used,
+            kernel) -> IntegrationResult:
     m, k = stats[rk.S_SAMPLES], stats[rk.S_CROSSINGS]
     message = status_message(status)
     if status != L.OK:
@@ -359,7 +422,7 @@ def integrate(model, p, y0, t_out, *, method="dop853", rtol=1e-10, atol=1e-12,
         t_stop=float(t_stop), y_stop=y_stop, steps=int(stats[rk.S_ACCEPTED]),
         rejected=int(stats[rk.S_REJECTED]), rhs_calls=int(stats[rk.S_RHS]), wall_s=wall,
         method=method, crossings_t=cross_t[:k].copy(), crossings_y=cross_y[:k].copy(),
-        vector_field=used)
+        vector_field=used, kernel=kernel)
 
 
 def _integrate_symmetric(model, p, y0, t_out, method, h, max_steps, max_iter=60):
@@ -381,7 +444,7 @@ def _integrate_symmetric(model, p, y0, t_out, method, h, max_steps, max_iter=60)
     return IntegrationResult(
         t=t_out[:k].copy(), y=Y[:k], status=int(status), message=message,
         t_stop=float(t_stop), y_stop=y_stop, steps=int(stats[gauss.G_STEPS]), rejected=0,
-        rhs_calls=int(stats[gauss.G_RHS]), wall_s=wall, method=method)
+        rhs_calls=int(stats[gauss.G_RHS]), wall_s=wall, method=method, kernel="gauss")
 
 
 class _Singular(Exception):

@@ -81,6 +81,42 @@ async def _resolved(req: SimulateRequest, settings=None) -> dict:
     return await anyio.to_thread.run_sync(resolve, req, max_steps, limiter=_validation_threads)
 
 
+# (model, structure, method) whose small kernel a worker compiled in this server
+# (solvers/kernels/small.py); the warm-up's structures are compiled before the server starts
+_PREPARED: set = set()
+_WARMED: set = set()
+
+
+def _structure(model) -> tuple:
+    """The nonzero parameter slots (solvers.kernels.generate.structure), without importing
+    numba into the server's process."""
+    return (model.model, tuple(np.flatnonzero(np.asarray(model.p) != 0.0).tolist()))
+
+
+def _warmed() -> set:
+    """(model, structure, method) of the small kernels the warm-up compiled."""
+    if not _WARMED:
+        from solvers.models.cases import build
+        from solvers.warmup import WARM_SMALL, _targets
+
+        _WARMED.update((*_structure(build(cid, params)), method)
+                       for cid, params in _targets() for method in WARM_SMALL)
+    return _WARMED
+
+
+async def _prepare(pool, resolved: dict, job: dict) -> None:
+    """The first request of a case structure outside the warm-up's compiles its small
+    kernel in a job without a deadline (a few seconds), so that the run's own deadline
+    never holds a compile (issue 19); later ones, and the warm-up's structures, skip it."""
+    if job.get("field", "auto") == "general" or job.get("step") is not None or job["project"]:
+        return          # the general kernels (compiled by the warm-up)
+    key = (*_structure(resolved["_model"]), job["method"])
+    if key in _warmed() or key in _PREPARED:
+        return
+    await pool.run(jobs.prepare_kernels, job)
+    _PREPARED.add(key)
+
+
 def _job(resolved: dict) -> dict:
     return {k: v for k, v in resolved.items() if not k.startswith("_")}
 
@@ -121,7 +157,9 @@ async def simulate(req: SimulateRequest, request: Request, pool: PoolDep,
         media = payloads.negotiate(request.headers.get("accept"))
     else:
         media = payloads.CSV if format == "csv" else payloads.JSON
-    job = _job(await _resolved(req, settings))
+    resolved = await _resolved(req, settings)
+    job = _job(resolved)
+    await _prepare(pool, resolved, job)
     fn = {payloads.CSV: jobs.simulate_csv, payloads.ARROW: jobs.simulate_arrow}.get(
         media, jobs.simulate_json)
     body = await cancel_on_disconnect(request, lambda: pool.run(
