@@ -180,6 +180,14 @@ FORMULA_ROLE_OF_CHECK: dict[CheckName, tuple[str, ...]] = {
 }
 
 
+class Origin(StrEnum):
+    """Whose statement a claim or formula records."""
+
+    PAPER = "paper"
+    PROJECT = "project"  # the paper asserts the property but prints no formula: the formula
+    #                      and its check are the project's (e.g. hamiltonian_sphere.py)
+
+
 class StateVariables(StrEnum):
     """Variables a claim or formula is written in (the phase space of the check)."""
 
@@ -194,6 +202,7 @@ class StateVariables(StrEnum):
     THETA_OMEGA3 = "(theta, omega3)"  # eq2.9, eq3.4
     X_OMEGA3 = "(x, omega3)"  # hypergeometric form
     U_K1_K2 = "(u, K1, K2)"  # eq3.19
+    U_K1_K2_K3 = "(u, K1, K2, K3)"  # flat base reduced to 4 variables (hamiltonian_sphere.py)
     GAMMA = "(gamma)"  # shape of the body
     GAMMA3 = "(gamma3)"  # meridian of a body of revolution
     PARAMETERS = "(parameters)"  # conditions on parameters only
@@ -360,6 +369,7 @@ class Claim(Strict):
     variables: StateVariables
     check: CheckName
     check_args: CheckArgs = CheckArgs()
+    origin: Origin = Origin.PAPER  # project: `printed` is the assertion, the formula ours
     convention_note: str | None = None
     remarks: str | None = None
     # verdict layer (issue 10): how this record relates to others of its case
@@ -386,6 +396,9 @@ class Claim(Strict):
                 raise ValueError(f"claim {self.id}: check {self.check} needs check_args.{arg}")
         if self.check in NEGATIVE_CHECKS and self.kind is not ClaimKind.NEGATIVE:
             raise ValueError(f"claim {self.id}: check {self.check} is only for kind negative")
+        if self.origin is Origin.PROJECT and not self.remarks:
+            raise ValueError(f"claim {self.id}: a project claim says in `remarks` what the "
+                             "paper asserts and what the project derived")
         return self
 
 
@@ -556,6 +569,7 @@ class Formula(Strict):
     where: str | None = None
     variables: StateVariables
     role: FormulaRole
+    origin: Origin = Origin.PAPER  # project: `printed` is the sentence asserting it
     convention_note: str | None = None
     remarks: str | None = None
 

@@ -38,7 +38,8 @@ NEUTRAL_CHECKS = frozenset({"open_problem", "formula_not_printed", "not_checkabl
 CELL_NOTE = {"corrected": "holds; printed formula corrected",
              "formula-free": "holds; shown by a formula-free test (printed formula fails)",
              "formula-free-test": "confirmed by a formula-free test",
-             "convention": "holds under the paper's own convention (see the formula record)"}
+             "convention": "holds under the paper's own convention (see the formula record)",
+             "project": "holds with the project's derived formula (the paper prints none)"}
 QUALIFIERS = ("convention", "misprint", "inherited", "refuted-conjecture", "refuted",
               "formula-free")
 
@@ -103,7 +104,8 @@ def _judge(cid: str, by_claim: dict, establishers: dict) -> tuple[str, str | Non
     r = by_claim[cid]
     if r["verdict"] != "fails":
         basis = "convention" if r.get("qualifier") == "convention" else (
-            "formula-free-test" if r.get("qualifier") == "formula-free" else "printed")
+            "formula-free-test" if r.get("qualifier") == "formula-free" else
+            "project" if r.get("origin") == "project" else "printed")
         return r["verdict"], basis, [cid]
     corr = by_claim.get(f"{cid}/corrected")
     if corr is not None and corr["verdict"] == "verified":

@@ -45,6 +45,14 @@ def to_vars(name: str, P, y):
         return np.array([(1.0 - y[5]) / 2.0, P.omega(M, y[3:6])[2]])
     if name == "(u, K1, K2)":
         return flat_reduced(P.p, y)
+    if name == "(u, K1, K2, K3)":
+        # K3 = (r1 M2 - r2 M1)/sqrt(u (I1 + m z^2 + m u)): the analogue of eq2.4's K3, whose
+        # square is twice the du/dt share of the energy (solvers/verify/formulas/
+        # hamiltonian_sphere.py)
+        x = flat_reduced(P.p, y)
+        u = x[0]
+        K3 = (y[3] * M[1] - y[4] * M[0]) / np.sqrt(u * (P.I[0] + P.m * P.z ** 2 + P.m * u))
+        return np.array([u, x[1], x[2], K3])
     if name == "(gamma)":
         return y[3:6]
     if name == "(gamma3)":
