@@ -132,3 +132,29 @@ def flat_axisym_time_change(P, x):
 def flat_axisym_reduced_density(P, x):
     """1/N: invariant density of the reduced flat-base system in (u, K1, K2, K3)."""
     return 1.0 / flat_axisym_time_change(P, x)
+
+
+# --- the Borisov-Fedorov ball (eq3.12 at a = 2R): what the project tried -------------------
+# Not a registered formula and not a claim: the cell "the system is Hamiltonian after the
+# change of time (A. V. Borisov, I. S. Mamaev, 2000)" stays unchecked (the bracket is in
+# another paper). This candidate is recorded so the failure is reproducible
+# (tests/test_hamiltonian_sphere.py::test_bf_candidate_generates_the_flow_but_is_not_poisson).
+
+def bf_candidate_bracket(P, x):
+    """eq2b-*1 (with the sign that generates the flow) carried to eq3.12's factor k:
+    {M_i, M_j} = -eps_ijk rho^-1 (M_k - k g gamma_k), {M_i, gamma_j} = -k eps_ijk rho^-1
+    gamma_k, {gamma_i, gamma_j} = 0, g = D (omega, gamma), rho of eq2.17. By construction
+    rho J grad H = the field of eq3.12 for every k (H = (M, omega)/2); at k = 1 it is the
+    plane's bracket, which is Poisson. At k = -1 (Borisov-Fedorov) it is NOT: the Jacobiator
+    is of relative size 0.1-0.6, and no conformal factor f(M, gamma) repairs it (the
+    Jacobiator is not of the form Y ^ J)."""
+    from solvers.verify.formulas.chaplygin import _g, eps_dot
+    from solvers.verify.formulas.sphere_bodies import factor_312
+    from solvers.verify.variables import chaplygin_rho
+
+    k = factor_312(P)
+    M, g = x[:3], x[3:6]
+    irho = 1.0 / chaplygin_rho(P, g)
+    top = -irho * eps_dot(M - k * _g(P, M, g) * g)
+    mg = -k * irho * eps_dot(g)
+    return np.block([[top, mg], [mg, 0.0 * mg]])
