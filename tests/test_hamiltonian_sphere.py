@@ -94,7 +94,7 @@ def test_flow_check_catches_a_perturbed_formula(monkeypatch, fid):
     assert good <= TOL
     monkeypatch.setitem(FORMULAS, fid, MUTATIONS[fid](FORMULAS[fid]))
     bad = S.hamiltonian_residual(CAT, case, claim)
-    assert bad > 10 * TOL, bad          # relative 1e-6 on one term: measured 2.9e-7 .. 1.8e-5
+    assert bad > 10 * TOL, bad          # relative 1e-6 on one term: measured 2.6e-7 .. 1.8e-5
 
 
 @pytest.mark.parametrize("fid,case_id", [("sphere_revolution_bracket", CASES[0]),
@@ -195,13 +195,14 @@ def test_hamiltonian_is_the_energy(case_id):
         x = np.asarray(to_vars(V, P, y)).real
         E = energy(P, y)
         assert abs(Hf(P, x) - E) <= 1e-12 * max(abs(E), 1.0)
-        # and d x0/dt = N K3 (the multiplier read off the full field)
+        # and d x0/dt = N dH/dK3 (the multiplier read off the full field)
         Nf = hs.flat_axisym_time_change if flat else hs.sphere_revolution_time_change
         from solvers.verify.checks.common import directional, full_field
         xd = directional(lambda yy: to_vars(V, P, yy), y, full_field(P, y))
-        assert abs(xd[0] - Nf(P, x) * x[3]) <= 1e-12 * abs(xd[0]) + 1e-15
         g = gradient(lambda xx: Hf(P, xx), x)
-        assert abs(g[3] - x[3]) <= 1e-12 * abs(x[3]) + 1e-15
+        assert abs(xd[0] - Nf(P, x) * g[3]) <= 1e-12 * abs(xd[0]) + 1e-15
+        if not flat:                     # K3 of eq2.4 carries exactly K3^2/2
+            assert abs(g[3] - x[3]) <= 1e-12 * abs(x[3]) + 1e-15
 
 
 # --- Borisov-Fedorov: the natural candidate fails (the cell stays unchecked) ------------------

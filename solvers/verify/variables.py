@@ -46,13 +46,11 @@ def to_vars(name: str, P, y):
     if name == "(u, K1, K2)":
         return flat_reduced(P.p, y)
     if name == "(u, K1, K2, K3)":
-        # K3 = (r1 M2 - r2 M1)/sqrt(u (I1 + m z^2 + m u)): the analogue of eq2.4's K3, whose
-        # square is twice the du/dt share of the energy (solvers/verify/formulas/
-        # hamiltonian_sphere.py)
+        # K3 = r1 M2 - r2 M1, the axial-rotation momentum conjugate to u in the project's
+        # bracket (solvers/verify/formulas/hamiltonian_sphere.py); polynomial, so the exact
+        # certificates can evaluate it
         x = flat_reduced(P.p, y)
-        u = x[0]
-        K3 = (y[3] * M[1] - y[4] * M[0]) / np.sqrt(u * (P.I[0] + P.m * P.z ** 2 + P.m * u))
-        return np.array([u, x[1], x[2], K3])
+        return np.array([x[0], x[1], x[2], y[3] * M[1] - y[4] * M[0]])
     if name == "(gamma)":
         return y[3:6]
     if name == "(gamma3)":

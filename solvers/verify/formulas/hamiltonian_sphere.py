@@ -109,24 +109,23 @@ def flat_axisym_bracket(P, x):
 
 @formula("flat_axisym_hamiltonian")
 def flat_axisym_hamiltonian(P, x):
-    """H = K3^2/2 + ((I1 + m z^2) K1^2 + (I1 u + I3 z^2) K2^2 - 2 z sq K1 K2)/(2 I1^2 u),
-    sq = sqrt(I3 (I1 + m z^2) + I1 m u) (eq-***3 with its corrected K1 K2 term; no field on
-    the flat base)."""
+    """H = K3^2/(2 u (I1 + m z^2 + m u)) + ((I1 + m z^2) K1^2 + (I1 u + I3 z^2) K2^2
+    - 2 z sq K1 K2)/(2 I1^2 u), sq = sqrt(I3 (I1 + m z^2) + I1 m u) (eq-***3 with its
+    corrected K1 K2 term, its udot^2 term written with K3 = r1 M2 - r2 M1; no field on the
+    flat base)."""
     I1, I3, m, z, _ = _flat(P)
     u, K1, K2, K3 = x
     sq = np.sqrt(I3 * (I1 + m * z * z) + I1 * m * u)
     T = ((I1 + m * z * z) * K1 * K1 + (I1 * u + I3 * z * z) * K2 * K2
          - 2 * z * sq * K1 * K2) / (2 * I1 * I1 * u)
-    return 0.5 * K3 * K3 + T
+    return 0.5 * K3 * K3 / (u * (I1 + m * z * z + m * u)) + T
 
 
 @formula("flat_axisym_time_change")
 def flat_axisym_time_change(P, x):
-    """d tau = N dt, N = 2R sqrt(u/(I1 + m z^2 + m u)): du/dt = 2R (r1 w2 - r2 w1) (eq3.15)
-    = N K3."""
-    I1, _, m, z, R = _flat(P)
-    u = x[0]
-    return 2 * R * np.sqrt(u / (I1 + m * z * z + m * u)) + 0.0 * x[1]
+    """d tau = N dt, N = 2 R u: du/dt = 2R (r1 w2 - r2 w1) (eq3.15) = 2R K3/(I1 + m z^2 + m u)
+    = N dH/dK3."""
+    return 2 * (1.0 / P.k) * x[0] + 0.0 * x[1]
 
 
 def flat_axisym_reduced_density(P, x):
