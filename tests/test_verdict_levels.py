@@ -145,7 +145,8 @@ def test_refuted_conjecture(by):
     # hedged claims the project only gathers evidence for are not refuted conjectures
     hedged = {cl.id for cl in CAT.claims() if cl.hedged}
     assert len(hedged) >= 10
-    assert by["plane/unbalanced-ball/negative/measure"]["verdict"] == "evidence"
+    # (issue 18: the absence of a measure is now proved exactly, check no_measure)
+    assert by["plane/unbalanced-ball/negative/measure"]["verdict"] == "verified"
     assert by["plane/unbalanced-ball/negative/measure"]["qualifier"] is None
     for rid, rec in by.items():
         if rec.get("qualifier") == "refuted-conjecture":
