@@ -12,6 +12,7 @@ from solvers.models.cases import build, registry
 from solvers.verify.checks import negative as ng
 from solvers.verify.checks import nonexistence as nx
 from solvers.verify.params import Params
+from solvers.verify.run import verify
 
 CAT = load_catalogue()
 CLAIMS = [f"{c}/negative/{w}" for c in ("plane/unbalanced-ball", "sphere/unbalanced-ball",
@@ -81,3 +82,24 @@ def test_zero_potential_steady_rotations_have_zero_divergence():
     assert len(eq0) >= 3 and len(eq1) >= 3
     assert max(abs(d) for _, d in eq0) < 1e-14
     assert max(abs(d) for _, d in eq1) > 1e-3
+
+
+def test_ellipsoid_open_problem_is_decided():
+    """Section 2, 'Rolling of ellipsoid on plane': 'no obstacles to existence of the analytical
+    invariant measure ... are not found yet'. The obstacle: at lambda = 1/2 (b3 moved to
+    6913/2304 so that sqrt(gamma.B gamma) is rational at (3/13, 4/13, 12/13)) c . gamma is an
+    exact nonzero rational (-6.8e-4); at lambda = 1 (eq2.30) exactly 0. The hedged conjecture
+    that a measure may exist is refuted; the strong reading of 'a measure only for lambda = 0
+    and lambda = 1' is proved."""
+    for cid, verdict in (("plane/ellipsoid/negative/general-measure", "fails"),
+                         ("plane/ellipsoid/negative/no-measure", "verified")):
+        case, claim = _case_claim(cid)
+        out = nx.check_no_measure(CAT, case, claim, settings=1)
+        assert out.verdict == verdict, out.message
+        assert Fraction(out.evidence["obstruction c . gamma (exact)"]) == \
+            Fraction(-662849692664924160, 972670988822855976589)
+        assert out.evidence["control: c . gamma at the same points (exact)"] == ["0"] * 3
+    recs = {r["claim"]: r for r in verify(claim="plane/ellipsoid/negative/general-measure")}
+    r = recs["plane/ellipsoid/negative/general-measure"]
+    assert r["verdict"] == "fails" and r["qualifier"] == "refuted-conjecture"
+    assert "no smooth invariant measure" in r["finding"]

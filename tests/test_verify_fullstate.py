@@ -62,6 +62,8 @@ EXPECTED = {
     "plane/ellipsoid/measure/lambda-0": (V, None),
     "plane/ellipsoid/identity/density-forms": (V, None),
     "plane/ellipsoid/negative/measure-other-lambda": (E, None),  # 4.8e-02
+    # issue 18: the strong reading, no smooth measure at all, proved (check no_measure)
+    "plane/ellipsoid/negative/no-measure": (V, None),
     "plane/ellipsoid/gyrostat/measure": (V, None),
     # the two-parameter family of the stationary equations exists (Omega^2 < 0 for the
     # drawn lambda in [0, 1): see test_permanent_rotations_reality)

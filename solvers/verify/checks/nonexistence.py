@@ -3,7 +3,9 @@
 
 The systems it applies to are the zero-potential, gyrostat-free cases whose measure the
 paper doubts (the unbalanced ball on a plane, eq-d*1, and on a sphere, eq-d*-1; the body
-with a flat base, z != 0, eq3.14-eq3.15). Their field is homogeneous in M:
+with a flat base, z != 0, eq3.14-eq3.15) or leaves open (the balanced ellipsoid with
+I = mu E + lambda m B, lambda not 0 or 1, eq2.28-eq2.29, and its general case, where "no
+obstacles to an analytic measure are found yet"). Their field is homogeneous in M:
 
     dM/dt is quadratic in M, d(position)/dt is linear in M          (H)
 
@@ -32,10 +34,12 @@ with a flat base, z != 0, eq3.14-eq3.15). Their field is homogeneous in M:
    gives such a bracket a local invariant volume).
 
 Parameters covered: at the fixed pos*, Q is a rational function of the parameters (the
-field is rational in them there), nonzero at the example, hence not the zero function: the
-proof covers every parameter value off the zero set of Q, a proper algebraic subset
-(closed, of measure zero), in particular an open neighbourhood of the example. The drawn
-parameter sets of the claim are proved the same way, each read as exact rationals.
+field is rational in them there; for the ellipsoid an algebraic one, through
+sqrt(gamma.B gamma)), nonzero at the example, hence not the zero function: the proof covers
+every parameter value off the zero set of Q, a proper algebraic subset (closed, of measure
+zero), in particular an open neighbourhood of the example. The drawn parameter sets of the
+claim are proved the same way, each read as exact rationals (for the ellipsoid with B33
+moved by < 1% so that sqrt(gamma.B gamma) is rational at pos*: `at_point`).
 
 Why not an equilibrium with tr(dv/dx) != 0 (the criterion of the issue): with U = 0 the
 equilibria are the rest points (M = 0, where the linearisation vanishes) and steady
@@ -76,7 +80,13 @@ CONTROLS = {
     "sphere/unbalanced-ball": ({"a1": 0.0, "a2": 0.0, "a3": 0.0},
                                "a = 0: the balanced ball on a sphere, density of Table 2"),
     "sphere/flat-base": ({"z": 0.0}, "z = 0: density (I3 + m r^2)^-1/2, eq3.16"),
+    "plane/ellipsoid": ({"lambda": 1.0}, "lambda = 1: density eq2.30"),
 }
+# The ellipsoid's claims hold for lambda not 0 or 1 (eq2.29): the example (lambda = 1, where
+# eq2.30 is a measure) is moved to lambda = 1/2 for them.
+EXAMPLE_CHANGE = {"plane/ellipsoid": {"lambda": 0.5}}
+# Claims that conjecture a measure may exist: a proof of non-existence refutes them.
+REFUTES = {"plane/ellipsoid/negative/general-measure"}
 
 
 def q(x) -> fmpq:
@@ -89,7 +99,8 @@ def exact_params(model) -> ExactParams:
     """The built model's parameters, every float read as its exact binary rational (a drawn
     parameter set is proved at exactly the values the float check uses)."""
     p = np.array([Jet(q(x)) for x in model.p], dtype=object)
-    return ExactParams(model, p, {})
+    extra = {k: Jet(q(v)) for k, v in model.params.items() if k in ("mu", "lambda")}
+    return ExactParams(model, p, extra)
 
 
 def example_model(case_id: str, change: dict | None = None):
@@ -100,7 +111,30 @@ def example_model(case_id: str, change: dict | None = None):
     model = build(case_id, prm)
     # the shortest decimal that round-trips: the example's printed values (0.1 is 1/10)
     p = [Jet(q(Fraction(repr(float(x))))) for x in model.p]
-    return model, ExactParams(model, np.array(p, dtype=object), {})
+    extra = {k: Jet(q(Fraction(repr(float(v))))) for k, v in prm.items()
+             if k in ("mu", "lambda")}
+    return model, ExactParams(model, np.array(p, dtype=object), extra)
+
+
+def at_point(P, pos):
+    """P itself, or for an ellipsoid (eq2.28) P with B33 changed so that sqrt(gamma.B gamma)
+    is rational at gamma = pos (the nearest q with denominator <= 64 to its float value,
+    B33 = (q^2 - B11 g1^2 - B22 g2^2) / g3^2) and I = mu E + lambda m B re-imposed exactly
+    (eq2.29) where the model has it; returns (P', B33 as a Fraction or None)."""
+    if all(P.p[i].v == 0 for i in (L.B11, L.B22, L.B33)):
+        return P, None
+    g = [q(x) for x in pos]
+    b1, b2, b3 = (P.p[i].v for i in (L.B11, L.B22, L.B33))
+    q0 = float(b1 * g[0] ** 2 + b2 * g[1] ** 2 + b3 * g[2] ** 2) ** 0.5
+    qq = q(Fraction(q0).limit_denominator(64))
+    B33 = (qq * qq - b1 * g[0] ** 2 - b2 * g[1] ** 2) / g[2] ** 2
+    p = P.p.copy()
+    p[L.B33] = Jet(B33)
+    mu, lam = P.extra.get("mu"), P.extra.get("lambda")
+    if mu is not None and lam is not None:
+        for i, b in ((L.I1, L.B11), (L.I2, L.B22), (L.I3, L.B33)):
+            p[i] = Jet(mu.v + lam.v * P.p[L.MASS].v * p[b].v)
+    return ExactParams(P.model, p, P.extra), Fraction(int(B33.p), int(B33.q))
 
 
 def _flat(P) -> bool:
@@ -154,13 +188,16 @@ def obstruction(P, pos):
 
 def prove(P, points):
     """The first point of `points` where the premises hold exactly and Q != 0:
-    (pos, Q, premises) or None."""
+    (pos, Q, premises) or None (an ellipsoid is taken at_point)."""
     for pos in points:
-        pre = premises(P, pos)
+        Pp, b33 = at_point(P, pos)
+        pre = premises(Pp, pos)
         if not (pre["homogeneous"] and pre["div at M = 0"] == 0 and pre["div linear in M"]):
             continue
-        Q, _ = obstruction(P, pos)
+        Q, _ = obstruction(Pp, pos)
         if Q != 0:
+            if b33 is not None:
+                pre["B33 (solved for a rational sqrt(gamma.B gamma))"] = str(b33)
             return pos, Q, pre
     return None
 
@@ -184,7 +221,7 @@ def check_no_measure(catalogue, case, claim, *, settings=N_SETTINGS):
 
     if case.id not in CONTROLS:
         return Outcome("unchecked", None, f"no_measure: no homogeneous model for {case.id}")
-    model, P = example_model(case.id)
+    model, P = example_model(case.id, EXAMPLE_CHANGE.get(case.id))
     if any(P.p[i].v != 0 for i in (L.S1, L.S2, L.S3, L.GRAV, L.BRUN)):
         return Outcome("unchecked", None, "no_measure needs U = 0 and S = 0 (homogeneity)")
     ev: dict = {"criterion": "Kozlov homogeneity: a C^1 density rho(M, pos) gives the "
@@ -197,6 +234,10 @@ def check_no_measure(catalogue, case, claim, *, settings=N_SETTINGS):
     pos, Q, pre = found
     what = "c3" if _flat(P) else "c . gamma"
     ev["example parameters"] = _params_text(model)
+    b33 = pre.get("B33 (solved for a rational sqrt(gamma.B gamma))")
+    if b33 is not None:
+        ev["example parameters"] += (f", b3 replaced by {b33} so that sqrt(gamma.B gamma) is "
+                                     "rational")
     ev["rational point"] = _fmt(pos)
     ev[f"obstruction {what} (exact)"] = str(Q)
     ev[f"obstruction {what}"] = float(Q.p) / float(Q.q)
@@ -213,7 +254,7 @@ def check_no_measure(catalogue, case, claim, *, settings=N_SETTINGS):
     ev[f"drawn parameter sets: obstruction {what}"] = drawn
     change, ctext = CONTROLS[case.id]
     _, Pc = example_model(case.id, change)
-    ctrl = [obstruction(Pc, pos_)[0] for pos_ in _points_for(P)]
+    ctrl = [obstruction(at_point(Pc, pos_)[0], pos_)[0] for pos_ in _points_for(P)]
     ev["control"] = ctext
     ev[f"control: {what} at the same points (exact)"] = [str(x) for x in ctrl]
     if any(x != 0 for x in ctrl):
@@ -223,15 +264,20 @@ def check_no_measure(catalogue, case, claim, *, settings=N_SETTINGS):
     msg = (f"proved: no smooth invariant measure (rest point M = 0 at {_fmt(pos)}: exact "
            f"obstruction {what} = {float(Q.p) / float(Q.q):.6g} != 0, so no C^1 positive "
            f"density near it, by homogeneity in M); parameters: the example "
-           f"({_params_text(model)}) and every value off the zero set of this rational "
-           f"function of the parameters (an open dense set containing the example), "
+           f"({ev['example parameters']}) and every value off the zero set of this "
+           f"{'algebraic' if b33 is not None else 'rational'} function of the parameters "
+           f"(closed, of measure zero: an open dense set containing the example), "
            f"{n_drawn} of {settings} drawn sets proved the same way; control "
            f"({ctext}): 0 exactly")
     if claim.id.endswith("hamiltonian"):
         msg += ("; hence no Hamiltonian form after a smooth positive change of time with a "
                 "Poisson structure of constant rank near the rest points")
-    verdict = "verified" if n_drawn == settings else "evidence"
-    return Outcome(verdict, 0.0, msg, evidence=ev)
+    if n_drawn < settings:
+        return Outcome("evidence", 0.0, msg, evidence=ev)
+    if claim.id in REFUTES:      # the paper thinks a measure may exist: the proof refutes it
+        return Outcome("fails", abs(float(Q.p) / float(Q.q)),
+                       "refuted: " + msg.removeprefix("proved: "), evidence=ev)
+    return Outcome("verified", 0.0, msg, evidence=ev)
 
 
 # --- the equilibrium criterion, for the record (the zero-potential finding) -----------------
