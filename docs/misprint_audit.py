@@ -44,7 +44,8 @@ def main(before: str, after: str) -> str:
     missing = [k for k in rows if k not in READINGS]
     assert not missing, f"no reading written for {missing}"
     changed = [k for k in rows if b2[k].get("qualifier") != "misprint"]
-    out = [HEAD.format(eq24=cite("eq2.4")), f"{len(rows)} misprint records before; {len(changed)} change, "
+    out = [HEAD.format(eq24=cite("eq2.4")),
+           f"{len(rows)} misprint records before; {len(changed)} change, "
            f"{len(rows) - len(changed)} stand.\n",
            "| record | printed number | reading in the section's notation | before | after "
            "| evidence |", "|---|---|---|---|---|---|"]

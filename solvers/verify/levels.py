@@ -65,6 +65,14 @@ def strength(rec: dict) -> int:
     return 3 if rec.get("check") in TRAJECTORY_CHECKS else 2
 
 
+def _rank(rid: str, by_claim: dict) -> int:
+    """strength of a record in a cell; a printed form that fails ranks with its correction,
+    so the two stay side by side (printed first, the sort being stable)."""
+    corr = by_claim.get(f"{rid}/corrected")
+    own = strength(by_claim[rid])
+    return min(own, strength(corr)) if corr is not None else own
+
+
 def cell_id(case_id: str, row: str) -> str:
     return f"{case_id}/cell/{row}"
 
@@ -178,7 +186,7 @@ def cell_records(records: list[dict], cat: Catalogue, case_ids=None) -> list[dic
                         bases[c] = basis
                     if basis in CELL_NOTE and CELL_NOTE[basis] not in notes:
                         notes.append(CELL_NOTE[basis])
-                rests.sort(key=lambda x: strength(by_claim[x]))
+                rests.sort(key=lambda x: _rank(x, by_claim))
                 verdict = _aggregate(judged)
                 failing = [c for (v, _), c in zip(judged, ids, strict=True) if v == "fails"]
                 if verdict == "fails":
