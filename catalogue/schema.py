@@ -113,6 +113,7 @@ class CheckName(StrEnum):
     JACOBI_FAILS = "jacobi_fails"  # the printed tensor does NOT satisfy Jacobi
     NEGATIVE_MEASURE = "negative_measure"  # evidence of no smooth measure (attractors, ...)
     NEGATIVE_INTEGRAL = "negative_integral"  # evidence of no further integral (3D maps)
+    NO_MEASURE = "no_measure"  # proof of no smooth measure: exact obstruction at a rest point
     # formula-free: a property tested without any printed formula (issue 10, item 2)
     LINEAR_INTEGRALS_RETURN = "linear_integrals_return"  # two integrals linear in M: (M, gamma)
     # and M3 return to the same values at every crossing of one level of gamma3
@@ -129,6 +130,7 @@ NEGATIVE_CHECKS = frozenset(
         CheckName.JACOBI_FAILS,
         CheckName.NEGATIVE_MEASURE,
         CheckName.NEGATIVE_INTEGRAL,
+        CheckName.NO_MEASURE,
     }
 )
 
@@ -152,6 +154,7 @@ REQUIRED_ARGS: dict[CheckName, tuple[str, ...]] = {
     CheckName.JACOBI_FAILS: ("bracket",),
     CheckName.NEGATIVE_MEASURE: (),
     CheckName.NEGATIVE_INTEGRAL: (),
+    CheckName.NO_MEASURE: (),
     CheckName.LINEAR_INTEGRALS_RETURN: (),
     CheckName.OPEN_PROBLEM: (),
     CheckName.FORMULA_NOT_PRINTED: (),

@@ -78,6 +78,11 @@ def test_cells_over_misprints_are_verified_with_the_note(by):
         for row in ("measure", "gyrostat"):
             cell = by[f"{case}/cell/{row}"]
             assert cell["verdict"] == "verified", cell
+            if (case, row) == ("sphere/routh-ball", "measure"):
+                # issue 18 audit: Table 2's density holds for the ball in the table's own
+                # notation r3 = gamma3 f2 (holds_under), no longer a misprint
+                assert levels.CELL_NOTE["convention"] in cell["notes"]
+                continue
             assert "holds; printed formula corrected" in cell["notes"]
         assert by[f"{case}/cell/gyrostat"]["evidence"]["basis"][
             f"{case}/gyrostat/linear-integrals"] == "corrected"
@@ -145,7 +150,8 @@ def test_refuted_conjecture(by):
     # hedged claims the project only gathers evidence for are not refuted conjectures
     hedged = {cl.id for cl in CAT.claims() if cl.hedged}
     assert len(hedged) >= 10
-    assert by["plane/unbalanced-ball/negative/measure"]["verdict"] == "evidence"
+    # (issue 18: the absence of a measure is now proved exactly, check no_measure)
+    assert by["plane/unbalanced-ball/negative/measure"]["verdict"] == "verified"
     assert by["plane/unbalanced-ball/negative/measure"]["qualifier"] is None
     for rid, rec in by.items():
         if rec.get("qualifier") == "refuted-conjecture":
@@ -196,7 +202,10 @@ def test_cell_rescued_only_by_a_verified_formula_free_test(records):
     cell = next(c for c in levels.cell_records(recs, CAT, {"sphere/round-disk"})
                 if c["row"] == "gyrostat")
     assert cell["verdict"] == "verified" and levels.CELL_NOTE["formula-free"] in cell["notes"]
-    assert levels.CELL_NOTE["corrected"] not in cell["notes"]
+    # (issue 18: the cell also rests on the exact reduced equations eq3.10, corrected, so the
+    # "corrected" note stays; the linear integrals themselves rest on the formula-free test)
+    assert cell["evidence"]["basis"]["sphere/round-disk/gyrostat/linear-integrals"] == \
+        "formula-free"
     for r in recs:
         if r["claim"] == GYRO_FREE[1]:
             r["verdict"] = "fails"                 # ... and without the formula-free test
@@ -235,12 +244,16 @@ def test_errata_and_findings(records, by):
         assert e["label"] or e["where"]
     f = {e["claim"]: e for e in er.findings(records, CAT)}
     assert set(f) == {"plane/spherical-inertia/negative/sphere-generalization",
-                      "sphere/borisov-fedorov/reduction/to-chaplygin"}
+                      "sphere/borisov-fedorov/reduction/to-chaplygin",
+                      # issue 18: no smooth measure for the general ellipsoid, proved
+                      "plane/ellipsoid/negative/general-measure"}
     assert "det(E - k J)" in f["plane/spherical-inertia/negative/sphere-generalization"][
         "finding"]
     assert f["sphere/borisov-fedorov/reduction/to-chaplygin"]["evidence"]["rate |M~|^2"] > 1e-3
     conv = er.conventions(records, CAT)
-    assert len(conv) == 2 and all(c["residual_under_convention"] <= TOL for c in conv)
+    # the bracket orientation (2) and, from the issue 18 audit, eq2.8's labels, the second
+    # form of rho0 in eq3.2 and the Routh ball's Table 2 density (r3 = gamma3 f2)
+    assert len(conv) == 5 and all(c["residual_under_convention"] <= TOL for c in conv)
 
 
 def test_api_errata_tables_and_page(records):
@@ -256,7 +269,7 @@ def test_api_errata_tables_and_page(records):
             store.records[cid] = [r for r in records if r["case"] == cid]
         errata = client.get("/api/errata").json()
         assert errata and all({"claim", "printed", "corrected"} <= set(e) for e in errata)
-        assert len(client.get("/api/findings").json()) == 2
+        assert len(client.get("/api/findings").json()) == 3      # + the ellipsoid (issue 18)
         for tid in ("plane", "sphere"):
             t = client.get(f"/api/tables/{tid}").json()
             for row in t["grid"]:

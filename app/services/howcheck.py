@@ -4,7 +4,7 @@ the checking code itself (solvers/verify/checks), so the page cannot drift from 
 from __future__ import annotations
 
 from catalogue.schema import CheckName
-from solvers.verify.checks import common, formula_free, negative
+from solvers.verify.checks import common, formula_free, negative, nonexistence
 
 
 def constants() -> dict[str, float]:
@@ -60,6 +60,21 @@ def kinds() -> list[dict]:
                      "instead of a surface. This is evidence, never proof.",
          "points": f"{c['N_SETTINGS_NEG']} draws × {c['N_POINTS_NEG']} points, long runs",
          "tolerance": f"obstruction: residual > {c['TOL']:g}"},
+        {"id": "no-measure", "title": "No invariant measure, proved",
+         "checks": [CheckName.NO_MEASURE],
+         "computed": "for the cases whose field is homogeneous in M (no potential, no "
+                     "gyrostat: dM/dt quadratic, the position's rate linear in M), scaling "
+                     "M to 0 turns any smooth positive invariant density into one of the "
+                     "position alone (Kozlov's argument), which needs c · γ = 0 (c3 = 0 for "
+                     "the flat base) where div v = c · ω. The project computes c exactly in "
+                     "rational arithmetic (exact first derivatives of the exact field) at a "
+                     "rational point and finds it nonzero: a proof, for the example's "
+                     "parameters and every parameter value off the zero set of that rational "
+                     "function, and for each drawn parameter set. The control that restores "
+                     "a known measure gives exactly 0.",
+         "points": f"{len(nonexistence.GAMMAS)} rational points, the example and "
+                   f"{c['N_SETTINGS']} drawn parameter sets",
+         "tolerance": "none: exact rationals, the obstruction is ≠ 0"},
         {"id": "formula-free", "title": "Formula-free existence tests",
          "checks": [CheckName.LINEAR_INTEGRALS_RETURN],
          "computed": "that a property holds without using any printed formula for it: for "

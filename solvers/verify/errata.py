@@ -24,6 +24,9 @@ FINDING_TITLES = {
     "sphere/borisov-fedorov/reduction/to-chaplygin":
         "The printed map of the Borisov-Fedorov ball (a = 2R) to the Chaplygin ball on a "
         "plane does not hold",
+    "plane/ellipsoid/negative/general-measure":
+        "No smooth invariant measure for the balanced ellipsoid with I = mu E + lambda m B, "
+        "lambda = 1/2 (the paper: 'it is possible, that this measure exists')",
 }
 
 

@@ -44,6 +44,36 @@ QUALIFIERS = ("convention", "misprint", "inherited", "refuted-conjecture", "refu
               "formula-free")
 
 
+# How strong a record's check is (issue 18, item 5), strongest first: a proof (an exact
+# symbolic identity, an exact witness of a failure, the exact no-measure obstruction), an
+# exact certificate (Schwartz-Zippel at rational points), a pointwise check with exact
+# derivatives in floating point, evidence from trajectories. A cell's `rests_on` lists its
+# records in this order (stable: a record stays next to its correction on ties).
+PROOF_CHECKS = frozenset({"no_measure"})
+TRAJECTORY_CHECKS = frozenset({"linear_integrals", "linear_integrals_return",
+                               "negative_measure", "negative_integral", "permanent_rotations"})
+STRENGTH = ("proof", "exact certificate", "pointwise", "trajectory")
+
+
+def strength(rec: dict) -> int:
+    """Index into STRENGTH of the check a record rests on."""
+    ex = rec.get("exact") or {}
+    if rec.get("check") in PROOF_CHECKS or ex.get("proved") or \
+            (ex.get("negative") and ex.get("holds") is False and ex.get("witness")):
+        return 0
+    if ex.get("holds") is True and not ex.get("negative"):
+        return 1
+    return 3 if rec.get("check") in TRAJECTORY_CHECKS else 2
+
+
+def _rank(rid: str, by_claim: dict) -> int:
+    """strength of a record in a cell; a printed form that fails ranks with its correction,
+    so the two stay side by side (printed first, the sort being stable)."""
+    corr = by_claim.get(f"{rid}/corrected")
+    own = strength(by_claim[rid])
+    return min(own, strength(corr)) if corr is not None else own
+
+
 def cell_id(case_id: str, row: str) -> str:
     return f"{case_id}/cell/{row}"
 
@@ -158,6 +188,7 @@ def cell_records(records: list[dict], cat: Catalogue, case_ids=None) -> list[dic
                         bases[c] = basis
                     if basis in CELL_NOTE and CELL_NOTE[basis] not in notes:
                         notes.append(CELL_NOTE[basis])
+                rests.sort(key=lambda x: _rank(x, by_claim))
                 verdict = _aggregate(judged)
                 failing = [c for (v, _), c in zip(judged, ids, strict=True) if v == "fails"]
                 if verdict == "fails":
