@@ -387,8 +387,6 @@ def serve(
     """Start the web explorer (FastAPI + uvicorn) on http://127.0.0.1:8000."""
     import os
 
-    import uvicorn
-
     if workers is not None:
         os.environ["ROLLING_WORKERS"] = str(workers)
     if host is not None:   # the app derives its Host allow-list from the address it serves
@@ -398,7 +396,9 @@ def serve(
     s = get_settings()
     host, port = host or s.host, port or s.port
     typer.echo(f"rolling-hierarchy explorer on http://{host}:{port}/  (API docs: /docs)")
-    uvicorn.run("app.main:app", host=host, port=port, log_level=s.log_level)
+    from app.core.server import run   # uvicorn with the bounds of issue 21
+
+    run(host, port, log_level=s.log_level)
 
 
 def _parse_section(text: str) -> float:

@@ -26,7 +26,7 @@ from app.api.main import api_router
 from app.api.routes import pages, poincare, reader, scenes, work_precision
 from app.core import errors
 from app.core.config import Settings, get_settings
-from app.core.guards import CSP, HeadAsGet, RequestGuard, SecurityHeaders
+from app.core.guards import CSP, HeadAsGet, HeaderLimit, RequestGuard, SecurityHeaders
 from app.core.pool import WorkerPool
 from app.services import jobs
 from app.services.page_cache import PageCache
@@ -125,6 +125,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     app.add_middleware(RequestGuard, max_body=settings.max_body_bytes,
                        allowed_origins=tuple(settings.allowed_origins))
     app.add_middleware(HeadAsGet)
+    app.add_middleware(HeaderLimit, max_headers=settings.max_headers)
     app.add_middleware(TrustedHostMiddleware, allowed_hosts=settings.trusted_hosts())
     app.add_middleware(SecurityHeaders)
 

@@ -39,7 +39,8 @@ def free_port() -> int:
 
 @contextlib.contextmanager
 def live_server(timeout: float = 60.0, **settings) -> Iterator[str]:
-    """Start `uvicorn app.main:app` on 127.0.0.1 and a free port with ROLLING_* settings;
+    """Start the explorer's server (app.core.server: uvicorn app.main:app with its bounds)
+    on 127.0.0.1 and a free port with ROLLING_* settings;
     yield its base URL once /api/health answers; stop it (SIGTERM, then SIGKILL)."""
     port = free_port()
     # pydantic-settings reads a list or dict from the environment as JSON
@@ -50,7 +51,7 @@ def live_server(timeout: float = 60.0, **settings) -> Iterator[str]:
                    str(Path(tempfile.gettempdir()) / "rolling-hierarchy-test-cache"))
     log = tempfile.TemporaryFile()  # a file, not a pipe: a chatty server never blocks
     proc = subprocess.Popen(
-        [sys.executable, "-m", "uvicorn", "app.main:app", "--host", "127.0.0.1",
+        [sys.executable, "-m", "app.core.server", "--host", "127.0.0.1",
          "--port", str(port), "--log-level", "warning"],
         env=env, stdout=subprocess.DEVNULL, stderr=log)
     url = f"http://127.0.0.1:{port}"
