@@ -396,7 +396,7 @@ def serve(
     s = get_settings()
     host, port = host or s.host, port or s.port
     typer.echo(f"rolling-hierarchy explorer on http://{host}:{port}/  (API docs: /docs)")
-    from app.core.server import run   # uvicorn with the bounds of issue 21
+    from app.core.server import run  # uvicorn with the bounds of issue 21
 
     run(host, port, log_level=s.log_level)
 
