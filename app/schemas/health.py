@@ -11,6 +11,9 @@ class PoolPublic(BaseModel):
     rejected: int
     cancelled: int
     timed_out: int
+    crashed: int = Field(0, description="worker processes that died in mid-job")
+    replaced: int = Field(0, description="worker processes started warm after a death "
+                          "or a deadline")
 
 
 class VerificationStatus(BaseModel):
