@@ -18,13 +18,12 @@ import anyio
 from fastapi import FastAPI
 from fastapi.openapi.docs import get_swagger_ui_html
 from fastapi.responses import HTMLResponse
-from fastapi.staticfiles import StaticFiles
 from starlette.middleware.trustedhost import TrustedHostMiddleware
 
 from app import __version__
 from app.api.main import api_router
 from app.api.routes import pages, poincare, reader, scenes, work_precision
-from app.core import errors
+from app.core import compress, errors
 from app.core.config import Settings, get_settings
 from app.core.guards import CSP, HeadAsGet, HeaderLimit, RequestGuard, SecurityHeaders
 from app.core.pool import WorkerPool
@@ -95,6 +94,13 @@ async def lifespan(app: FastAPI):
             async with anyio.create_task_group() as tg:
                 for _ in range(settings.workers):
                     tg.start_soon(_warm, pool)
+        if settings.precompress:
+            from app.api.routes.pages import plotly_js
+
+            paths = [plotly_js(), *compress.static_paths(settings.static_dir)]
+            made = await anyio.to_thread.run_sync(app.state.assets.precompress, paths)
+            if made:
+                log.info("static files: %d compressed forms made", made)
         if settings.verify_on_start:
             await store.verify_all(pool, settings.verify_deadline_s)
 
@@ -119,7 +125,11 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     app.include_router(poincare.pages)
     app.include_router(scenes.pages)
     app.include_router(work_precision.pages)
-    app.mount("/static", StaticFiles(directory=Path(settings.static_dir)), name="static")
+    # static files compressed once (Brotli or gzip), the routes' answers by GZipMiddleware
+    app.state.assets = compress.AssetCache(settings.cache_dir)
+    app.mount("/static", compress.CompressedStaticFiles(
+        directory=Path(settings.static_dir), assets=app.state.assets), name="static")
+    compress.install(app, app.state.assets)
     # outermost last: headers on every answer (the guards' own included), then the Host
     # allow-list, HEAD as GET, and the checks of state-changing requests
     app.add_middleware(RequestGuard, max_body=settings.max_body_bytes,

@@ -40,6 +40,8 @@ class Settings(BaseSettings):
     cache_dir: Path = Path.home() / ".cache" / "rolling-hierarchy"
     use_verdict_cache: bool = True
     warm_workers: bool = True         # start the worker processes (numba caches) at start
+    # make the compressed forms of the static files at start (app.core.compress)
+    precompress: bool = True
     # request bodies above this many bytes get 413 before anything parses them
     max_body_bytes: int = Field(1 << 20, ge=1024)
     # what one client may hold (app.core.server, issue 21): open connections (at most half
