@@ -5,7 +5,7 @@ from functools import cache
 from pathlib import Path
 
 from fastapi import APIRouter, HTTPException, Request
-from fastapi.responses import FileResponse, HTMLResponse, Response
+from fastapi.responses import FileResponse, HTMLResponse, RedirectResponse, Response
 
 from app.api.deps import PagesDep, SettingsDep, VerdictsDep
 from app.core.errors import not_found_page
@@ -41,6 +41,8 @@ async def home(settings: SettingsDep, verdicts: VerdictsDep, pages: PagesDep) ->
 @router.get("/case/{case_id:path}")
 async def case_page(case_id: str, settings: SettingsDep, verdicts: VerdictsDep,
                     pages: PagesDep):
+    if case_id.endswith("/") and case_id.rstrip("/"):
+        return RedirectResponse(f"/case/{case_id.rstrip('/')}", status_code=308)
     try:
         load_catalogue().case(case_id)
     except KeyError:
