@@ -40,7 +40,8 @@ def free_port() -> int:
 
 
 @contextlib.contextmanager
-def live_server(timeout: float = 60.0, **settings) -> Iterator[str]:
+def live_server(timeout: float = 60.0, plain_uvicorn: bool = False,
+                **settings) -> Iterator[str]:
     """Start the explorer's server (app.core.server: uvicorn app.main:app with its bounds)
     on 127.0.0.1 and a free port with ROLLING_* settings;
     yield its base URL once /api/health answers; stop it (SIGTERM, then SIGKILL)."""
@@ -53,7 +54,10 @@ def live_server(timeout: float = 60.0, **settings) -> Iterator[str]:
                    str(Path(tempfile.gettempdir()) / "rolling-hierarchy-test-cache"))
     log = tempfile.TemporaryFile()  # a file, not a pipe: a chatty server never blocks
     proc = subprocess.Popen(
-        [sys.executable, "-m", "app.core.server", "--host", "127.0.0.1",
+        # plain_uvicorn: uvicorn's defaults (httptools, no bounds), for bench/load.py's
+        # comparison only
+        [sys.executable, "-m", "uvicorn" if plain_uvicorn else "app.core.server",
+         *(["app.main:app"] if plain_uvicorn else []), "--host", "127.0.0.1",
          "--port", str(port), "--log-level", "warning"],
         env=env, stdout=subprocess.DEVNULL, stderr=log)
     url = f"http://127.0.0.1:{port}"

@@ -15,7 +15,7 @@ added here, on h11's protocol class:
 - at most `max_connections` open connections: at the cap a new connection evicts the
   oldest one that holds no request (half a head or an idle keep-alive), so a flood of
   stalled sockets cannot lock out /api/health; with none to evict it is closed at once;
-- closing while the client is still sending a body (a 413, a timeout): reading stops,
+- closing while the client is still sending (a 413, a 431, a timeout): reading stops,
   the answer is flushed, the write side is shut (the client sees the end of the answer),
   and the socket is closed `linger_s` later. The unread bytes stay in the kernel's
   buffers and never reach the event loop; closing at once would reset the connection
@@ -104,7 +104,7 @@ class _LingeringTransport:
         if self._closing or self._t.is_closing():
             return
         self._closing = True
-        if self._p.conn.their_state is not h11.SEND_BODY or self._p.limits.linger_s <= 0:
+        if not self._p.unread_input() or self._p.limits.linger_s <= 0:
             self._t.close()
             return
         STATS["lingered"] += 1
@@ -131,6 +131,13 @@ class GuardedH11Protocol(H11Protocol):
         self._timer_kind = ""
         self._since = time.monotonic()
         self._refused = False
+
+    def unread_input(self) -> bool:
+        """The client may still be sending: a body not read to its end, a head cut short
+        by a timeout or refused as too large or malformed."""
+        state = self.conn.their_state
+        return (state is h11.SEND_BODY or state is h11.ERROR
+                or (state is h11.IDLE and bool(self.conn.trailing_data[0])))
 
     # --- the cap -----------------------------------------------------------------------
 
