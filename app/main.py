@@ -1,4 +1,5 @@
-"""The explorer: FastAPI app `app.main:app` (uvicorn app.main:app, or `rolling serve`).
+"""The explorer: FastAPI app `app.main:app`, served by `rolling serve` (app.core.server:
+uvicorn with bounds on what a client can hold; plain `uvicorn app.main:app` lacks them).
 
     /                 Tables 1 and 2 as in the paper, verdict marks, links to the cases
     /case/{id}        a case: claims with sources and verdicts, simulate panel, plots

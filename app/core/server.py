@@ -13,8 +13,9 @@ added here, on h11's protocol class:
   the connection or of the first byte of the request (408 and close);
 - a body: a gap of `body_timeout_s` without a byte closes the connection;
 - at most `max_connections` open connections: at the cap a new connection evicts the
-  oldest one that holds no request (half a head or an idle keep-alive), so a flood of
-  stalled sockets cannot lock out /api/health; with none to evict it is closed at once;
+  oldest one that holds no request, first among those that never completed one (half a
+  head, nothing sent), then among idle keep-alive ones, so a flood of stalled sockets
+  cannot lock out /api/health; with none to evict it is closed at once;
 - closing while the client is still sending (a 413, a 431, a timeout): reading stops,
   the answer is flushed, the write side is shut (the client sees the end of the answer),
   and the socket is closed `linger_s` later. The unread bytes stay in the kernel's
@@ -126,11 +127,13 @@ class GuardedH11Protocol(H11Protocol):
 
     def __init__(self, config, server_state, app_state, _loop=None):
         super().__init__(config, server_state, app_state, _loop)
-        self.conn = h11.Connection(h11.SERVER, self.limits.max_header_bytes)
+        if config.h11_max_incomplete_event_size != self.limits.max_header_bytes:
+            self.conn = h11.Connection(h11.SERVER, self.limits.max_header_bytes)
         self._timer: asyncio.TimerHandle | None = None
         self._timer_kind = ""
         self._since = time.monotonic()
         self._refused = False
+        self._served = 0
 
     def unread_input(self) -> bool:
         """The client may still be sending: a body not read to its end, a head cut short
@@ -151,7 +154,9 @@ class GuardedH11Protocol(H11Protocol):
                 and not p.transport.is_closing()]
         if not idle:
             return False
-        oldest = min(idle, key=lambda p: p._since)
+        # a connection that never finished a request (a stalled or empty head) goes before
+        # an idle keep-alive one (a prober or a browser between two requests)
+        oldest = min(idle, key=lambda p: (p._served > 0, p._since))
         STATS["evicted"] += 1
         oldest._cancel_timer()
         oldest.transport.abort()
@@ -222,6 +227,7 @@ class GuardedH11Protocol(H11Protocol):
             self._cancel_timer()
 
     def on_response_complete(self) -> None:
+        self._served += 1
         super().on_response_complete()
         # an idle keep-alive connection is uvicorn's keep-alive timer's (unless the next
         # request has begun to arrive: handle_events armed the header deadline)
