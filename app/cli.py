@@ -33,30 +33,79 @@ def _write_json(obj) -> None:
 
 
 TimeoutOpt = Annotated[float | None, typer.Option(
-    "--timeout", help="stop after this many seconds of wall time (exit 3)")]
+    "--timeout", help="stop after this many seconds of wall time (exit 3; at most a week)")]
+# bounds of the inputs that size the machine's work (issue 21): a week of wall time (a
+# larger timer overflows the watchdog's wait), 4 worker processes per core, and the seeds
+# the API accepts (app/schemas/poincare.py)
+MAX_TIMEOUT_S = 7 * 86400.0
+MAX_SEED = 2**32 - 1
+
+
+def _max_workers() -> int:
+    return 4 * (os.cpu_count() or 1)
+
+
+def _check_workers(n: int | None, zero: str | None = None) -> None:
+    """--workers: 1 .. 4 x the cores; 0 only where it has a meaning (`zero`)."""
+    if n is None or (n == 0 and zero):
+        return
+    hi = _max_workers()
+    if not 1 <= n <= hi:
+        also = f"0 ({zero}) or " if zero else ""
+        _fail(f"--workers {n}: must be {also}a number of processes from 1 to {hi} "
+              f"(4 x the {os.cpu_count() or 1} cores)")
+
+
+def _check_seed(seed: int) -> None:
+    if not 0 <= seed <= MAX_SEED:
+        _fail(f"--seed {seed}: must lie in [0, 2**32 - 1] (as in the API)")
+
+
+def _check_timeout(seconds: float | None) -> None:
+    if seconds is None:
+        return
+    if not (seconds > 0 and seconds <= MAX_TIMEOUT_S):     # NaN fails both
+        _fail(f"--timeout {seconds!r}: must be a positive number of seconds, at most "
+              f"{MAX_TIMEOUT_S:g} (a week)")
 
 
 @contextlib.contextmanager
-def _timeout(seconds: float | None):
+def _timeout(seconds: float | None, graceful: bool = False):
     """Stop the whole process when `seconds` have passed: the compiled kernels run without
-    returning to Python, so a watchdog thread ends the process (exit 3) from outside."""
+    returning to Python, so a watchdog thread ends the process (exit 3) from outside.
+    `graceful` (sweep): first interrupt the main thread, so that the dask cluster is shut
+    down by its own `finally` (a process that exits under it leaves its semaphores to the
+    resource tracker, which complains on stderr); the hard exit follows 15 s later."""
     if seconds is None:
         yield
         return
-    if not seconds > 0 or seconds != seconds or seconds == float("inf"):
-        _fail(f"--timeout {seconds!r}: must be a positive number of seconds")
-    done = threading.Event()
+    _check_timeout(seconds)
+    done, fired = threading.Event(), threading.Event()
+    message = f"stopped by --timeout after {seconds:g} s"
 
     def watch():
-        if not done.wait(seconds):
-            sys.stdout.flush()
-            sys.stderr.write(f"error: stopped by --timeout after {seconds:g} s\n")
-            sys.stderr.flush()
-            os._exit(EXIT_SINGULAR)
+        if done.wait(seconds):
+            return
+        if graceful:
+            fired.set()
+            import _thread
+
+            _thread.interrupt_main()
+            if done.wait(15.0):
+                return
+        sys.stdout.flush()
+        sys.stderr.write(f"error: {message}\n")
+        sys.stderr.flush()
+        os._exit(EXIT_SINGULAR)
 
     threading.Thread(target=watch, daemon=True).start()
     try:
         yield
+    except KeyboardInterrupt:
+        if not fired.is_set():
+            raise
+        done.set()
+        _fail(message, EXIT_SINGULAR)
     finally:
         done.set()
 
@@ -118,6 +167,7 @@ def simulate(
     from solvers.errors import InputError
     from solvers.models.cases import get_case
 
+    _check_timeout(timeout)
     try:
         spec = get_case(case)
         params = {**(spec.example if example else {}), **_parse_sets(set_)}
@@ -184,6 +234,8 @@ def verify(
     from solvers.errors import InputError
     from solvers.verify.parallel import verify_parallel
 
+    _check_workers(workers, zero="one per core")
+    _check_timeout(timeout)
     if claim is not None:
         known = {cl.id for c in load_catalogue().cases() if case in (None, c.id)
                  for cl in c.claims}
@@ -292,6 +344,7 @@ def errata(
     from solvers.verify import errata as er
     from solvers.verify.parallel import verify_parallel
 
+    _check_workers(workers, zero="one per core")
     cat = load_catalogue()
     records = verify_parallel(workers=workers)
     out = {"errata": er.errata(records, cat), "conventions": er.conventions(records, cat),
@@ -387,8 +440,7 @@ def serve(
     """Start the web explorer (FastAPI + uvicorn) on http://127.0.0.1:8000."""
     import os
 
-    import uvicorn
-
+    _check_workers(workers)
     if workers is not None:
         os.environ["ROLLING_WORKERS"] = str(workers)
     if host is not None:   # the app derives its Host allow-list from the address it serves
@@ -398,7 +450,9 @@ def serve(
     s = get_settings()
     host, port = host or s.host, port or s.port
     typer.echo(f"rolling-hierarchy explorer on http://{host}:{port}/  (API docs: /docs)")
-    uvicorn.run("app.main:app", host=host, port=port, log_level=s.log_level)
+    from app.core.server import run  # uvicorn with the bounds of issue 21
+
+    run(host, port, log_level=s.log_level)
 
 
 def _parse_section(text: str) -> float:
@@ -443,6 +497,8 @@ def poincare(
     from solvers.models.cases import get_case
     from solvers.simulate import compiled_methods
 
+    _check_seed(seed)
+    _check_timeout(timeout)
     if method not in compiled_methods():
         _fail(f"--method {method!r}: choose a compiled method ({', '.join(compiled_methods())})")
     try:
@@ -493,17 +549,27 @@ def sweep(
     example: Annotated[bool, typer.Option("--example", help="the case's demo parameters "
                                           "(--set overrides)")] = False,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
+    timeout: TimeoutOpt = None,
 ):
     """Maps over a parameter (--vary) or over energy levels (--energies) on dask."""
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TimeElapsedColumn
 
     from solvers.errors import InputError
-    from solvers.maps.sweeps import DaskSettings, energy_tasks, parameter_tasks
+    from solvers.maps.sweeps import (
+        DaskSettings,
+        energy_tasks,
+        parameter_tasks,
+        seeded,
+        validate,
+    )
     from solvers.maps.sweeps import sweep as run
     from solvers.models.cases import get_case
 
     if (vary is None) == (energies is None):
         _fail("give exactly one of --vary NAME=v1,v2,... and --energies e1,e2,...")
+    _check_workers(workers)     # 0 would start a cluster without workers and wait forever
+    _check_seed(seed)
+    _check_timeout(timeout)
     try:
         params = {**(get_case(case).example if example else {}), **_parse_sets(set_)}
         kw = {"g0": _parse_section(section), "trajectories": trajectories, "points": points}
@@ -520,9 +586,11 @@ def sweep(
         settings = base.model_copy(update={k: v for k, v in
                                            {"workers": workers, "scheduler": scheduler}.items()
                                            if v is not None})
-        with Progress("[progress.description]{task.description}", BarColumn(),
-                      MofNCompleteColumn(), TimeElapsedColumn(),
-                      console=_stderr_console(), transient=as_json) as bar:
+        validate(seeded(tasks, seed))     # bad input: one line, before a bar is drawn
+        with _timeout(timeout, graceful=True), Progress(
+                "[progress.description]{task.description}", BarColumn(),
+                MofNCompleteColumn(), TimeElapsedColumn(),
+                console=_stderr_console(), transient=True) as bar:
             task = bar.add_task("maps", total=len(tasks))
             res = run(tasks, seed=seed, settings=settings,
                       progress=lambda done, total: bar.update(task, completed=done))

@@ -38,6 +38,7 @@ class VerdictStore:
         self.loaded = 0                               # cases served from the database
         self._keys: dict[str, str] | None = None
         self._db: VerdictDB | None = None
+        self._no_store = False
 
     def keys(self) -> dict[str, str]:
         """case id -> hash of what its verdicts depend on (computed once per process)."""
@@ -100,10 +101,16 @@ class VerdictStore:
         self._save(case_id, records, now)
 
     def db(self) -> VerdictDB | None:
-        if self.cache_dir is None:
+        if self.cache_dir is None or self._no_store:
             return None
         if self._db is None:
-            self._db = VerdictDB(Path(self.cache_dir) / DB_NAME)
+            try:
+                self._db = VerdictDB(Path(self.cache_dir) / DB_NAME)
+            except (OSError, Exception) as exc:   # an uncreatable directory, a dead disk
+                self._no_store = True
+                log.warning("no verdict store in %s (%s): verdicts are computed at every "
+                            "start and NEW VERDICTS ARE NOT SAVED", self.cache_dir, exc)
+                return None
         return self._db
 
     def load_cache(self) -> bool:
@@ -129,9 +136,16 @@ class VerdictStore:
     def _save(self, case_id: str, records: list[dict], at: float) -> None:
         try:
             db = self.db()
-            if db is not None:
-                db.save(case_id, self.key(case_id), records, __version__, at)
-        except Exception as exc:  # a read-only home: verdicts stay in memory
+            if db is None:
+                return
+            recreated = db.recreated
+            db.save(case_id, self.key(case_id), records, __version__, at)
+            if db.recreated != recreated:     # the file was deleted: store what we hold
+                for cid, recs in self.records.items():
+                    if cid != case_id:
+                        db.save(cid, self.key(cid), recs, __version__,
+                                self.computed[cid]["computed_at"])
+        except Exception as exc:  # a disk error: verdicts stay in memory
             log.warning("cannot store verdicts in %s: %r", self.cache_dir, exc)
 
     def progress(self) -> str:

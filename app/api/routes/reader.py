@@ -4,6 +4,7 @@ and their data under /api: printed numbers, glossary, references, search, the ch
 from __future__ import annotations
 
 from html import escape
+from typing import Annotated
 
 from fastapi import APIRouter, Query
 from fastapi.responses import HTMLResponse
@@ -17,6 +18,7 @@ from catalogue.numbering import printed, printed_numbers
 
 router = APIRouter(tags=["reader"])
 pages = APIRouter(include_in_schema=False)
+MAX_FILTER = 60       # the longest facet value is 29 characters
 
 
 @router.get("/printed-numbers")
@@ -49,10 +51,14 @@ async def how_we_check_api() -> dict:
                          for v, m, t in howcheck.VERDICTS]}
 
 
+# a filter names one of the facets (GET /api/search lists them): a few words at most
+Filter = Annotated[str, Query(max_length=MAX_FILTER)]
+
+
 @router.get("/search")
 async def search_api(verdicts: VerdictsDep, q: str = Query("", max_length=200),
-                     body: str = "", surface: str = "", kind: str = "",
-                     verdict: str = "") -> dict:
+                     body: Filter = "", surface: Filter = "", kind: Filter = "",
+                     verdict: Filter = "") -> dict:
     """Cases and claims matching every word of q, filtered by body, surface, kind, verdict."""
     return search(q, body, surface, kind, verdict, verdicts.by_claim(), verdicts.pending())
 
@@ -81,8 +87,8 @@ def _select(name: str, options: list[str], value: str) -> str:
 
 @pages.get("/search", response_class=HTMLResponse)
 async def search_page(verdicts: VerdictsDep, q: str = Query("", max_length=200),
-                      body: str = "", surface: str = "", kind: str = "",
-                      verdict: str = "") -> str:
+                      body: Filter = "", surface: Filter = "", kind: Filter = "",
+                      verdict: Filter = "") -> str:
     r = search(q, body, surface, kind, verdict, verdicts.by_claim(), verdicts.pending())
     f = facets()
     form = (f'<form class="searchform" role="search" action="/search" method="get">'

@@ -111,16 +111,17 @@ _RUN_DESCRIPTION = (
                         200: {"content": _RUN_CONTENT, "description": _RUN_DESCRIPTION}})
 async def simulate(req: SimulateRequest, request: Request, pool: PoolDep,
                    settings: SettingsDep,
-                   format: Literal["json", "csv"] | None = Query(
+                   format: Literal["json", "csv", "arrow"] | None = Query(
                        None, description="csv: one row per sample (t, state, invariants), "
-                       "whatever the Accept header says; json: the JSON object; none: "
-                       "the type the Accept header prefers")) -> Response:
+                       "whatever the Accept header says; json: the JSON object; arrow: the "
+                       "Arrow IPC stream (as Accept: application/vnd.apache.arrow.stream); "
+                       "none: the type the Accept header prefers")) -> Response:
     """Integrate one case from an initial state over [0, t_end]: the state and every
     invariant the case carries at `samples` times, and the cost of the run."""
     if format is None:
         media = payloads.negotiate(request.headers.get("accept"))
     else:
-        media = payloads.CSV if format == "csv" else payloads.JSON
+        media = {"csv": payloads.CSV, "arrow": payloads.ARROW}.get(format, payloads.JSON)
     job = _job(await _resolved(req, settings))
     fn = {payloads.CSV: jobs.simulate_csv, payloads.ARROW: jobs.simulate_arrow}.get(
         media, jobs.simulate_json)
