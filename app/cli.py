@@ -78,11 +78,12 @@ def _parse_state(text: str) -> list[str]:
 @cli.command()
 def cases():
     """List the case ids (Tables 1 and 2) with their parameters."""
+    from catalogue.numbering import cite
     from solvers.models.cases import registry
 
     for cid, c in registry().items():
         opt = " ".join(f"[{k}]" for k in c.optional)
-        typer.echo(f"{cid:32s} {c.title}\n{'':32s} params: {' '.join(c.required)} {opt}")
+        typer.echo(f"{cid:32s} {cite(c.title)}\n{'':32s} params: {' '.join(c.required)} {opt}")
 
 
 @cli.command()

@@ -45,22 +45,27 @@ function attributionText(list) {
   }).join("; ");
 }
 
+// "(M, gamma)" -> "(M, γ)": the data spells Greek letters out, the page does not
+function greekWords(text) {
+  return String(text).replace(/\b(gamma|omega|lambda|mu|rho|tau)\b/g,
+    (w) => ({ gamma: "γ", omega: "ω", lambda: "λ", mu: "μ", rho: "ρ", tau: "τ" })[w]);
+}
+
 function showHead() {
   document.title = `${C.title} — Rolling hierarchy`;
   $("case-title").textContent = C.title;
   $("crumb-table").innerHTML = `<a href="/#table-${C.surface}">Table ${C.table}</a>`;
   $("crumb-case").textContent = `column ${C.column}`;
   const m = C.model;
-  const cond = Object.entries(m.conditions || {}).filter(([, v]) => v !== null && v !== undefined)
-    .map(([k, v]) => `${k}: ${v}`).join(", ");
+  // the conditions in words (conditions_text), not the data's key: value pairs
+  const cond = (m.conditions_text || []).map(escapeHtml).join("; ");
   $("facts").innerHTML = [
     `Table ${C.table}, column ${C.column}`,
     `support: ${C.surface}`,
-    `body: ${m.body}`,
-    `state ${m.state}`,
+    `body: ${escapeHtml(String(m.body).replaceAll("-", " "))}`,
+    `state ${escapeHtml(greekWords(m.state))}`,
     `equations ${(m.equation_numbers || []).join(", ")}`,
     cond ? `conditions: ${cond}` : "",
-    `id <code>${escapeHtml(C.id)}</code>`,
   ].filter(Boolean).map((f) => `<span class="chip">${f}</span>`).join("");
   showTally();
 }
@@ -167,7 +172,7 @@ function claimHtml(c) {
   const v = c.verdict;
   const source = [c.number ? `<strong>${escapeHtml(c.number)}</strong>` : "", c.where ? escapeHtml(c.where) : ""]
     .filter(Boolean).join(" — ");
-  const cond = Object.entries(c.conditions).map(([k, x]) => `${escapeHtml(k)}: ${escapeHtml(x)}`).join("; ");
+  const cond = (c.conditions_text || []).map(escapeHtml).join("; ");
   const args = Object.entries(c.check_args).map(([k, x]) => `${escapeHtml(k)} ${escapeHtml(Array.isArray(x) ? x.join(", ") : String(x))}`).join("; ");
   const dl = [
     source ? ["in the paper", source] : null,
