@@ -25,7 +25,7 @@ import yaml
 from typer.testing import CliRunner
 
 from catalogue.load import load_catalogue
-from catalogue.numbering import DATA, _COMMENT, cite, derive, printed, printed_numbers
+from catalogue.numbering import _COMMENT, DATA, cite, derive, printed, printed_numbers
 from tests.e2e.site import internal_label_re
 
 INTERNAL = internal_label_re()

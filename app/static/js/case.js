@@ -37,11 +37,13 @@ function katexReady() {
 
 function attributionText(list) {
   return list.map((a) => {
-    const who = a.authors || a.reference_authors.join(", ") || a.ref;
+    const who = a.authors || a.reference_authors.join(", ") || "the reference";
     const year = a.year ? ` (${a.year})` : "";
     const title = a.reference_title ? `, <cite>${escapeHtml(a.reference_title)}</cite>` : "";
     const note = a.note ? ` — ${escapeHtml(a.note)}` : "";
-    return `${escapeHtml(who)}${year}${title} <span class="cid">[${escapeHtml(a.ref)}]</span>${note}`;
+    // the reference's key ([bm-new]) is data: the reader gets a link to its entry instead
+    const ref = a.ref ? ` <a href="/bibliography#ref-${encodeURIComponent(a.ref)}">reference</a>` : "";
+    return `${escapeHtml(who)}${year}${title}${ref}${note}`;
   }).join("; ");
 }
 
