@@ -74,3 +74,30 @@ def phrases(conditions: dict | None) -> list[str]:
     """Every set condition, as phrases, in the data's order."""
     return [phrase(k, v) for k, v in (conditions or {}).items()
             if v is not None and str(v).strip() != ""]
+
+
+_CITE = re.compile(r"\\cite\s*\{([^{}]*)\}")
+
+
+def _surnames(authors: list[str]) -> str:
+    names = [a.replace(".", ". ").split()[-1] for a in authors if a.strip()]
+    return ", ".join(names) if len(names) <= 2 else f"{names[0]} et al."
+
+
+def cite_names(tex: str | None) -> str | None:
+    """Printed LaTeX with each `\\cite{key}` naming the authors ("\\cite{Borisov, Mamaev}"):
+    the key (`bormam-2`) is the seed's, not the reader's; the seed has no bibliography to
+    number the references by. A key whose authors the paper does not name stays a key."""
+    if not tex or "\\cite" not in tex:
+        return tex
+    from catalogue.load import load_catalogue
+
+    refs = {r.id: r for r in load_catalogue().references}
+
+    def one(m: re.Match) -> str:
+        keys = [k.strip() for k in m.group(1).split(",")]
+        shown = [_surnames(refs[k].authors) if k in refs and refs[k].authors else k
+                 for k in keys]
+        return "\\cite{" + "; ".join(shown) + "}"
+
+    return _CITE.sub(one, tex)

@@ -75,8 +75,8 @@ def how_we_check() -> str:
         "<p>Every statement of Tables 1 and 2 and of the text is a <em>claim</em>, and every "
         "claim names the check that decides it. The checks evaluate the printed formulas at "
         "random states with exact derivatives, not by watching a trajectory drift. The numbers "
-        "below are read from the checking code (<code>solvers/verify/checks</code>) when the "
-        "page is served.</p>",
+        "below are read from the checking code itself when the page is served, so they cannot "
+        "drift from what the checks do.</p>",
         f'<p class="constants">Tolerance <strong>{c["TOL"]:g}</strong> on relative residuals; '
         f'<strong>{c["N_SETTINGS"]}</strong> parameter draws × <strong>{c["N_POINTS"]}'
         "</strong> random phase points per claim. Round-off gives residuals near 1e-15 to "

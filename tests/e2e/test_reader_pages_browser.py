@@ -19,7 +19,8 @@ INTERNAL = internal_label_re()     # every label of the seed and of the catalogu
 # Developer words a page must not show (issue 17, item 7): the pages speak of the physics;
 # the CLI keeps its flags, the API and the catalogue their field names.
 DEVELOPER_WORDS = {
-    "snake_case identifier": r"\b[a-z][a-z0-9]*_[a-z][a-z0-9]*(?:_[a-z0-9]+)*\b",
+    # a program's name (mean_logdet, allow_any_inertia, flat_F), not a subscript (b_i, x_n)
+    "snake_case identifier": r"\b[a-z]{2,}[a-z0-9]*_[A-Za-z][A-Za-z0-9]*(?:_[A-Za-z0-9]+)*\b",
     "file path": r"\b[\w.-]+/[\w./-]*\.(?:ya?ml|py|js|json|md|html|css|txt)\b"
                  r"|\b(?:catalogue|solvers|app|tests|bench|scripts|docs)/[\w-]",
     "command-line flag": r"(?<![\w-])--[a-z][a-z0-9]+(?:-[a-z0-9]+)*",
@@ -85,7 +86,8 @@ def test_the_developer_word_patterns_find_the_issues_examples():
     assert set(developer_words(text)) == set(DEVELOPER_WORDS)
     assert not developer_words("I1 ≠ I2 ≠ I3 ≠ I1, no gyrostat (S = 0), any potential U(γ); "
                                "(2.24); Fig. 3; 1.2e-15; e.g. a − b; the Chaplygin ball "
-                               "(Borisov, Mamaev 2001); [0, 1]; /case/plane/chaplygin-ball")
+                               "(Borisov, Mamaev 2001); [0, 1]; /case/plane/chaplygin-ball; "
+                               "b_i, x_n; 0.833967 + 0.521929i")
 
 
 def test_no_developer_words_on_any_page(page, server):
