@@ -101,3 +101,20 @@ def cite_names(tex: str | None) -> str | None:
         return "\\cite{" + "; ".join(shown) + "}"
 
     return _CITE.sub(one, tex)
+
+
+# the integrals a run reports (solvers' integral names) as a reader names them
+INVARIANTS = {
+    "energy": "energy H",
+    "gamma2": "γ² = 1",
+    "area": "(M, γ)",
+    "M2": "M²",
+    "jellett": "Jellett's integral (M, r)",
+    "routh": "Routh's integral",
+    "unbalanced_F": "F = M² − m r² (M, ω)",
+    "borisov_fedorov": "the Borisov–Fedorov integral",
+}
+
+
+def invariant_name(name: str) -> str:
+    return INVARIANTS.get(name, name.replace("_", " "))

@@ -398,7 +398,7 @@ function onEdit() {
     validateCtl = new AbortController();
     try {
       const v = await api("/api/validate", { method: "POST", body: req, signal: validateCtl.signal });
-      showFormMessage(`✓ valid — reports ${v.invariants.join(", ")}`, "good", null);
+      showFormMessage(`✓ valid — reports ${(v.invariants_text || v.invariants).join(", ")}`, "good", null);
       // the pilot is not aborted by a later edit (a short run; aborting counts as a
       // cancellation on the server): a late answer about an older form is dropped instead
       const mine = ++pilotGeneration;
