@@ -92,7 +92,27 @@ function claimLink(id) {
     const text = cl ? `${cl.kind}${cl.number ? ` ${cl.number}` : ""}` : parts.slice(2).join(" ");
     return `<a href="#${anchor(id)}">${escapeHtml(text)}</a>`;
   }
-  return `<a href="/case/${owner}#${anchor(id)}">${escapeHtml(`${parts[2] || "claim"} on the ${owner} page`)}</a>`;
+  // another case's claim: named by its kind and the case in words, not by its record id
+  const where = `${parts[1].replaceAll("-", " ")} on a ${parts[0]}`;
+  return `<a href="/case/${owner}#${anchor(id)}">${escapeHtml(`${parts[2] || "claim"} of the ${where}`)}</a>`;
+}
+
+// the claims of a cell: several claims with the same kind and number ("gyrostat (2.38)")
+// are one entry with numbered links, not the same words repeated
+function claimLinks(ids) {
+  const own = ids.filter((id) => C.claims.some((x) => x.id === id));
+  const groups = new Map();
+  for (const id of own) {
+    const cl = C.claims.find((x) => x.id === id);
+    const text = `${cl.kind}${cl.number ? ` ${cl.number}` : ""}`;
+    if (!groups.has(text)) groups.set(text, []);
+    groups.get(text).push(id);
+  }
+  const parts = [...groups].map(([text, list]) => list.length === 1
+    ? `<a href="#${anchor(list[0])}">${escapeHtml(text)}</a>`
+    : `${escapeHtml(text)} (${list.length} claims: ${list.map((id, i) =>
+      `<a href="#${anchor(id)}" aria-label="${escapeHtml(text)}, claim ${i + 1}">${i + 1}</a>`).join(", ")})`);
+  return [...parts, ...ids.filter((id) => !own.includes(id)).map(claimLink)].join(", ");
 }
 
 function showCells() {
@@ -101,7 +121,7 @@ function showCells() {
     const mark = c.verdict ? markHtml(c.verdict, own ? `#${anchor(own)}` : `#row-${c.row}`) : "";
     const att = c.attribution.length ? `<div class="claimrefs">credited: ${attributionText(c.attribution)}</div>` : "";
     const refs = c.claims.length
-      ? `<div class="claimrefs">claims: ${c.claims.map(claimLink).join(", ")}</div>` : "";
+      ? `<div class="claimrefs">claims: ${claimLinks(c.claims)}</div>` : "";
     const merged = c.merged.length > 1 ? `<div class="claimrefs">merged cell: spans ${c.merged.length} columns</div>` : "";
     const sub = c.subrow ? `<div>${textHtml(c.subrow.printed)}</div>` : "";
     const cm = c.verdict && c.verdict.marks && c.verdict.marks.length ? c.verdict.marks[0] : null;
