@@ -124,13 +124,14 @@ def test_glossary_popups_show_printed_numbers():
 
 # --- the CLI's text output -------------------------------------------------------------
 
-CLI_CASES = ("sphere/flat-base", "plane/round-disk")
+CLI_CASES = ("sphere/flat-base", "plane/round-disk", "plane/unbalanced-ball")
 
 
 @pytest.fixture(scope="module")
 def records():
-    """Real verdict records of two cases (flat base: the issue's eq3.16; the disk: the
-    misprints of (2.17)) on which `rolling verify` and `rolling errata` print their text."""
+    """Real verdict records of three cases (the flat base and the unbalanced ball: the
+    issue's "eq3.16" and "density eq2.17"; the disk: the misprints of (2.17)) on which
+    `rolling verify` and `rolling errata` print their text."""
     from solvers.verify.run import verify
 
     return [r for cid in CLI_CASES for r in verify(case=cid)]
@@ -197,7 +198,7 @@ def _shown(x, out: list[str]) -> list[str]:
 def test_case_and_table_records_with_real_verdicts_show_printed_numbers(records):
     """The issue's examples live in verdict texts (a cell's note: "density eq2.17",
     "eq3.16"), which the test server's pages have not computed: here the case and table
-    records are built from real verdicts of two cases, as the pages receive them."""
+    records are built from real verdicts of three cases, as the pages receive them."""
     from app.services import views
 
     by_claim = {r["claim"]: r for r in records}
@@ -216,5 +217,8 @@ def test_case_and_table_records_with_real_verdicts_show_printed_numbers(records)
     joined = "\n".join(texts)
     # LaTeX quotes keep \eqref{number} / \ref{n}: numbers, which rule 2 reads as such
     joined = re.sub(r"\\(eq)?ref\s*\{([^}]*)\}", r"(\2)", joined)
-    assert "(3.18)" in joined      # the flat base's density, named in its cell's message
+    # the issue's examples: the flat base's density (3.18) and the Chaplygin ball's (2.24),
+    # named in the measure cells' messages of the flat base and of the unbalanced ball
+    assert "density (I3 + m r^2)^-1/2, (3.18)" in joined
+    assert "the Chaplygin ball, density (2.24)" in joined
     assert not reader_problems(joined), sorted(set(reader_problems(joined)))

@@ -43,10 +43,12 @@ def developer_words(text: str) -> dict[str, list[str]]:
 
 
 # what a reader sees: the text on screen, without the typeset formulas' hidden TeX source
-# (KaTeX's MathML annotation) and without the "Details" toggles that hold, on purpose and
-# labelled as such, the developer's view of a claim (check name, claim id, raw message)
+# (KaTeX's MathML annotation), without the "Details" toggles that hold, on purpose and
+# labelled as such, the developer's view of a claim (check name, claim id, raw message), and
+# without the command lines offered to copy ("Reproduce: rolling verify --claim ...")
 READER_TEXT = """() => {
-  const hide = [...document.querySelectorAll('.katex-mathml, annotation, details.dev')];
+  const hide = [...document.querySelectorAll(
+    '.katex-mathml, annotation, details.dev, .repro code')];
   const was = hide.map((e) => e.style.display);
   hide.forEach((e) => { e.style.display = 'none'; });
   const text = document.body.innerText;
