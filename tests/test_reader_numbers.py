@@ -185,7 +185,9 @@ DATA_KEYS = {"id", "label", "labels", "claim", "claims", "case", "rests_on", "me
 def _shown(x, out: list[str]) -> list[str]:
     if isinstance(x, dict):
         for k, v in x.items():
-            if k not in DATA_KEYS:
+            # a data key names data when it holds a value; a record under it ("verdict":
+            # {"message": ...}) holds text again
+            if k not in DATA_KEYS or isinstance(v, dict):
                 _shown(v, out)
     elif isinstance(x, list):
         for v in x:
