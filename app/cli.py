@@ -26,6 +26,14 @@ def _fail(message: str, code: int = EXIT_INPUT):
     raise typer.Exit(code)
 
 
+def _input_message(e) -> str:
+    """An InputError's message, with the flag of this command line that accepts the input
+    anyway where there is one (the message itself names no interface's flag)."""
+    option = getattr(e, "option", None)
+    flag = f" (--{option.replace('_', '-')} studies such input anyway)" if option else ""
+    return f"{e}{flag}"
+
+
 def _write_json(obj) -> None:
     from app.services.jobs import dumps
 
@@ -127,11 +135,12 @@ def _parse_state(text: str) -> list[str]:
 @cli.command()
 def cases():
     """List the case ids (Tables 1 and 2) with their parameters."""
+    from catalogue.numbering import cite
     from solvers.models.cases import registry
 
     for cid, c in registry().items():
         opt = " ".join(f"[{k}]" for k in c.optional)
-        typer.echo(f"{cid:32s} {c.title}\n{'':32s} params: {' '.join(c.required)} {opt}")
+        typer.echo(f"{cid:32s} {cite(c.title)}\n{'':32s} params: {' '.join(c.required)} {opt}")
 
 
 @cli.command()
@@ -184,7 +193,7 @@ def simulate(
                                allow_any_inertia=allow_any_inertia, step=step, field=field,
                                precision=precision)
     except InputError as e:
-        _fail(str(e))
+        _fail(_input_message(e))
     if as_json:
         _write_json(res.to_json())
     else:
@@ -247,7 +256,7 @@ def verify(
         with _timeout(timeout):
             records = verify_parallel(case=case, claim=claim, workers=workers)
     except InputError as e:
-        _fail(str(e))
+        _fail(_input_message(e))
     if as_json:
         _write_json(records)
         return
@@ -260,6 +269,7 @@ def _verify_tables(records, only_case):
     from rich.table import Table
 
     from catalogue.load import load_catalogue
+    from catalogue.numbering import cite
     from solvers.verify.table import MARKS, cell_notes, table_marks
 
     con = Console(width=max(Console().width, 160))
@@ -279,7 +289,8 @@ def _verify_tables(records, only_case):
             for c in cases:
                 cell = c.cells[row.key]
                 mark = MARKS[marks[c.id][row.key.value]]
-                text = cell.plain if len(cell.plain) < 60 else cell.plain[:57] + "..."
+                plain = cite(cell.plain)      # printed numbers before the cut
+                text = plain if len(plain) < 60 else plain[:57] + "..."
                 note = "".join(f" ({n})" for n in notes[c.id][row.key.value])
                 cells.append(escape(f"{mark} {text}{note}" if mark else text))
             tab.add_row(row.plain, *cells)
@@ -290,6 +301,7 @@ def _verify_tables(records, only_case):
 def _verify_summary(con, records):
     from collections import Counter
 
+    from catalogue.numbering import cite, printed
     from solvers.verify.table import MARKS
 
     for level in ("cell", "formula"):
@@ -308,12 +320,12 @@ def _verify_summary(con, records):
     cells = [r for r in records if r.get("level") == "cell"]
     for r in cells:
         if r["verdict"] == "fails":
-            con.print(f"✗ cell {r['claim']}: {r['message']}", markup=False)
+            con.print(f"✗ cell {r['claim']}: {cite(r['message'])}", markup=False)
     noted = [r for r in cells if r.get("notes")]
     if noted:
         con.print("cells whose property holds while a printed formula under them does not:")
     for r in noted:
-        con.print(f"✓ cell {r['claim']}: {'; '.join(r['notes'])} (rests on "
+        con.print(f"✓ cell {r['claim']}: {cite('; '.join(r['notes']))} (rests on "
                   f"{', '.join(r['rests_on'])})", markup=False)
     con.print("formula records that do not hold as printed (errata: `rolling errata`):")
     for r in records:
@@ -321,8 +333,6 @@ def _verify_summary(con, records):
             continue
         if r["verdict"] == "fails" or r.get("qualifier") == "convention":
             res = "n/a" if r["residual"] is None else f"{r['residual']:.2e}"
-            from catalogue.numbering import cite, printed
-
             num = printed(r["label"]) or r["label"] or ""
             kind = r.get("qualifier") or "fails"
             extra = f" (inherits {r['inherits']})" if r.get("inherits") else ""
@@ -517,7 +527,7 @@ def poincare(
                       progress=lambda done, total: bar.update(task, completed=done,
                                                               total=total))
     except InputError as e:
-        _fail(str(e))
+        _fail(_input_message(e))
     except ValueError as e:
         _fail(str(e))
     out = res.to_json()

@@ -102,6 +102,13 @@ def fig1(text, data):
                          lines)
 
 
+def _complex(z) -> str:
+    """0.833967 + 0.521929i: a multiplier as a reader writes it (not Python's 0.83+0.52j)."""
+    z = complex(z)
+    sign = "-" if z.imag < 0 else "+"
+    return f"{z.real:.6f} {sign} {abs(z.imag):.6f}i"
+
+
 def fig23(text, data):
     res, spec, wall = run("plane/unbalanced-ball", UNBALANCED, 3000,
                           initial=[*UB_OTHERS, UB_ATTRACTED])
@@ -135,7 +142,7 @@ def fig23(text, data):
         f"  Fig ris-*2 is the last trajectory: it approaches a 3-cycle (three points at "
         f"H/G ~ {att[-1, 1]:.3f}); d3 falls as exp({rate:.5f} n) after n = 200, from "
         f"{d3[0]:.2e} to {d3[-1]:.2e} at n = {len(d3)}.",
-        "  multipliers of P^3 at the cycle: " + ", ".join(f"{m:.6f}" for m in mult)
+        "  multipliers of P^3 at the cycle: " + ", ".join(_complex(m) for m in mult)
         + f"  (|.| = {', '.join(f'{abs(m):.6f}' for m in mult)}; det = "
         f"{np.prod(mult).real:.6f}: volume contracts by that factor every 3 returns; the "
         "multiplier 1 is the direction across the levels of F).",
@@ -144,7 +151,7 @@ def fig23(text, data):
         f"multipliers, log|mu|/3 = {np.log(abs(mult[0])) / 3:.5f}, agrees with the fitted "
         f"rate {rate:.5f}. (A 3D map with an invariant measure has det DP^3 = 1 on a "
         "3-cycle.)",
-        "  mean_logdet over the first 200 returns of the other two trajectories is not "
+        "  the mean of log det DP over the first 200 returns of the other two trajectories is not "
         "distinguishable from the Chaplygin-ball control (|.| <~ 5e-3 there): their "
         "contraction, if any, is not resolved by 200 returns.", ""]
     text += lines

@@ -83,6 +83,8 @@ class ClaimPublic(BaseModel):
     where: str | None = None
     attribution: list[AttributionPublic] = Field(default_factory=list)
     conditions: dict[str, str] = Field(default_factory=dict)
+    conditions_text: list[str] = Field(default_factory=list, description="the conditions "
+                                       "as a reader reads them, e.g. 'no gyrostat (S = 0)'")
     variables: str
     check: str
     check_args: dict[str, Any] = Field(default_factory=dict)

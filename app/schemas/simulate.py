@@ -130,6 +130,8 @@ class ValidatePublic(BaseModel):
                                      "defaults filled in")
     state_labels: list[str]
     invariants: list[str] = Field(description="integrals the run will report")
+    invariants_text: list[str] = Field(default_factory=list, description="the same "
+                                       "integrals as a reader names them, e.g. 'energy H'")
 
 
 class ScenePublic(BaseModel):

@@ -75,8 +75,8 @@ def how_we_check() -> str:
         "<p>Every statement of Tables 1 and 2 and of the text is a <em>claim</em>, and every "
         "claim names the check that decides it. The checks evaluate the printed formulas at "
         "random states with exact derivatives, not by watching a trajectory drift. The numbers "
-        "below are read from the checking code (<code>solvers/verify/checks</code>) when the "
-        "page is served.</p>",
+        "below are read from the checking code itself when the page is served, so they cannot "
+        "drift from what the checks do.</p>",
         f'<p class="constants">Tolerance <strong>{c["TOL"]:g}</strong> on relative residuals; '
         f'<strong>{c["N_SETTINGS"]}</strong> parameter draws × <strong>{c["N_POINTS"]}'
         "</strong> random phase points per claim. Round-off gives residuals near 1e-15 to "
@@ -99,13 +99,18 @@ def how_we_check() -> str:
     parts.append("</dl><p>Each verdict on a case page carries the date it was computed and the "
                  "project version that computed it.</p>")
     parts.append(
-        '<h2 id="numbers">Equation and figure numbers</h2><p>The pages show the numbers the '
-        "printed paper carries, e.g. (2.24) and Fig. 3. They are derived from the paper's LaTeX "
-        "by emulating the journal class: equations are numbered per section in order of "
-        "appearance (numbered display macros and environments count, starred ones, "
-        "<code>$$…$$</code> and lines marked <code>\\notag</code> do not); figures are numbered "
-        "through the paper. The LaTeX labels stay in the data (the API's <code>label</code> "
-        "fields) only.</p>")
+        '<h2 id="numbers">Equation and figure numbers</h2><p>The pages name equations and '
+        "figures by the numbers the paper prints, e.g. (2.24) and Fig. 3. These numbers are "
+        "derived from the paper's LaTeX source, not read off a printed copy (we had none). "
+        "LaTeX itself numbered them: the source was compiled with TeX Live against a "
+        "stand-in for the journal's class, which is not public. The stand-in assumes that "
+        "equations are numbered within each section; that each numbered display carries one "
+        "number however many lines it has; and that every figure is numbered through the "
+        "paper, with or without a caption. The result agrees with the project's own "
+        "emulation of the class for every equation and figure. Where the paper cites an "
+        "uncaptioned figure, which figure is meant is inferred from where it is cited. "
+        "A display without a number is named by where it stands, e.g. the display after "
+        "(2.24) in section 2.</p>")
     return layout("How we check", "\n".join(parts), "/how-we-check")
 
 

@@ -192,6 +192,7 @@ def summary(claim_ids: list[str], by_claim: dict[str, dict], row: str,
     if not claim_ids:
         return None
     from catalogue.load import load_catalogue
+    from catalogue.numbering import cite
 
     cat = load_catalogue()
     marks, notes = [], []
@@ -201,8 +202,9 @@ def summary(claim_ids: list[str], by_claim: dict[str, dict], row: str,
         waiting = pending is None or cid in pending
         marks.append({"case": cid, "column": case.column,
                       "mark": rec["verdict"] if rec else "pending" if waiting else "unchecked",
-                      "notes": list(rec.get("notes") or []) if rec else [],
-                      "message": rec.get("message", "") if rec else "",
+                      # what the cell shows a reader: printed numbers, not labels
+                      "notes": [cite(n) for n in rec.get("notes") or []] if rec else [],
+                      "message": cite(rec.get("message", "")) if rec else "",
                       "rests_on": list(rec.get("rests_on") or []) if rec else []})
         for n in marks[-1]["notes"]:
             if n not in notes:

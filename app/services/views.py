@@ -11,6 +11,7 @@ from pathlib import Path
 from app.services.verdicts import VERDICTS, summary
 from catalogue.load import load_catalogue
 from catalogue.numbering import cite, cite_latex, printed
+from catalogue.plain_words import cite_names, phrases
 from catalogue.schema import Attribution, Case, Cell, Claim, Table
 from solvers.models.bodies import STATE_LABELS
 from solvers.models.cases import CaseSpec, registry
@@ -45,7 +46,7 @@ def table_of(case_id: str) -> Table:
 def cell(row_label: str, row: str, c: Cell, by_claim: dict[str, dict],
          cases: list[str] | None = None, pending: set[str] | None = None) -> dict:
     # labels stay as data; what a reader sees carries the printed numbers (catalogue/numbering)
-    return {"row": row, "row_label": row_label, "printed": cite_latex(c.printed),
+    return {"row": row, "row_label": row_label, "printed": cite_names(cite_latex(c.printed)),
             "plain": cite(c.plain), "shade": c.shade.value, "shade_note": cite(c.shade_note),
             "labels": list(c.labels), "numbers": [printed(x) or x for x in c.labels],
             "attribution": [attribution(a) for a in c.attribution],
@@ -144,12 +145,13 @@ def record(rec: dict) -> dict:
 
 def claim(c: Claim, by_claim: dict[str, dict], corrections: dict[str, list[dict]],
           pending: bool = False) -> dict:
-    return {"id": c.id, "kind": c.kind.value, "printed": cite_latex(c.printed),
+    return {"id": c.id, "kind": c.kind.value, "printed": cite_names(cite_latex(c.printed)),
             "plain": cite(c.plain), "label": c.label, "number": printed(c.label),
             "where": cite(c.where),
             "attribution": [attribution(a) for a in c.attribution],
             "conditions": {k: cite(str(v)) for k, v in c.conditions.model_dump(
                 mode="json", by_alias=True).items() if v is not None},
+            "conditions_text": phrases(c.conditions.model_dump(mode="json", by_alias=True)),
             "variables": c.variables.value, "check": c.check.value,
             "check_args": {k: cite(v) if isinstance(v, str) else v for k, v in
                            c.check_args.model_dump(mode="json", exclude_defaults=True).items()},
@@ -183,7 +185,8 @@ def _cited_model(case: Case) -> dict:
     m = case.model.model_dump(mode="json", by_alias=True)
     conds = m.get("conditions") or {}
     return {**m, "conditions": {k: cite(v) if isinstance(v, str) else v
-                                for k, v in conds.items()}}
+                                for k, v in conds.items()},
+            "conditions_text": phrases(conds)}
 
 
 def case_detail(case_id: str, by_claim: dict[str, dict], corrections: dict[str, list[dict]],

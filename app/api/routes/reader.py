@@ -14,7 +14,7 @@ from app.services import howcheck, reader_pages
 from app.services.search import facets, search
 from catalogue.glossary import load_glossary
 from catalogue.load import load_catalogue
-from catalogue.numbering import printed, printed_numbers
+from catalogue.numbering import cite, printed, printed_numbers
 
 router = APIRouter(tags=["reader"])
 pages = APIRouter(include_in_schema=False)
@@ -32,7 +32,9 @@ async def glossary_api() -> dict:
     """Every parameter and state variable: meaning, range, where in the paper (numbers)."""
     g = load_glossary()
     return {"units": g.units,
-            "entries": [{**e.model_dump(), "paper_numbers": [printed(x) for x in e.paper]}
+            # the meaning is the reader's text of the "?" pop-up: printed numbers, no labels
+            "entries": [{**e.model_dump(), "meaning": cite(e.meaning),
+                         "paper_numbers": [printed(x) for x in e.paper]}
                         for e in g.entries]}
 
 

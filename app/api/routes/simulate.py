@@ -31,6 +31,7 @@ from app.schemas.simulate import (
     ValidatePublic,
 )
 from app.services import jobs, payloads
+from catalogue.plain_words import invariant_name
 from solvers.errors import InputError
 
 router = APIRouter(tags=["simulate"])
@@ -142,7 +143,8 @@ async def validate(req: SimulateRequest, settings: SettingsDep) -> dict:
     resolved = await _resolved(req, settings)
     model = resolved["_model"]
     return {"ok": True, "params": model.params, "state_labels": list(model.state_labels),
-            "invariants": list(model.integral_names)}
+            "invariants": list(model.integral_names),
+            "invariants_text": [invariant_name(n) for n in model.integral_names]}
 
 
 @router.post("/scene", response_model=ScenePublic,

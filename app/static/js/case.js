@@ -37,12 +37,20 @@ function katexReady() {
 
 function attributionText(list) {
   return list.map((a) => {
-    const who = a.authors || a.reference_authors.join(", ") || a.ref;
+    const who = a.authors || a.reference_authors.join(", ") || "the reference";
     const year = a.year ? ` (${a.year})` : "";
     const title = a.reference_title ? `, <cite>${escapeHtml(a.reference_title)}</cite>` : "";
     const note = a.note ? ` — ${escapeHtml(a.note)}` : "";
-    return `${escapeHtml(who)}${year}${title} <span class="cid">[${escapeHtml(a.ref)}]</span>${note}`;
+    // the reference's key ([bm-new]) is data: the reader gets a link to its entry instead
+    const ref = a.ref ? ` <a href="/bibliography#ref-${encodeURIComponent(a.ref)}">reference</a>` : "";
+    return `${escapeHtml(who)}${year}${title}${ref}${note}`;
   }).join("; ");
+}
+
+// "(M, gamma)" -> "(M, γ)": the data spells Greek letters out, the page does not
+function greekWords(text) {
+  return String(text).replace(/\b(gamma|omega|lambda|mu|rho|tau)\b/g,
+    (w) => ({ gamma: "γ", omega: "ω", lambda: "λ", mu: "μ", rho: "ρ", tau: "τ" })[w]);
 }
 
 function showHead() {
@@ -51,16 +59,15 @@ function showHead() {
   $("crumb-table").innerHTML = `<a href="/#table-${C.surface}">Table ${C.table}</a>`;
   $("crumb-case").textContent = `column ${C.column}`;
   const m = C.model;
-  const cond = Object.entries(m.conditions || {}).filter(([, v]) => v !== null && v !== undefined)
-    .map(([k, v]) => `${k}: ${v}`).join(", ");
+  // the conditions in words (conditions_text), not the data's key: value pairs
+  const cond = (m.conditions_text || []).map(escapeHtml).join("; ");
   $("facts").innerHTML = [
     `Table ${C.table}, column ${C.column}`,
     `support: ${C.surface}`,
-    `body: ${m.body}`,
-    `state ${m.state}`,
+    `body: ${escapeHtml(String(m.body).replaceAll("-", " "))}`,
+    `state ${escapeHtml(greekWords(m.state))}`,
     `equations ${(m.equation_numbers || []).join(", ")}`,
     cond ? `conditions: ${cond}` : "",
-    `id <code>${escapeHtml(C.id)}</code>`,
   ].filter(Boolean).map((f) => `<span class="chip">${f}</span>`).join("");
   showTally();
 }
@@ -85,7 +92,27 @@ function claimLink(id) {
     const text = cl ? `${cl.kind}${cl.number ? ` ${cl.number}` : ""}` : parts.slice(2).join(" ");
     return `<a href="#${anchor(id)}">${escapeHtml(text)}</a>`;
   }
-  return `<a href="/case/${owner}#${anchor(id)}">${escapeHtml(`${parts[2] || "claim"} on the ${owner} page`)}</a>`;
+  // another case's claim: named by its kind and the case in words, not by its record id
+  const where = `${parts[1].replaceAll("-", " ")} on a ${parts[0]}`;
+  return `<a href="/case/${owner}#${anchor(id)}">${escapeHtml(`${parts[2] || "claim"} of the ${where}`)}</a>`;
+}
+
+// the claims of a cell: several claims with the same kind and number ("gyrostat (2.38)")
+// are one entry with numbered links, not the same words repeated
+function claimLinks(ids) {
+  const own = ids.filter((id) => C.claims.some((x) => x.id === id));
+  const groups = new Map();
+  for (const id of own) {
+    const cl = C.claims.find((x) => x.id === id);
+    const text = `${cl.kind}${cl.number ? ` ${cl.number}` : ""}`;
+    if (!groups.has(text)) groups.set(text, []);
+    groups.get(text).push(id);
+  }
+  const parts = [...groups].map(([text, list]) => list.length === 1
+    ? `<a href="#${anchor(list[0])}">${escapeHtml(text)}</a>`
+    : `${escapeHtml(text)} (${list.length} claims: ${list.map((id, i) =>
+      `<a href="#${anchor(id)}" aria-label="${escapeHtml(text)}, claim ${i + 1}">${i + 1}</a>`).join(", ")})`);
+  return [...parts, ...ids.filter((id) => !own.includes(id)).map(claimLink)].join(", ");
 }
 
 function showCells() {
@@ -94,7 +121,7 @@ function showCells() {
     const mark = c.verdict ? markHtml(c.verdict, own ? `#${anchor(own)}` : `#row-${c.row}`) : "";
     const att = c.attribution.length ? `<div class="claimrefs">credited: ${attributionText(c.attribution)}</div>` : "";
     const refs = c.claims.length
-      ? `<div class="claimrefs">claims: ${c.claims.map(claimLink).join(", ")}</div>` : "";
+      ? `<div class="claimrefs">claims: ${claimLinks(c.claims)}</div>` : "";
     const merged = c.merged.length > 1 ? `<div class="claimrefs">merged cell: spans ${c.merged.length} columns</div>` : "";
     const sub = c.subrow ? `<div>${textHtml(c.subrow.printed)}</div>` : "";
     const cm = c.verdict && c.verdict.marks && c.verdict.marks.length ? c.verdict.marks[0] : null;
@@ -167,7 +194,7 @@ function claimHtml(c) {
   const v = c.verdict;
   const source = [c.number ? `<strong>${escapeHtml(c.number)}</strong>` : "", c.where ? escapeHtml(c.where) : ""]
     .filter(Boolean).join(" — ");
-  const cond = Object.entries(c.conditions).map(([k, x]) => `${escapeHtml(k)}: ${escapeHtml(x)}`).join("; ");
+  const cond = (c.conditions_text || []).map(escapeHtml).join("; ");
   const args = Object.entries(c.check_args).map(([k, x]) => `${escapeHtml(k)} ${escapeHtml(Array.isArray(x) ? x.join(", ") : String(x))}`).join("; ");
   const dl = [
     source ? ["in the paper", source] : null,
@@ -391,7 +418,7 @@ function onEdit() {
     validateCtl = new AbortController();
     try {
       const v = await api("/api/validate", { method: "POST", body: req, signal: validateCtl.signal });
-      showFormMessage(`✓ valid — reports ${v.invariants.join(", ")}`, "good", null);
+      showFormMessage(`✓ valid — reports ${(v.invariants_text || v.invariants).join(", ")}`, "good", null);
       // the pilot is not aborted by a later edit (a short run; aborting counts as a
       // cancellation on the server): a late answer about an older form is dropped instead
       const mine = ++pilotGeneration;

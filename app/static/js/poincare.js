@@ -14,8 +14,10 @@ const PALETTE = ["#1f5f99", "#c2571a", "#2a8a3e", "#8e3ea8", "#b8860b", "#0f7f8a
 const FIG_ORDER = ["ris-1", "ris-2", "ris-3", "ris-4"];
 // the paper's printed numbers (GET /api/printed-numbers): "ris-*1" -> "Fig. 3"
 let NUMBERS = {};
+// "(eq-d*2)" -> "(2.29)", not "((2.29))" (as catalogue/numbering.py cite())
 const cite = (text) => Object.keys(NUMBERS).sort((a, b) => b.length - a.length)
-  .reduce((t, lab) => t.split(`Fig ${lab}`).join(NUMBERS[lab]).split(lab).join(NUMBERS[lab]), String(text));
+  .reduce((t, lab) => t.split(`Fig ${lab}`).join(NUMBERS[lab]).split(`(${lab})`).join(NUMBERS[lab])
+    .split(lab).join(NUMBERS[lab]), String(text));
 
 function layout3d(title) {
   return {
