@@ -23,7 +23,7 @@ import re
 from enum import StrEnum
 from typing import Literal
 
-from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
+from pydantic import BaseModel, ConfigDict, Field, RootModel, field_validator, model_validator
 
 
 class Strict(BaseModel):
@@ -564,6 +564,26 @@ class Reference(Strict):
             raise ValueError(f"reference {self.id}: status {self.status!r} but missing "
                              f"{self.missing or 'nothing'}")
         return self
+
+
+class CorrectedForm(Strict):
+    """One registered correction of a printed formula (corrected_forms.yaml, keyed by the
+    formula id): its TeX, what it changes in words, and, when the misprint stands in
+    another formula's display, that formula."""
+
+    latex: str
+    change: str
+    display: str | None = None  # a formula id of formulas.yaml
+
+    @model_validator(mode="after")
+    def _nonempty(self) -> CorrectedForm:
+        if not self.latex.strip() or not self.change.strip():
+            raise ValueError("a corrected form needs its latex and its change")
+        return self
+
+
+class CorrectedForms(RootModel[dict[str, CorrectedForm]]):
+    pass
 
 
 class Formula(Strict):

@@ -200,6 +200,7 @@ def cite_box(url: str = "/") -> str:
             f'<p>This explorer (version {escape(__version__)}), as this page shows it:</p>'
             f'<pre class="bibtex" data-cite="software" tabindex="0">'
             f"{_pre(bibtex_project(url))}</pre>"
+            '<link rel="stylesheet" href="/static/css/cite.css">'
             '<script type="module" src="/static/js/cite.js"></script></section>')
 
 

@@ -3,9 +3,11 @@ corrections, the printed forms that hold under another convention, and what the 
 found that the paper does not have (solvers.verify.errata, from the verdicts computed so
 far: cases not yet verified contribute nothing, see /api/health)."""
 
+import json
+
 from fastapi import APIRouter
 
-from app.api.deps import VerdictsDep
+from app.api.deps import SettingsDep, VerdictsDep
 from app.schemas.errata import ConventionPublic, ErratumPublic, FindingPublic
 from catalogue.load import load_catalogue
 
@@ -36,9 +38,16 @@ async def get_conventions(store: VerdictsDep) -> list[dict]:
 
 
 @router.get("/findings", response_model=list[FindingPublic])
-async def get_findings(store: VerdictsDep) -> list[dict]:
+async def get_findings(store: VerdictsDep, settings: SettingsDep) -> list[dict]:
     """What the project found that the paper does not have: hedged claims answered and
-    printed statements refuted, with their evidence."""
+    printed statements refuted, with their evidence; checks that could not decide while
+    what they found leans against the paper (inconclusive); and the paper's figures whose
+    caption the recomputed figure does not confirm."""
     from solvers.verify import errata
 
-    return errata.findings(_records(store), load_catalogue())
+    cat = load_catalogue()
+    out = errata.findings(_records(store), cat)
+    path = settings.static_dir / "data" / "paper_figures.json"
+    if path.is_file():       # written by bench/paper_figures.py
+        out += errata.figure_findings(json.loads(path.read_text(encoding="utf-8")), cat)
+    return out
