@@ -62,7 +62,7 @@ export function permalinkHtml(anchorId, label) {
 }
 
 function claimLabel(cl) {
-  return `${cl.kind}${cl.number ? ` ${cl.number}` : ""}`;
+  return `${cl.kind.replace(/-/g, " ")}${cl.number ? ` ${cl.number}` : ""}`;
 }
 
 /** Every claim article of a case page gets its permalink and a Cite box (collapsed). */
@@ -96,26 +96,31 @@ export function checkedHtml(c, how, anchor) {
       continue;
     }
     const k = kindOf[cl.check] || { id: "", title: cl.check, points: "" };
-    const r = rows.get(k.title) || { k, n: 0, verified: 0, fails: 0, evidence: 0, pending: 0 };
+    const r = rows.get(k.title) || { k, n: 0, verified: 0, convention: 0, fails: 0, evidence: 0, pending: 0 };
     r.n += 1;
-    r[v] = (r[v] || 0) + 1;
+    // a printed form that holds only under a convention the text supports is not "holds"
+    const col = v === "verified" && cl.verdict.qualifier === "convention" ? "convention" : v;
+    r[col] = (r[col] || 0) + 1;
     rows.set(k.title, r);
   }
   const ran = c.claims.length - notRun.length;
   const cell = (x) => `<td>${x || "—"}</td>`;
   const body = [...rows.values()].map((r) =>
     `<tr><th scope="row"><a href="/how-we-check#${escapeHtml(r.k.id)}">${escapeHtml(r.k.title)}</a></th>` +
-    `<td>${r.n}</td>${cell(r.verified)}${cell(r.fails)}${cell(r.evidence)}${cell(r.pending)}` +
+    `<td>${r.n}</td>${cell(r.verified)}${cell(r.convention)}${cell(r.fails)}${cell(r.evidence)}${cell(r.pending)}` +
     `<td>${escapeHtml(r.k.points || "")}</td></tr>`).join("");
   const why = (cl) => NOT_RUN[cl.check] || "the check could not run on this server";
   const link = (cl) => `<a href="#${escapeHtml(anchor(cl.id))}">${escapeHtml(claimLabel(cl))}</a>`;
   const not = notRun.length
     ? `<p><strong>Not checked (${notRun.length}):</strong> ${notRun.map((cl) => `${link(cl)} (${escapeHtml(why(cl))})`).join("; ")}.</p>`
     : "<p><strong>Not checked:</strong> none; every claim of this case was computed.</p>";
-  return `<p>${c.claims.length} claims on this page; ${ran} decided or tested by computation, ${notRun.length} not. ` +
+  const corrected = c.claims.filter((cl) => (cl.corrections || []).length).length;
+  const fix = corrected ? ` ${corrected} printed form${corrected === 1 ? "" : "s"} fail${corrected === 1 ? "s" : ""} where the project's correction, checked the same way, holds (each under its claim and on <a href="/errata">the errata page</a>).` : "";
+  return `<p>${c.claims.length} claims on this page; ${ran} decided or tested by computation, ${notRun.length} not.${fix} ` +
     `Each check evaluates the printed formula at random states with exact derivatives (<a href="/how-we-check">how we check</a>).</p>` +
     `<div class="table-wrap"><table class="checked"><thead><tr><th scope="col">kind of check</th><th scope="col">claims</th>` +
-    `<th scope="col">holds</th><th scope="col">fails as printed</th><th scope="col">evidence</th><th scope="col">checking</th>` +
+    `<th scope="col">holds</th><th scope="col">holds under a convention</th><th scope="col">fails as printed</th>` +
+    `<th scope="col">evidence</th><th scope="col">checking</th>` +
     `<th scope="col">at how many points</th></tr></thead><tbody>${body}</tbody></table></div>${not}`;
 }
 
