@@ -72,7 +72,7 @@ def test_an_erratum_anchor_opens_its_row(page, verified, artifacts):
     ready(page)
     row = page.locator(f'details.erow[id="{anchor}"]')
     expect(row).to_have_attribute("open", "")
-    expect(row.locator("summary")).to_contain_text("(2.10)")        # the display corrected
+    expect(row.locator(":scope > summary")).to_contain_text("(2.10)")        # the display corrected
     expect(row.locator(".ebody")).to_be_in_viewport()
     expect(row.locator(".ebody")).to_contain_text("Printed (2.10)")
     assert row.locator(".katex").count() >= 2                      # both forms typeset
