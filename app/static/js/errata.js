@@ -143,11 +143,12 @@ function findingHtml(e) {
 function indexHtml(errata, conventions, findings) {
   const secs = new Map();
   const add = (e, what, label) => {
+    const tip = `${CASES[e.case] || e.case}${e.place && e.place !== label ? `, claim at ${e.place}` : ""}`;
     const s = sectionOf(e);
     if (!secs.has(s)) secs.set(s, { title: e.section_title || "", errata: [], conventions: [], findings: [] });
     const rec = secs.get(s);
     if (e.section_title) rec.title = e.section_title;
-    rec[what].push(`<a href="#${escapeHtml(e.anchor)}">${escapeHtml(label)}</a>`);
+    rec[what].push(`<a href="#${escapeHtml(e.anchor)}" title="${escapeHtml(tip)}">${escapeHtml(label)}</a>`);
   };
   errata.forEach((e) => add(e, "errata", e.corrected_display || e.place));
   conventions.forEach((e) => add(e, "conventions", e.place));
