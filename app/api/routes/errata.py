@@ -4,6 +4,7 @@ found that the paper does not have (solvers.verify.errata, from the verdicts com
 far: cases not yet verified contribute nothing, see /api/health)."""
 
 import json
+from pathlib import Path
 
 from fastapi import APIRouter
 
@@ -46,8 +47,22 @@ async def get_findings(store: VerdictsDep, settings: SettingsDep) -> list[dict]:
     from solvers.verify import errata
 
     cat = load_catalogue()
-    out = errata.findings(_records(store), cat)
-    path = settings.static_dir / "data" / "paper_figures.json"
-    if path.is_file():       # written by bench/paper_figures.py
-        out += errata.figure_findings(json.loads(path.read_text(encoding="utf-8")), cat)
-    return out
+    return errata.findings(_records(store), cat) + _figure_findings(
+        settings.static_dir / "data" / "paper_figures.json")
+
+
+def _figure_findings(path: Path) -> list[dict]:
+    """From the figure data bench/paper_figures.py writes (about a megabyte of points:
+    parsed again only when the file changes)."""
+    from solvers.verify import errata
+
+    if not path.is_file():
+        return []
+    key = (str(path), path.stat().st_mtime_ns)
+    if _FIGURES.get("key") != key:
+        figs = json.loads(path.read_text(encoding="utf-8"))
+        _FIGURES.update(key=key, out=errata.figure_findings(figs, load_catalogue()))
+    return [dict(f) for f in _FIGURES["out"]]
+
+
+_FIGURES: dict = {}
