@@ -90,13 +90,15 @@ export function checkedHtml(c, how, anchor) {
   const rows = new Map();
   const notRun = [];
   for (const cl of c.claims) {
-    const v = cl.verdict.verdict;
+    // a check that ran and could not decide says so ("inconclusive: ..."): it ran
+    const inconclusive = cl.verdict.verdict === "unchecked" && /^inconclusive/.test(cl.verdict.message || "");
+    const v = inconclusive ? "inconclusive" : cl.verdict.verdict;
     if (NOT_RUN[cl.check] || v === "unchecked") {
       notRun.push(cl);
       continue;
     }
     const k = kindOf[cl.check] || { id: "", title: cl.check, points: "" };
-    const r = rows.get(k.title) || { k, n: 0, verified: 0, convention: 0, fails: 0, evidence: 0, pending: 0 };
+    const r = rows.get(k.title) || { k, n: 0, verified: 0, convention: 0, fails: 0, evidence: 0, inconclusive: 0, pending: 0 };
     r.n += 1;
     // a printed form that holds only under a convention the text supports is not "holds"
     const col = v === "verified" && cl.verdict.qualifier === "convention" ? "convention" : v;
@@ -107,7 +109,7 @@ export function checkedHtml(c, how, anchor) {
   const cell = (x) => `<td>${x || "—"}</td>`;
   const body = [...rows.values()].map((r) =>
     `<tr><th scope="row"><a href="/how-we-check#${escapeHtml(r.k.id)}">${escapeHtml(r.k.title)}</a></th>` +
-    `<td>${r.n}</td>${cell(r.verified)}${cell(r.convention)}${cell(r.fails)}${cell(r.evidence)}${cell(r.pending)}` +
+    `<td>${r.n}</td>${cell(r.verified)}${cell(r.convention)}${cell(r.fails)}${cell(r.evidence)}${cell(r.inconclusive)}${cell(r.pending)}` +
     `<td>${escapeHtml(r.k.points || "")}</td></tr>`).join("");
   const why = (cl) => NOT_RUN[cl.check] || "the check could not run on this server";
   const link = (cl) => `<a href="#${escapeHtml(anchor(cl.id))}">${escapeHtml(claimLabel(cl))}</a>`;
@@ -120,7 +122,7 @@ export function checkedHtml(c, how, anchor) {
     `Each check evaluates the printed formula at random states with exact derivatives (<a href="/how-we-check">how we check</a>).</p>` +
     `<div class="table-wrap"><table class="checked"><thead><tr><th scope="col">kind of check</th><th scope="col">claims</th>` +
     `<th scope="col">holds</th><th scope="col">holds under a convention</th><th scope="col">fails as printed</th>` +
-    `<th scope="col">evidence</th><th scope="col">checking</th>` +
+    `<th scope="col">evidence</th><th scope="col">inconclusive</th><th scope="col">checking</th>` +
     `<th scope="col">at how many points</th></tr></thead><tbody>${body}</tbody></table></div>${not}`;
 }
 
