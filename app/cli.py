@@ -378,6 +378,9 @@ def errata(
                   f"{', ' + e['section'] if e['section'] else ''}", markup=False)
         con.print(f"   printed:   {' '.join(e['printed'].split())[:200]}", markup=False)
         con.print(f"   corrected: {e['corrected']}", markup=False)
+        if e.get("corrected_display"):
+            con.print(f"   display corrected: {e['corrected_display']} — {e['change']}",
+                      markup=False)
         con.print(f"   residual printed {res(e['residual_printed'])}, corrected "
                   f"{res(e['residual_corrected'])}", markup=False)
         ex = e.get("exact")

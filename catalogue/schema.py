@@ -23,7 +23,7 @@ import re
 from enum import StrEnum
 from typing import Literal
 
-from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
+from pydantic import BaseModel, ConfigDict, Field, RootModel, field_validator, model_validator
 
 
 class Strict(BaseModel):
@@ -552,8 +552,23 @@ class Reference(Strict):
     year_note: str | None = None
     title: str | None = None
     title_source: str | None = None
+    journal: str | None = None  # journal or book series, only as the seed gives it
+    volume: str | None = None
+    number: str | None = None
+    pages: str | None = None
+    doi: str | None = None
+    # complete: authors, title, journal and year are known; unresolved: the seed lacks one
+    # of them (it has no reference list), and `missing` says which
+    status: Literal["complete", "unresolved"]
     cited_for: list[str]
     remarks: str | None = None
+
+    @property
+    def missing(self) -> list[str]:
+        """What a full bibliographic entry needs and the seed does not give."""
+        have = {"authors": bool(self.authors), "title": bool(self.title),
+                "journal": bool(self.journal), "year": bool(self.years)}
+        return [k for k, ok in have.items() if not ok]
 
     @model_validator(mode="after")
     def _key(self) -> Reference:
@@ -561,7 +576,30 @@ class Reference(Strict):
             raise ValueError(f"malformed reference id {self.id!r}")
         if self.cite_key is not None and self.cite_key != self.id:
             raise ValueError(f"reference {self.id}: id must equal the cite key {self.cite_key}")
+        if (self.status == "complete") != (not self.missing):
+            raise ValueError(f"reference {self.id}: status {self.status!r} but missing "
+                             f"{self.missing or 'nothing'}")
         return self
+
+
+class CorrectedForm(Strict):
+    """One registered correction of a printed formula (corrected_forms.yaml, keyed by the
+    formula id): its TeX, what it changes in words, and, when the misprint stands in
+    another formula's display, that formula."""
+
+    latex: str
+    change: str
+    display: str | None = None  # a formula id of formulas.yaml
+
+    @model_validator(mode="after")
+    def _nonempty(self) -> CorrectedForm:
+        if not self.latex.strip() or not self.change.strip():
+            raise ValueError("a corrected form needs its latex and its change")
+        return self
+
+
+class CorrectedForms(RootModel[dict[str, CorrectedForm]]):
+    pass
 
 
 class Formula(Strict):

@@ -243,10 +243,14 @@ def test_errata_and_findings(records, by):
         assert e["reproduce"] == f"rolling verify --claim {e['claim']} --json"
         assert e["label"] or e["where"]
     f = {e["claim"]: e for e in er.findings(records, CAT)}
-    assert set(f) == {"plane/spherical-inertia/negative/sphere-generalization",
-                      "sphere/borisov-fedorov/reduction/to-chaplygin",
-                      # issue 18: no smooth measure for the general ellipsoid, proved
-                      "plane/ellipsoid/negative/general-measure"}
+    refuted = {c for c, e in f.items() if e["kind"] != "inconclusive"}
+    assert refuted == {"plane/spherical-inertia/negative/sphere-generalization",
+                       "sphere/borisov-fedorov/reduction/to-chaplygin",
+                       # issue 18: no smooth measure for the general ellipsoid, proved
+                       "plane/ellipsoid/negative/general-measure"}
+    # issue 17: the negative checks that ran and could not decide are findings too
+    assert set(f) - refuted == {r["claim"] for r in records if er.is_inconclusive(r)}
+    assert all(f[c]["leans"] == "against the paper" for c in set(f) - refuted)
     assert "det(E - k J)" in f["plane/spherical-inertia/negative/sphere-generalization"][
         "finding"]
     assert f["sphere/borisov-fedorov/reduction/to-chaplygin"]["evidence"]["rate |M~|^2"] > 1e-3
@@ -269,7 +273,10 @@ def test_api_errata_tables_and_page(records):
             store.records[cid] = [r for r in records if r["case"] == cid]
         errata = client.get("/api/errata").json()
         assert errata and all({"claim", "printed", "corrected"} <= set(e) for e in errata)
-        assert len(client.get("/api/findings").json()) == 3      # + the ellipsoid (issue 18)
+        found = client.get("/api/findings").json()
+        # + the ellipsoid (issue 18)
+        assert len([e for e in found if e["kind"] in ("refuted", "refuted-conjecture")]) == 3
+        assert "figure/ris-4" in {e["claim"] for e in found}        # Fig. 7's caption
         for tid in ("plane", "sphere"):
             t = client.get(f"/api/tables/{tid}").json()
             for row in t["grid"]:

@@ -5,6 +5,7 @@ printed numbers every static page gets when it is served."""
 from __future__ import annotations
 
 import re
+from datetime import date
 from html import escape
 from pathlib import Path
 
@@ -141,46 +142,105 @@ def glossary() -> str:
 
 # --- /bibliography and the Cite box -------------------------------------------------------
 
+PAPER_ID = "this-paper"
+SOFTWARE_AUTHOR = "rolling-hierarchy contributors"   # pyproject.toml names no authors
+SOFTWARE_TITLE = ("Rolling hierarchy: a checked knowledge base of a rigid body rolling on a "
+                  "plane and a sphere")
+
+
+def cite_data() -> dict:
+    """What the Cite boxes need (GET /api/cite, cite.js): the paper's entry from
+    catalogue/references.yaml and the explorer's; the page's URL, the year and the access
+    date are added where the page is shown (in the browser, or `bibtex_project`)."""
+    r = load_catalogue().reference(PAPER_ID)
+    paper = {"author": " and ".join(_bib_name(a) for a in r.authors), "title": r.title,
+             "journal": r.journal, "volume": r.volume, "number": r.number,
+             "pages": (r.pages or "").replace("-", "--"), "year": str(r.years[0]),
+             "doi": r.doi}
+    software = {"author": "{" + SOFTWARE_AUTHOR + "}", "title": SOFTWARE_TITLE,
+                "version": __version__,
+                "note": "Every claim of Borisov and Mamaev (2002), Tables 1 and 2, checked by "
+                        "computation"}
+    return {"paper": {"type": "article", "key": "BorisovMamaev2002", "fields": paper},
+            "software": {"type": "software", "key": "RollingHierarchy", "fields": software}}
+
+
+def _bib_name(name: str) -> str:
+    """'A. V. Borisov' -> 'Borisov, A. V.' (BibTeX's last-name-first form)."""
+    *first, last = name.split()
+    return f"{last}, {' '.join(first)}" if first else last
+
+
+def bibtex(entry: dict, **extra: str) -> str:
+    """One BibTeX entry; the same layout as cite.js's bibtex()."""
+    fields = {**entry["fields"], **extra}
+    width = max(len(k) for k in fields)
+    body = ",\n".join(f"  {k.ljust(width)} = {{{v}}}" for k, v in fields.items() if v)
+    return f"@{entry['type']}{{{entry['key']},\n{body}\n}}"
+
+
 def bibtex_paper() -> str:
-    return ("@article{BorisovMamaev2002,\n  author  = {Borisov, Alexey V. and Mamaev, Ivan S.},\n"
-            "  title   = {The rolling motion of a rigid body on a plane and a sphere. "
-            "Hierarchy of dynamics},\n  journal = {Regular and Chaotic Dynamics},\n"
-            "  volume  = {7},\n  number  = {2},\n  pages   = {177--200},\n  year    = {2002},\n"
-            f"  doi     = {{{PAPER_DOI}}}\n}}")
+    return bibtex(cite_data()["paper"])
 
 
-def bibtex_project() -> str:
-    return ("@software{RollingHierarchy,\n  title   = {Rolling hierarchy: a checked knowledge "
-            "base of a rigid body rolling on a plane and a sphere},\n"
-            f"  version = {{{__version__}}},\n  note    = {{Every claim of Borisov and Mamaev "
-            "(2002), Tables 1 and 2, checked by computation}}\n}")
+def bibtex_project(url: str = "/", today: date | None = None) -> str:
+    """The explorer's entry for the page at `url`, accessed `today` (the server's date; the
+    page's script puts in the reader's own date and the page's full address)."""
+    today = today or date.today()
+    return bibtex(cite_data()["software"], year=str(today.year), url=url,
+                  urldate=today.isoformat())
 
 
-def cite_box() -> str:
+def _pre(text: str) -> str:
+    # braces as character references: the shell's "{{...}}" placeholders never appear in a
+    # served page, and a corporate author's double braces are not one
+    return escape(text).replace("{{", "&#123;{").replace("}}", "}&#125;")
+
+
+def cite_box(url: str = "/") -> str:
     return (f'<section id="cite" class="cite" aria-labelledby="h-cite"><h2 id="h-cite">Cite</h2>'
             f'<p>The paper: <a href="https://doi.org/{PAPER_DOI}">doi:{PAPER_DOI}</a> '
-            "(Regular and Chaotic Dynamics 7(2), 2002, pp. 177–200; pages and DOI as the "
-            "paper's own LaTeX gives them).</p>"
-            f'<pre class="bibtex" tabindex="0">{escape(bibtex_paper())}</pre>'
-            f'<p>This project (version {escape(__version__)}):</p>'
-            f'<pre class="bibtex" tabindex="0">{escape(bibtex_project())}</pre></section>')
+            "(Regular and Chaotic Dynamics 7(2), 2002, pp. 177–200).</p>"
+            f'<pre class="bibtex" data-cite="paper" tabindex="0">{_pre(bibtex_paper())}</pre>'
+            f'<p>This explorer (version {escape(__version__)}), as this page shows it:</p>'
+            f'<pre class="bibtex" data-cite="software" tabindex="0">'
+            f"{_pre(bibtex_project(url))}</pre>"
+            '<link rel="stylesheet" href="/static/css/cite.css">'
+            '<script type="module" src="/static/js/cite.js"></script></section>')
+
+
+def _reference_html(r) -> str:
+    who = ", ".join(r.authors) or "authors not named in the paper"
+    years = ", ".join(str(y) for y in r.years) or "year not given"
+    title = f"<cite>{escape(r.title)}</cite>. " if r.title else ""
+    src = ", ".join(x for x in (r.journal, r.volume and f"vol. {r.volume}",
+                                r.number and f"no. {r.number}",
+                                r.pages and f"pp. {r.pages.replace('-', '–')}") if x)
+    src = f"{escape(src)}. " if src else ""
+    doi = (f'<a href="https://doi.org/{escape(r.doi)}">doi:{escape(r.doi)}</a>. '
+           if r.doi else "")
+    key = f" <code>\\cite{{{escape(r.cite_key)}}}</code>" if r.cite_key else ""
+    if r.status == "complete":
+        status = '<span class="refstatus complete">complete</span>'
+    else:
+        status = ('<span class="refstatus unresolved">unresolved</span> '
+                  f'<span class="hint">not in the seed: {escape(", ".join(r.missing))}</span>')
+    used = "".join(f"<li>{escape(cite(x))}</li>" for x in r.cited_for)
+    remark = f"<p>{escape(cite(r.remarks))}</p>" if r.remarks else ""
+    return (f'<li id="ref-{escape(r.id)}" data-status="{r.status}">{status}<br>'
+            f"<strong>{escape(who)}</strong> ({years}). {title}{src}{doi}{key}"
+            f"<ul>{used}</ul>{remark}</li>")
 
 
 def bibliography() -> str:
     refs = load_catalogue().references
-    items = []
-    for r in refs:
-        who = ", ".join(r.authors) or "authors not named in the paper"
-        years = ", ".join(str(y) for y in r.years) or "year not given"
-        title = f"<cite>{escape(r.title)}</cite>. " if r.title else ""
-        key = f" <code>\\cite{{{escape(r.cite_key)}}}</code>" if r.cite_key else ""
-        used = "".join(f"<li>{escape(cite(x))}</li>" for x in r.cited_for)
-        remark = f"<p>{escape(cite(r.remarks))}</p>" if r.remarks else ""
-        items.append(f'<li id="ref-{escape(r.id)}"><strong>{escape(who)}</strong> ({years}). '
-                     f"{title}{key}<ul>{used}</ul>{remark}</li>")
-    body = ("<p>Every reference the catalogue cites, resolved from its key. The paper as the "
-            "seed holds it has no reference list: authors and years come from its text and "
-            "tables, and titles are given only where the paper states them (none is "
-            "invented).</p>" + cite_box() +
-            f'<h2 id="refs">References ({len(refs)})</h2><ol class="refs">{"".join(items)}</ol>')
+    unresolved = sum(r.status == "unresolved" for r in refs)
+    body = ("<p>Every reference the catalogue cites, resolved from its key. The paper's LaTeX "
+            "(the seed) has no reference list: authors and years come from its text and "
+            "tables. An entry is <em>complete</em> when the seed gives its authors, title, "
+            "journal and year, and <em>unresolved</em> otherwise, saying what is missing; "
+            f"nothing is guessed. {len(refs) - unresolved} complete, {unresolved} unresolved."
+            "</p>" + cite_box("/bibliography") +
+            f'<h2 id="refs">References ({len(refs)})</h2><ol class="refs">'
+            f'{"".join(_reference_html(r) for r in refs)}</ol>')
     return layout("Bibliography", body, "/bibliography")

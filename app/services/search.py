@@ -4,6 +4,7 @@ against what a reader sees: titles, plain statements, printed numbers, credited 
 
 from __future__ import annotations
 
+import re
 import unicodedata
 from functools import cache
 
@@ -11,6 +12,11 @@ from app.services import views
 from catalogue.load import load_catalogue
 from catalogue.numbering import cite, printed
 from solvers.models.cases import registry
+
+
+def claim_anchor(claim_id: str) -> str:
+    """The claim's anchor on its case page (case.js anchor(), ssr._anchor)."""
+    return "claim-" + re.sub(r"[^A-Za-z0-9_-]+", "_", claim_id)
 
 
 def _fold(s: str) -> str:
@@ -38,7 +44,8 @@ def _index() -> tuple[list[dict], list[dict]]:
                           cite(c.where) or "", _authors(c.attribution), case.title, spec.title])
             claims.append({"id": c.id, "case": case.id, "case_title": case.title,
                            "kind": c.kind.value, "plain": cite(c.plain),
-                           "number": printed(c.label), "href": f"/case/{case.id}",
+                           "number": printed(c.label),
+                           "href": f"/case/{case.id}#{claim_anchor(c.id)}",
                            "body": spec.body, "surface": spec.surface, "_text": _fold(t)})
     return cases, claims
 

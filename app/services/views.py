@@ -6,7 +6,6 @@ from __future__ import annotations
 
 import re
 from functools import cache
-from pathlib import Path
 
 from app.services.verdicts import VERDICTS, summary
 from catalogue.load import load_catalogue
@@ -113,12 +112,9 @@ _CORRECTION_OF = re.compile(r"\[project's correction of (\w+)\]\s*")
 @cache
 def corrected_forms() -> dict[str, str]:
     """fid -> the TeX of the project's corrected form (catalogue/corrected_forms.yaml)."""
-    import yaml
+    from catalogue.load import load_corrected_forms
 
-    import catalogue
-
-    path = Path(catalogue.__file__).with_name("corrected_forms.yaml")
-    return yaml.safe_load(path.read_text(encoding="utf-8"))
+    return {fid: cf.latex for fid, cf in load_corrected_forms().items()}
 
 
 def record(rec: dict) -> dict:

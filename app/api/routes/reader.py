@@ -40,8 +40,18 @@ async def glossary_api() -> dict:
 
 @router.get("/references")
 async def references_api() -> list[dict]:
-    """The bibliography: every reference key of the catalogue with its entry."""
-    return [r.model_dump(mode="json") for r in load_catalogue().references]
+    """The bibliography: every reference key of the catalogue with its entry; `status`
+    complete (authors, title, journal, year) or unresolved, `missing` says what is not in
+    the seed."""
+    return [{**r.model_dump(mode="json"), "missing": r.missing}
+            for r in load_catalogue().references]
+
+
+@router.get("/cite")
+async def cite_api() -> dict:
+    """The BibTeX fields of the paper (with its DOI) and of this explorer (author, version);
+    a page's Cite box adds its own URL, the year and the access date."""
+    return reader_pages.cite_data()
 
 
 @router.get("/how-we-check")

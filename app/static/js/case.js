@@ -11,6 +11,7 @@ import { csvOf } from "./run_csv.js";
 import { estimate } from "./estimate.js";
 import { Scene } from "./scene.js";
 import { glossary, tipHtml } from "./glossary.js";
+import { caseCiteHtml, checkedHtml, citeData, decorateClaims } from "./cite.js";
 
 const caseId = decodeURIComponent(location.pathname.replace(/^\/case\//, "").replace(/\/$/, ""));
 const $ = (id) => document.getElementById(id);
@@ -226,6 +227,22 @@ function claimHtml(c) {
 
 function showClaims() {
   $("claimlist").innerHTML = C.claims.map(claimHtml).join("");
+  showCite();
+}
+
+// the Cite box, the claims' permalinks and Cite boxes, what was checked (cite.js)
+let CITE = null;
+let HOW = null;
+async function showCite() {
+  try {
+    [CITE, HOW] = await Promise.all([CITE || citeData(), HOW || api("/api/how-we-check")]);
+  } catch {
+    return;   // the claims stand without their Cite boxes
+  }
+  decorateClaims(CITE, C, anchor);
+  $("citebox").innerHTML = caseCiteHtml(CITE, C);
+  $("checkedbox").innerHTML = checkedHtml(C, HOW, anchor);
+  document.body.dataset.cite = "1";
 }
 
 // A fresh server recomputes the verdicts of changed cases in the background: while this
