@@ -224,3 +224,20 @@ def test_case_and_table_records_with_real_verdicts_show_printed_numbers(records)
     assert "density (I3 + m r^2)^-1/2, (3.18)" in joined
     assert "the Chaplygin ball, density (2.24)" in joined
     assert not reader_problems(joined), sorted(set(reader_problems(joined)))
+
+
+def test_a_convention_mark_names_the_printed_number():
+    """The issue's example: the Chaplygin ball's convention sentence (shown beside its mark)
+    named "eq2b-*1". The record is built as solvers/verify/levels.py builds it, from the
+    claim's own `holds_under` text in the catalogue."""
+    from app.services import views
+
+    claim = load_catalogue().claim("plane/chaplygin-ball/hamiltonian-after-time-change")
+    assert claim.holds_under and "eq2b-*1" in claim.holds_under
+    rec = {"claim": claim.id, "verdict": "verified", "qualifier": "convention",
+           "convention": claim.holds_under, "message": f"holds under the convention: "
+           f"{claim.holds_under}", "finding": "as eq2b-*1 says", "notes": ["see eq2.17"]}
+    out = views.record(rec)
+    shown = " ".join([out["convention"], out["message"], out["finding"], *out["notes"]])
+    assert "(2.25)" in out["convention"]
+    assert not reader_problems(shown), reader_problems(shown)

@@ -122,8 +122,13 @@ def record(rec: dict) -> dict:
             "evidence", "seconds", "printed", "computed_at", "version", "level", "qualifier",
             "convention", "inherits", "finding", "row", "rests_on", "notes", "exact")
     out = {k: rec.get(k) for k in keys if rec.get(k) is not None}
-    if "message" in out:
-        out["message"] = cite(out["message"])
+    # the texts a page shows (the mark's convention sentence, a finding, a cell's notes):
+    # printed numbers, not labels (the Chaplygin convention named eq2b-*1)
+    for k in ("message", "convention", "finding"):
+        if k in out:
+            out[k] = cite(out[k])
+    if "notes" in out:
+        out["notes"] = [cite(n) for n in out["notes"]]
     if "evidence" in out:
         out["evidence"] = _cite_all(out["evidence"])
     if "printed" in out:
