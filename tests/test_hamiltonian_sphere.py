@@ -123,7 +123,7 @@ def test_jacobi_identity_holds_symbolically_for_any_linear_system():
     """J = X ^ d/dK3, X = d/ds + (A(s) K + b(s)) . d/dK: the Jacobiator vanishes
     identically, whatever the functions a_ij(s), b_i(s) (so every bracket of
     hamiltonian_sphere.py is Poisson: a proof, not a sample)."""
-    s, K1, K2, K3 = x = sp.symbols("s K1 K2 K3")
+    s, K1, K2, _K3 = x = sp.symbols("s K1 K2 K3")
     a = [[sp.Function(f"a{i}{j}")(s) for j in range(2)] for i in range(2)]
     b = [sp.Function(f"b{i}")(s) for i in range(2)]
     c1 = a[0][0] * K1 + a[0][1] * K2 + b[0]
@@ -198,8 +198,8 @@ def test_hamiltonian_is_the_energy(case_id):
         # and d x0/dt = N dH/dK3 (the multiplier read off the full field)
         Nf = hs.flat_axisym_time_change if flat else hs.sphere_revolution_time_change
         from solvers.verify.checks.common import directional, full_field
-        xd = directional(lambda yy: to_vars(V, P, yy), y, full_field(P, y))
-        g = gradient(lambda xx: Hf(P, xx), x)
+        xd = directional(lambda yy, P=P: to_vars(V, P, yy), y, full_field(P, y))
+        g = gradient(lambda xx, P=P: Hf(P, xx), x)
         assert abs(xd[0] - Nf(P, x) * g[3]) <= 1e-12 * abs(xd[0]) + 1e-15
         if not flat:                     # K3 of eq2.4 carries exactly K3^2/2
             assert abs(g[3] - x[3]) <= 1e-12 * abs(x[3]) + 1e-15
@@ -230,8 +230,8 @@ def test_bf_candidate_generates_the_flow_but_is_not_poisson():
         assert factor_312(P) == pytest.approx(kval)
         worst_flow, jac = 0.0, []
         for y in random_states(P, 6, rng):
-            J = lambda xx: hs.bf_candidate_bracket(P, xx)  # noqa: E731
-            rhs = J(y) @ gradient(lambda xx: chaplygin_hamiltonian_m(P, xx), y)
+            J = lambda xx, P=P: hs.bf_candidate_bracket(P, xx)  # noqa: E731
+            rhs = J(y) @ gradient(lambda xx, P=P: chaplygin_hamiltonian_m(P, xx), y)
             v = full_field(P, y) / chaplygin_rho(P, y[3:6])
             worst_flow = max(worst_flow, np.linalg.norm(v - rhs) / np.linalg.norm(v))
             jac.append(S.jacobi_residual_at(J, y))
