@@ -138,7 +138,7 @@ def formula_mark(r: dict, cl, by_claim: dict) -> tuple[str, str | None, list[str
         return "fails", "the project's correction does not hold either", []
     if v == "verified":
         if q == "convention":
-            return "under-convention", f"holds under the convention: {r['convention']}", []
+            return "under-convention", r["convention"], []
         if q == "formula-free":
             return "evidence-for", f"a formula-free test along trajectories: {r['message']}", []
         return "as-printed", None, []
@@ -174,7 +174,9 @@ def formula_mark(r: dict, cl, by_claim: dict) -> tuple[str, str | None, list[str
         return "open", msg or None, []
     if check in NEUTRAL_CHECKS or msg.startswith("not implemented"):
         return "not-checkable", msg or None, []
-    return "inconclusive", msg or "the check ran and could not decide", []
+    # what the check found, without repeating the mark's own word
+    return "inconclusive", msg.removeprefix("inconclusive: ") or "the check ran and could " \
+        "not decide", []
 
 
 # a cell's mark over its claims' marks: the first present of DECIDING, else of HOLDING

@@ -74,7 +74,7 @@ def test_home_table_marks_are_shape_and_word(browser, checked, artifacts, width)
         assert "verified" not in page.locator("section.intro").inner_text()
         # the key names every mark with its shape
         for m in vocab.vocabulary():
-            expect(page.locator(f".legend .mark.{m.id}")).to_have_text(m.shape)
+            expect(page.locator(f".legend .mark.{m.id}").first).to_have_text(m.shape)
         page.screenshot(path=str(artifacts / f"home-marks-{width}.png"))
     finally:
         ctx.close()

@@ -91,7 +91,8 @@ function claimLink(id) {
 function showCells() {
   const rows = C.cells.map((c) => {
     const own = c.verdict ? c.verdict.claims.find((id) => id.startsWith(C.id + "/")) : null;
-    const mark = c.verdict ? markHtml(c.verdict, own ? `#${anchor(own)}` : `#row-${c.row}`) : "";
+    // the note that goes with the mark is written out in the row: no "why?" under it here
+    const mark = c.verdict ? markHtml(c.verdict, own ? `#${anchor(own)}` : `#row-${c.row}`, { why: false }) : "";
     const att = c.attribution.length ? `<div class="claimrefs">credited: ${attributionText(c.attribution)}</div>` : "";
     const refs = c.claims.length
       ? `<div class="claimrefs">claims: ${c.claims.map(claimLink).join(", ")}</div>` : "";

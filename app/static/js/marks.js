@@ -59,7 +59,7 @@ function whyHtml(marks) {
 
 // A table cell's marks: the shape of each body's mark (with its column number when the
 // cell is merged), the word once per run of equal marks, the meaning for screen readers.
-export function markHtml(summary, href) {
+export function markHtml(summary, href, { why = true } = {}) {
   const marks = summary.marks && summary.marks.length ? summary.marks
     : [{ case: "", column: null, mark: summary.mark, mark_note: null, errata: [] }];
   const many = marks.length > 1;
@@ -73,7 +73,7 @@ export function markHtml(summary, href) {
   });
   const said = marks.map((m) => (many && m.column ? `column ${m.column}: ` : "") + markInfo(m.mark).name).join(", ");
   return `<a class="cellmark ${escapeHtml(summary.mark)}" href="${href}">` +
-    `${html}<span class="sr-only">${escapeHtml(said)}</span></a>${whyHtml(marks)}`;
+    `${html}<span class="sr-only">${escapeHtml(said)}</span></a>${why ? whyHtml(marks) : ""}`;
 }
 
 // A claim's mark: shape and full name.
