@@ -128,8 +128,13 @@ def _what(cl, r: dict) -> str:
     return f"the printed formula ({where})" if where else "the printed formula"
 
 
+def _res(x) -> str:
+    return f" (residual {x:.1e})" if isinstance(x, float) else ""
+
+
 def formula_mark(r: dict, cl, by_claim: dict) -> tuple[str, str | None, list[str]]:
-    """(mark, mark_note, errata) of one formula record, after `annotate`'s qualifiers."""
+    """(mark, mark_note, errata) of one formula record, after `annotate`'s qualifiers (also
+    of a record stored before marks existed, with cl None and by_claim empty)."""
     v, q = r["verdict"], r.get("qualifier")
     if r.get("origin") == "project-correction":
         if v == "verified":
@@ -138,18 +143,16 @@ def formula_mark(r: dict, cl, by_claim: dict) -> tuple[str, str | None, list[str
         return "fails", "the project's correction does not hold either", []
     if v == "verified":
         if q == "convention":
-            return "under-convention", r["convention"], []
+            return "under-convention", r.get("convention"), []
         if q == "formula-free":
             return "evidence-for", f"a formula-free test along trajectories: {r['message']}", []
         return "as-printed", None, []
     if v == "fails":
         if q == "misprint":
             corr = by_claim.get(f"{r['claim']}/corrected") or {}
-            res = corr.get("residual")
-            return ("after-correction", f"{_what(cl, r)} has a misprint (residual "
-                    f"{r['residual']:.1e} as printed); the project's correction holds"
-                    + (f" (residual {res:.1e})" if isinstance(res, float) else ""),
-                    [r["claim"]])
+            printed = _res(r.get("residual")).replace(")", " as printed)")
+            return ("after-correction", f"{_what(cl, r)} has a misprint{printed}; the "
+                    f"project's correction holds{_res(corr.get('residual'))}", [r["claim"]])
         if q == "inherited":
             src = by_claim.get(r["inherits"]) or {}
             used = f"the printed formula {src['label']}" if src.get("label") else \
@@ -162,10 +165,8 @@ def formula_mark(r: dict, cl, by_claim: dict) -> tuple[str, str | None, list[str
                 f"{r['message']}", []
         if q == "refuted-conjecture":
             return "fails", f"the paper doubts it exists; found: {r['finding']}", []
-        res = r.get("residual")
-        return "fails", (f"{_what(cl, r)} does not hold"
-                         + (f" (residual {res:.1e})" if isinstance(res, float) else "")
-                         + " and the project found no correction that does"), []
+        return "fails", (f"{_what(cl, r)} does not hold{_res(r.get('residual'))} and the "
+                         "project found no correction that does"), []
     if v == "evidence":
         return "evidence-for", r.get("message") or None, []
     # unchecked: did anything run?
