@@ -249,7 +249,9 @@ def _verify_summary(con, records):
     from solvers.verify import marks as vocab
 
     for level in ("cell", "formula"):
-        recs = [r for r in records if r.get("level", "formula") == level]
+        # the project's corrections are records of their own, not claims of the paper
+        recs = [r for r in records if r.get("level", "formula") == level
+                and r.get("origin") != "project-correction"]
         counts = Counter(r["mark"] for r in recs)
         unit, units = ("cell", "cells") if level == "cell" else ("claim", "claims")
         what = " (properties of table cells)" if level == "cell" else " (printed formulas " \
