@@ -270,16 +270,20 @@ def _verify_tables(records, only_case):
 
     from catalogue.load import load_catalogue
     from catalogue.numbering import cite
-    from solvers.verify.table import MARKS, cell_notes, table_marks
+    from solvers.verify import marks as vocab
+    from solvers.verify.table import cell_id
 
     con = Console(width=max(Console().width, 160))
     cat = load_catalogue()
+    by_claim = {r["claim"]: r for r in records}
+    # the same marks, shapes and words as the explorer and /how-we-check (marks.yaml)
+    con.print("marks: " + "  ".join(f"{m.shape} {m.name}" for m in vocab.vocabulary()
+                                    if m.id != "pending"), markup=False)
     for table in cat.tables():
         cases = [c for c in table.cases if only_case in (None, c.id)]
         if not cases:
             continue
-        marks, notes = table_marks(table, records), cell_notes(table, records)
-        tab = Table(title=f"Table {table.number}: {table.caption_plain} "
+        tab = Table(title=f"{table.caption_plain} "
                     "(cells: the property each states)", show_lines=True)
         tab.add_column("row")
         for c in cases:
@@ -288,11 +292,14 @@ def _verify_tables(records, only_case):
             cells = []
             for c in cases:
                 cell = c.cells[row.key]
-                mark = MARKS[marks[c.id][row.key.value]]
+                rec = by_claim.get(cell_id(c.id, row.key.value))
                 plain = cite(cell.plain)      # printed numbers before the cut
                 text = plain if len(plain) < 60 else plain[:57] + "..."
-                note = "".join(f" ({n})" for n in notes[c.id][row.key.value])
-                cells.append(escape(f"{mark} {text}{note}" if mark else text))
+                if rec is None:
+                    cells.append(escape(text))
+                    continue
+                m = vocab.by_id()[rec["mark"]]
+                cells.append(escape(f"{m.shape} {m.word}: {text}"))
             tab.add_row(row.plain, *cells)
         con.print(tab)
     _verify_summary(con, records)
@@ -302,44 +309,46 @@ def _verify_summary(con, records):
     from collections import Counter
 
     from catalogue.numbering import cite, printed
-    from solvers.verify.table import MARKS
+    from solvers.verify import marks as vocab
 
     for level in ("cell", "formula"):
-        recs = [r for r in records if r.get("level", "formula") == level]
-        counts = Counter(r["verdict"] for r in recs)
-        name = "cells: " if level == "cell" else "claims: "
-        what = " (properties of table cells)" if level == "cell" else " (printed formulas)"
-        con.print(f"{name}{len(recs)}{what}  " + "  ".join(
-            f"{MARKS[v]} {v}: {counts.get(v, 0)}"
-            for v in ("verified", "fails", "evidence", "unchecked")))
+        # the project's corrections are records of their own, not claims of the paper
+        recs = [r for r in records if r.get("level", "formula") == level
+                and r.get("origin") != "project-correction"]
+        counts = Counter(r["mark"] for r in recs)
+        unit, units = ("cell", "cells") if level == "cell" else ("claim", "claims")
+        what = " (properties of table cells)" if level == "cell" else " (printed formulas " \
+            "and statements)"
+        con.print(f"{units}: {len(recs)}{what}: " + vocab.sentence(
+            {k: counts[k] for k in vocab.IDS if counts.get(k)}, unit, units), markup=False)
     con.print(_exact_summary(records))
     quals = Counter(r.get("qualifier") for r in records if r.get("qualifier"))
     if quals:
         con.print("formula qualifiers: " + ", ".join(f"{k}: {v}" for k, v in sorted(
             quals.items())))
     cells = [r for r in records if r.get("level") == "cell"]
-    for r in cells:
-        if r["verdict"] == "fails":
-            con.print(f"✗ cell {r['claim']}: {cite(r['message'])}", markup=False)
-    noted = [r for r in cells if r.get("notes")]
-    if noted:
-        con.print("cells whose property holds while a printed formula under them does not:")
-    for r in noted:
-        con.print(f"✓ cell {r['claim']}: {cite('; '.join(r['notes']))} (rests on "
-                  f"{', '.join(r['rests_on'])})", markup=False)
-    con.print("formula records that do not hold as printed (errata: `rolling errata`):")
+    shown = [r for r in cells if r["mark"] != "as-printed"]
+    if shown:
+        con.print("cells that do not simply hold as printed:")
+    for r in shown:
+        m = vocab.by_id()[r["mark"]]
+        note = f": {cite(r['mark_note'])}" if r.get("mark_note") else ""
+        errata = f" (errata: {', '.join(r['errata'])})" if r.get("errata") else ""
+        con.print(f"{m.shape} {m.name}: cell {r['claim']}{note}{errata}", markup=False)
+    con.print("claims that do not hold as printed, or that a check could not decide "
+              "(errata: `rolling errata`):")
     for r in records:
-        if r.get("level", "formula") != "formula":
+        if r.get("level", "formula") != "formula" or r.get("origin") == "project-correction":
             continue
-        if r["verdict"] == "fails" or r.get("qualifier") == "convention":
-            res = "n/a" if r["residual"] is None else f"{r['residual']:.2e}"
-            num = printed(r["label"]) or r["label"] or ""
-            kind = r.get("qualifier") or "fails"
-            extra = f" (inherits {r['inherits']})" if r.get("inherits") else ""
-            mark = "✓" if r["verdict"] == "verified" else "✗"
-            where = f" ({num})" if num else ""
-            con.print(f"{mark} [{kind}]{extra} {r['claim']}{where}: "
-                      f"residual {res} — {cite(r['message'])}", markup=False)
+        if r["mark"] in ("as-printed", "evidence-for", "open", "not-checkable"):
+            continue
+        res = "n/a" if r["residual"] is None else f"{r['residual']:.2e}"
+        num = printed(r["label"]) or r["label"] or ""
+        where = f" ({num})" if num else ""
+        m = vocab.by_id()[r["mark"]]
+        note = cite(r.get("mark_note") or r["message"])
+        con.print(f"{m.shape} {m.name}: {r['claim']}{where}: residual {res} — {note}",
+                  markup=False)
 
 
 @cli.command()

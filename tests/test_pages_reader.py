@@ -55,7 +55,9 @@ def test_case_page_holds_its_claims_without_scripts(client, case_id):
     # internal labels)
     for c in client.get(f"/api/cases/{case_id}").json()["claims"]:
         assert html.escape(c["plain"]) in text
-    assert "Verdict: " in text and "Loading…" not in text.split('id="claimlist"')[0][-200:]
+    # issue 17: each claim's mark (shape and name) instead of the coarse verdict
+    assert text.count("<p>Mark: <strong class=\"badge ") == len(case.claims)
+    assert "Loading…" not in text.split('id="claimlist"')[0][-200:]
 
 
 def test_home_page_holds_both_tables_without_scripts(client):

@@ -59,9 +59,13 @@ def test_no_table_cell_shows_a_cross(records):
     finally:
         Console.__init__ = orig
     text = buf.getvalue()
-    tables = text.split("\ncells: ")[0]
+    # the first line is the key to the marks (issue 17), which names ✗ fails itself
+    legend, tables = text.split("\ncells: ")[0].split("\n", 1)
+    assert legend.startswith("marks: ✓ holds as printed")
     assert "Table 1" in tables and "Table 2" in tables and "✗" not in tables
-    assert "✓ cell sphere/round-disk/cell/gyrostat: holds; printed formula corrected" in text
+    # issue 17: the cell's mark says what was shown: after correction, with its erratum
+    assert "✎ holds after correction: cell sphere/round-disk/cell/gyrostat: " in text
+    assert "(errata: sphere/round-disk/gyrostat/linear-integrals" in text
 
 
 def test_misprints_still_fail_with_their_correction_verified(records, by):
@@ -88,9 +92,14 @@ def test_cells_over_misprints_are_verified_with_the_note(by):
             f"{case}/gyrostat/linear-integrals"] == "corrected"
         assert f"{case}/gyrostat/linear-integrals/formula-free" in \
             by[f"{case}/cell/gyrostat"]["rests_on"]
-    for cid in ("plane/spherical-inertia/cell/measure", "plane/routh-ball/cell/gyrostat"):
-        assert by[cid]["verdict"] == "verified" and by[cid]["notes"] == [
-            "holds; printed formula corrected"]
+    cid = "plane/routh-ball/cell/gyrostat"
+    assert by[cid]["verdict"] == "verified" and by[cid]["notes"] == [
+        "holds; printed formula corrected"]
+    # issue 17: the spherical-inertia measure cell rests on Table 1's printed formula, which
+    # holds as printed (only the text's display drops m); it no longer needs a correction
+    cid = "plane/spherical-inertia/cell/measure"
+    assert by[cid]["verdict"] == "verified" and by[cid]["notes"] == []
+    assert by[cid]["mark"] == "as-printed"
     ham = by["plane/chaplygin-ball/cell/hamiltonian_form"]
     assert ham["verdict"] == "verified" and ham["evidence"]["basis"][
         "plane/chaplygin-ball/hamiltonian-after-time-change"] == "convention"
@@ -284,14 +293,15 @@ def test_api_errata_tables_and_page(records):
                     v = cell["verdict"]
                     if v is None:
                         continue
-                    assert v["mark"] != "fails"
+                    assert v["mark"] != "fails" and v["verdict"] != "fails"
                     assert [m["case"] for m in v["marks"]] == cell["merged"]
                     assert all(m["mark"] != "fails" for m in v["marks"])
         case = client.get("/api/cases/sphere/round-disk").json()
         claims = {c["id"]: c for c in case["claims"]}
         assert claims[GYRO_FREE[1]]["verdict"]["qualifier"] == "formula-free"
         gyro = next(c for c in case["cells"] if c["row"] == "gyrostat")
-        assert gyro["verdict"]["marks"][0]["mark"] == "verified"
+        assert gyro["verdict"]["marks"][0]["verdict"] == "verified"
+        assert gyro["verdict"]["marks"][0]["mark"] == "after-correction"
         page = client.get("/errata")
         assert page.status_code == 200 and "errata.js" in page.text
         assert "/api/errata" in client.get("/openapi.json").json()["paths"]

@@ -105,6 +105,7 @@ EXPECTED = {
     "plane/spherical-inertia/identity/invariant-relation": (V, None),
     "plane/spherical-inertia/integral/energy": (V, None),
     "plane/spherical-inertia/measure/omega": (F, V),           # 2.2e-02 (m missing in eq2.19)
+    "plane/spherical-inertia/measure/omega/table": (V, None),  # Table 1 prints the m
     "plane/spherical-inertia/measure": (V, None),
     "plane/spherical-inertia/gyrostat/measure": (V, None),
     "sphere/chaplygin-ball/reduction/equations": (V, None),

@@ -101,4 +101,9 @@ class CasePublic(CaseHead):
     claims: list[ClaimPublic]
     runnable: RunnablePublic
     verdicts: dict[str, int] = Field(description="number of claims per verdict")
+    marks: dict[str, int] = Field(default_factory=dict, description="number of claims "
+                                  "(printed formulas and statements) per mark")
+    cell_marks: dict[str, int] = Field(default_factory=dict, description="number of this "
+                                       "case's table cells per mark")
+    summary: str = Field("", description="the cell and claim counts by mark, in words")
     verification: str = Field(description="done | running | idle | unavailable | failed")

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from catalogue.schema import CheckName
 from solvers.verify.checks import common, formula_free, negative, nonexistence
+from solvers.verify.marks import vocabulary
 
 
 def constants() -> dict[str, float]:
@@ -107,17 +108,23 @@ def kinds() -> list[dict]:
     ]
 
 
+def marks() -> list[dict]:
+    """What each mark means: the vocabulary itself (solvers/verify/marks.yaml), which
+    solvers/verify/levels.py assigns and every page draws; one source of truth."""
+    return [m.model_dump() for m in vocabulary()]
+
+
+# the coarse `verdict` every record also keeps (for compatibility); the mark says which
 VERDICTS = [
-    ("verified", "✓", "the check ran and the printed statement holds to round-off "
-     "(residual at or below the tolerance at every point)."),
+    ("verified", "✓", "the property was shown to hold by a computation to round-off: as "
+     "printed, under a stated convention, or, for a correction or a table cell, after "
+     "correction or by a formula-free test. The mark says which."),
     ("fails", "✗", "the check ran and the printed statement does not hold: the residual is far "
      "above the tolerance. The printed form is kept; a correction the project found is shown "
-     "beside it as its own record."),
-    ("evidence", "◐", "a negative claim: evidence for it was found (numbers in the details), "
-     "which is not a proof."),
-    ("unchecked", "?", "not checkable: nothing can be computed (open problem, no formula "
-     "printed, a statement no pointwise computation decides), or the check could not run on "
-     "this server (its details say why)."),
+     "beside it as its own record (mark: holds after correction)."),
+    ("evidence", "◐", "numerical evidence, not a proof (mark: evidence for)."),
+    ("unchecked", "?", "nothing decided: open in the paper, not checkable (nothing was run), "
+     "or inconclusive (a check ran and could not decide). The mark says which."),
     ("pending", "…", "checking: the check is running now (a fresh server recomputes the "
      "verdicts whose catalogue entry or checking code changed); the page updates when it "
      "finishes."),

@@ -94,10 +94,19 @@ def how_we_check() -> str:
             f'{"<details><summary>check names</summary>" + names + "</details>" if names else ""}'
             f'</th><td>{escape(k["computed"])}</td><td>{escape(k["points"])}</td>'
             f'<td>{escape(k["tolerance"])}</td></tr>')
-    parts.append("</tbody></table></div><h2 id=\"verdicts\">What each verdict means</h2><dl>")
+    parts.append("</tbody></table></div><h2 id=\"marks\">What each mark means</h2>"
+                 "<p>Every table cell and every claim carries one mark, a shape and a word; "
+                 "the tables, the case pages, the JSON API (field <code>mark</code>) and "
+                 "<code>rolling verify</code> use these same marks.</p><dl class=\"marks\">")
+    for m in howcheck.marks():
+        parts.append(f'<dt id="mark-{escape(m["id"])}"><span class="mark {escape(m["id"])}" '
+                     f'aria-hidden="true">{m["shape"]}</span> {escape(m["name"])}</dt>'
+                     f'<dd>{escape(m["definition"])}</dd>')
+    parts.append("</dl><h2 id=\"verdicts\">The coarse verdict</h2><p>Each record also keeps "
+                 "its older, coarser <code>verdict</code> field in the JSON API:</p><dl>")
     for v, mark, text in howcheck.VERDICTS:
         parts.append(f'<dt><span class="mark {v}">{mark}</span> {v}</dt><dd>{escape(text)}</dd>')
-    parts.append("</dl><p>Each verdict on a case page carries the date it was computed and the "
+    parts.append("</dl><p>Each mark on a case page carries the date it was computed and the "
                  "project version that computed it.</p>")
     parts.append(
         '<h2 id="numbers">Equation and figure numbers</h2><p>The pages name equations and '

@@ -33,7 +33,8 @@ async def home(settings: SettingsDep, verdicts: VerdictsDep, pages: PagesDep) ->
     def build() -> str:
         by_claim, pending = verdicts.by_claim(), verdicts.pending()
         tables = {tid: views.table(tid, by_claim, pending) for tid in ("plane", "sphere")}
-        return render_page(ssr.home_page(path.read_text(), tables), "index.html")
+        summary = views.cells_sentence(views.tables_cell_marks(tables.values()))
+        return render_page(ssr.home_page(path.read_text(), tables, summary), "index.html")
 
     return HTMLResponse(pages.get("/", pages.stamp(verdicts, path), build))
 

@@ -58,7 +58,7 @@ async def cite_api() -> dict:
 async def how_we_check_api() -> dict:
     """Each kind of check and the constants the checking code uses."""
     kinds = [{**k, "checks": [str(n) for n in k["checks"]]} for k in howcheck.kinds()]
-    return {"constants": howcheck.constants(), "kinds": kinds,
+    return {"constants": howcheck.constants(), "kinds": kinds, "marks": howcheck.marks(),
             "verdicts": [{"verdict": v, "mark": m, "meaning": t}
                          for v, m, t in howcheck.VERDICTS]}
 

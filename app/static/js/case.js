@@ -2,9 +2,9 @@
 // printed formula, source and verdict, and a simulate panel with plots and a 3D scene.
 "use strict";
 
-import { api, ApiError, download, escapeHtml, fmt, VERDICT_ICON, VERDICT_TEXT } from "./api.js";
+import { api, ApiError, download, escapeHtml, fmt } from "./api.js";
 import { mathHtml, printedHtml, textHtml } from "./latex.js";
-import { badgeHtml, markHtml, qualifierHtml } from "./marks.js";
+import { badgeHtml, erratumLinks, markHtml, markInfo, markNoteHtml, tallyHtml } from "./marks.js";
 import { plotDrift, plotGamma, plotState } from "./plots.js";
 import { applyRunQuery, runQuery, setQuery } from "./permalink.js";
 import { csvOf } from "./run_csv.js";
@@ -73,13 +73,13 @@ function showHead() {
   showTally();
 }
 
+// the case's counts by mark, in words (views.case_sentence) and as shape + count + word
 function showTally() {
-  const v = C.verdicts;
-  const parts = ["verified", "fails", "evidence", "unchecked", "pending"].filter((k) => v[k])
-    .map((k) => `<span class="badge ${k}">${VERDICT_ICON[k]} ${v[k]} ${VERDICT_TEXT[k]}</span>`);
   const state = C.verification === "running"
     ? " · being checked now on this server; the page updates when the check finishes" : "";
-  $("tally").innerHTML = `${C.claims.length} claims: ${parts.join(" ")}<span class="hint">${state}</span>`;
+  $("tally").innerHTML = `<p class="mark-summary" id="mark-summary">${escapeHtml(C.summary || "")}</p>` +
+    `<span>cells: ${tallyHtml(C.cell_marks || {})}</span> <span>claims: ${tallyHtml(C.marks || {})}</span>` +
+    `<span class="hint">${state}</span>`;
   $("nclaims").textContent = `(${C.claims.length})`;
 }
 
@@ -119,7 +119,8 @@ function claimLinks(ids) {
 function showCells() {
   const rows = C.cells.map((c) => {
     const own = c.verdict ? c.verdict.claims.find((id) => id.startsWith(C.id + "/")) : null;
-    const mark = c.verdict ? markHtml(c.verdict, own ? `#${anchor(own)}` : `#row-${c.row}`) : "";
+    // the note that goes with the mark is written out in the row: no "why?" under it here
+    const mark = c.verdict ? markHtml(c.verdict, own ? `#${anchor(own)}` : `#row-${c.row}`, { why: false }) : "";
     const att = c.attribution.length ? `<div class="claimrefs">credited: ${attributionText(c.attribution)}</div>` : "";
     const refs = c.claims.length
       ? `<div class="claimrefs">claims: ${claimLinks(c.claims)}</div>` : "";
@@ -127,9 +128,11 @@ function showCells() {
     const sub = c.subrow ? `<div>${textHtml(c.subrow.printed)}</div>` : "";
     const cm = c.verdict && c.verdict.marks && c.verdict.marks.length ? c.verdict.marks[0] : null;
     // the verdict in words; the checking code's message (developer text) behind a toggle
+    const info = cm ? markInfo(cm.mark) : null;
+    const links = cm && cm.mark === "after-correction" ? erratumLinks(cm.errata) : "";
     const prop = cm && cm.mark !== "pending"
-      ? `<div class="claimrefs cellverdict">the cell's property: <strong>${escapeHtml(VERDICT_TEXT[cm.mark] === "verified" ? "holds" : VERDICT_TEXT[cm.mark])}</strong>` +
-        `${cm.notes.length ? ` (${escapeHtml(cm.notes.join("; "))})` : ""}` +
+      ? `<div class="claimrefs cellverdict">the cell's property: <strong>${info.shape} ${escapeHtml(info.name)}</strong>` +
+        `${cm.mark_note ? `: ${escapeHtml(cm.mark_note)}` : ""}${links ? ` (${links})` : ""}` +
         `${cm.rests_on.length ? `; rests on ${cm.rests_on.map(claimLink).join(", ")}` : ""}` +
         `${cm.message ? `<details class="dev"><summary>Details</summary>${escapeHtml(cm.message)}</details>` : ""}</div>`
       : (cm ? `<div class="claimrefs cellverdict">the cell's property: checking…</div>` : "");
@@ -148,7 +151,7 @@ function stamp(v) {
 
 function verdictLine(v) {
   const res = v.residual !== null && v.residual !== undefined ? ` · residual <code>${fmt(v.residual, 2)}</code>` : "";
-  return `<div class="verdict-line">${badgeHtml(v.verdict)}${res}${stamp(v)}</div>`;
+  return `<div class="verdict-line">${badgeHtml(v.mark)}${res}${stamp(v)}</div>`;
 }
 
 // one plain sentence: what was checked (the kind of check, see /how-we-check) and what came out
@@ -175,16 +178,22 @@ const CHECKED = {
   formula_not_printed: "The paper asserts this without printing a formula, so it cannot be computed",
   not_checkable: "This statement cannot be decided by a pointwise computation",
 };
+// what came out, by mark (solvers/verify/marks.yaml defines each on /how-we-check)
 const OUTCOME = {
-  verified: "it holds to round-off.",
+  "as-printed": "it holds as printed, to round-off.",
+  "after-correction": "as printed it does not hold; the project's corrected form does.",
+  "under-convention": "it holds under the convention stated below, not read with the project's conventions.",
+  "project-formula": "the paper prints no formula; the project's derived formula holds, to round-off.",
   fails: "it does not hold: the residual is far above the tolerance.",
-  evidence: "the evidence found is listed in the details.",
-  unchecked: "no verdict: the check could not run on this server (see the details).",
+  "evidence-for": "numerical evidence supports it (not a proof); the numbers are in the details.",
+  "evidence-against": "numerical evidence goes against it (not a proof); the numbers are in the details.",
+  inconclusive: "the check ran and could not decide; what it found is stated below.",
+  "not-checkable": "nothing was run (see the details).",
   pending: "being checked now; this page updates when the check finishes.",
 };
 
 function sentence(c) {
-  const v = c.verdict.verdict;
+  const v = c.verdict.mark;
   const what = CHECKED[c.check] || "Checked";
   const out = c.check === "open_problem" || c.check === "formula_not_printed" || c.check === "not_checkable"
     ? "." : `: ${OUTCOME[v] || v}`;
@@ -217,11 +226,11 @@ function claimHtml(c) {
   const corr = c.corrections.map((r) => `<div class="correction"><strong>The project's corrected form</strong>` +
     `${r.printed_tex ? `<div class="printed">${mathHtml(r.printed_tex, true)}</div>` : ""}` +
     `${r.printed ? `<p class="plain">${r.printed_tex ? escapeHtml(r.printed) : printedHtml(r.printed)}</p>` : ""}${verdictLine(r)}</div>`).join("");
-  return `<article class="claim ${v.verdict}" id="${anchor(c.id)}">` +
+  return `<article class="claim ${v.verdict} ${escapeHtml(v.mark)}" id="${anchor(c.id)}">` +
     `<header><span class="kind">${escapeHtml(c.kind)}</span>${c.number ? `<span class="label">${escapeHtml(c.number)}</span>` : ""}` +
-    `${badgeHtml(v.verdict)}</header>` +
+    `${badgeHtml(v.mark)}</header>` +
     `<div class="printed">${printedHtml(c.printed)}</div>` +
-    `<p class="plain">${escapeHtml(c.plain)}</p>${sentence(c)}<dl>${dl}</dl>${verdictLine(v)}${qualifierHtml(v)}` +
+    `<p class="plain">${escapeHtml(c.plain)}</p>${sentence(c)}<dl>${dl}</dl>${verdictLine(v)}${markNoteHtml(v)}` +
     `<details class="dev"><summary>Details</summary><dl>${dev}</dl>${notes}</details>${corr}</article>`;
 }
 
