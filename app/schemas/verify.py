@@ -13,8 +13,9 @@ MarkId = Literal["as-printed", "after-correction", "under-convention", "project-
                  "evidence-against", "inconclusive", "open", "not-checkable", "pending"]
 MARK_FIELD = Field("not-checkable", description="what was shown, one mark per meaning "
                    "(GET /api/marks defines each): as-printed | after-correction | "
-                   "under-convention | project-formula | fails | evidence-for | evidence-against | inconclusive "
-                   "| open | not-checkable | pending (being checked now)")
+                   "under-convention | project-formula | fails | evidence-for | "
+                   "evidence-against | inconclusive | open | not-checkable | pending (being "
+                   "checked now)")
 MARK_NOTE_FIELD = Field(None, description="one sentence that goes with the mark: the "
                         "convention, the misprint, or what an inconclusive check found")
 ERRATA_FIELD = Field(default_factory=list, description="after-correction: the formula "
