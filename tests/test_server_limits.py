@@ -219,3 +219,47 @@ def test_the_connection_cap_keeps_health_reachable_under_a_flood(server):
             s.close()
     assert r.status_code == 200 and took < 1.0, took
     assert c["peak"] <= LIMITS["max_connections"] and c["evicted"] >= LIMITS["max_connections"]
+
+
+def _one_response(s: socket.socket) -> bytes:
+    """One whole answer (head and Content-Length body) from a keep-alive connection."""
+    s.settimeout(5.0)
+    data = b""
+    while b"\r\n\r\n" not in data:
+        b = s.recv(65536)
+        if not b:
+            return data
+        data += b
+    head, _, rest = data.partition(b"\r\n\r\n")
+    length = int(_headers(head + b"\r\n\r\n")["content-length"])
+    while len(rest) < length:
+        b = s.recv(65536)
+        if not b:
+            break
+        rest += b
+    return head + b"\r\n\r\n" + rest
+
+
+def test_the_flood_evicts_stalled_sockets_before_a_served_keep_alive_one(server):
+    """A client between two requests on one keep-alive connection keeps it through a
+    flood of three times the cap: the never-served stalled sockets go first."""
+    _, port = server
+    request = b"GET /api/health HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n"
+    client = _connect(port)
+    client.sendall(request)
+    first = _one_response(client)
+    assert first.startswith(b"HTTP/1.1 200")
+    flood = []
+    try:
+        for _ in range(3 * LIMITS["max_connections"]):
+            s = _connect(port)
+            s.sendall(b"GET / HTTP/1.1\r\nHost: 127.0.0.1\r\n")
+            flood.append(s)
+        time.sleep(0.2)
+        client.sendall(request)
+        again = _one_response(client)
+    finally:
+        for s in flood:
+            s.close()
+        client.close()
+    assert again.startswith(b"HTTP/1.1 200"), again[:100]
