@@ -41,13 +41,39 @@ def code_hash() -> str:
     return h.hexdigest()[:16]
 
 
+def _functions(claim, corrected):
+    """The code of the formulas the residual runs, as registered now (a formula replaced at
+    run time, as the mutation tests do, changes the fingerprint: its stored proof is not
+    used)."""
+    from solvers.verify.registry import CORRECTED, FORMULAS
+    a = claim.check_args
+    out = []
+    for fid in (a.formula, a.against, a.system, a.bracket, a.hamiltonian, a.multiplier,
+                a.transform):
+        for table in (FORMULAS, CORRECTED) if corrected else (FORMULAS,):
+            fn = table.get(fid) if fid else None
+            if fn is not None:
+                code = getattr(fn, "__code__", None)
+                out.append([fid, getattr(fn, "__module__", None),
+                            getattr(fn, "__qualname__", repr(type(fn))),
+                            None if code is None else _code_sig(code)])
+    return out
+
+
+def _code_sig(code):
+    """Bytecode, constants (nested code objects recursively, no memory addresses) and
+    names: stable across processes, different for a different function."""
+    consts = [_code_sig(c) if hasattr(c, "co_code") else repr(c) for c in code.co_consts]
+    return [code.co_code.hex(), consts, list(code.co_names)]
+
+
 def fingerprint(catalogue, case, claim, corrected) -> str:
     entry = claim.model_dump(mode="json")
     fids = [a for a in (claim.check_args.formula, claim.check_args.against) if a]
     forms = [catalogue.formula(f).model_dump(mode="json") for f in fids
              if _has_formula(catalogue, f)]
-    blob = json.dumps([case.id, entry, forms, corrected, code_hash()], sort_keys=True,
-                      default=str)
+    blob = json.dumps([case.id, entry, forms, corrected, code_hash(),
+                       _functions(claim, corrected)], sort_keys=True, default=str)
     return hashlib.sha256(blob.encode()).hexdigest()[:16]
 
 
