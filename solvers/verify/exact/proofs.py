@@ -26,7 +26,9 @@ CODE = ["solvers/verify/exact/*.py", "solvers/verify/formulas/*.py",
         "solvers/verify/variables.py", "solvers/verify/params.py",
         "solvers/verify/registry.py", "solvers/models/bodies.py", "solvers/models/cases.py",
         "solvers/models/reduced.py", "solvers/models/revolution.py",
-        "solvers/verify/checks/common.py", "solvers/verify/checks/structure.py"]
+        "solvers/verify/checks/common.py", "solvers/verify/checks/structure.py",
+        "solvers/verify/checks/pointwise.py", "solvers/verify/checks/ode.py",
+        "solvers/verify/checks/negative.py"]
 
 
 @cache
