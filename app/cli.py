@@ -278,7 +278,7 @@ def _verify_tables(records, only_case):
     by_claim = {r["claim"]: r for r in records}
     # the same marks, shapes and words as the explorer and /how-we-check (marks.yaml)
     con.print("marks: " + "  ".join(f"{m.shape} {m.name}" for m in vocab.vocabulary()
-                                    if m.id != "pending"), markup=False)
+                                    if m.id != "pending"), markup=False, soft_wrap=True)
     for table in cat.tables():
         cases = [c for c in table.cases if only_case in (None, c.id)]
         if not cases:
@@ -411,22 +411,17 @@ def errata(
 
 
 def _exact_summary(records) -> str:
-    """One line: how many verified records carry an exact certificate that holds
-    (solvers/verify/exact), and how many failing ones an exact rational witness."""
-    # formula records: a cell record's certificates are those of the records it rests on
-    verified = [r for r in records if r["verdict"] == "verified"
-                and r.get("level", "formula") == "formula"]
-    certified = [r for r in verified if (r.get("exact") or {}).get("holds") is True
-                 and not r["exact"].get("negative") and r["exact"].get("bounded", True)]
-    fails = [r for r in records if r["verdict"] == "fails"]
-    # a witness (the residual is nonzero at a rational point), or for a refuted negative
-    # claim the exactly certified object that refutes it
-    witnessed = [r for r in fails if r.get("exact") is not None]
-    share = 100.0 * len(certified) / len(verified) if verified else 0.0
-    return (f"exact: {len(certified)} of {len(verified)} verified formula records certified "
-            "exactly with a Schwartz-Zippel bound "
-            f"({share:.0f}%); {len(witnessed)} of {len(fails)} failing records settled exactly "
-            "(rational witness or certified counter-object)")
+    """One line: of the verified formula records, how many are proved symbolically, how
+    many certified with a Schwartz-Zippel bound (N and k read from the code), how many
+    neither (solvers/verify/exact/report.py gives each one's reason); and how many failing
+    records an exact rational witness settles."""
+    from solvers.verify.exact.report import exact_counts
+    c = exact_counts(records)
+    return (f"exact: of {c['verified']} verified formula records, {c['proved']} proved "
+            f"symbolically, {c['certified']} certified (Schwartz-Zippel, N = 2^{c['bits']} "
+            f"grid values per coordinate, k = {c['k']} points seeded by the claim id), "
+            f"{c['neither']} neither; {c['witnessed']} of {c['fails']} failing records settled "
+            "exactly (rational witness or certified counter-object)")
 
 
 @cli.command()

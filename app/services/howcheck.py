@@ -5,6 +5,8 @@ from __future__ import annotations
 
 from catalogue.schema import CheckName
 from solvers.verify.checks import common, formula_free, negative, nonexistence
+from solvers.verify.exact import certify as exact_certify
+from solvers.verify.exact import points as exact_points
 from solvers.verify.marks import vocabulary
 
 
@@ -16,7 +18,8 @@ def constants() -> dict[str, float]:
             "N_MAP_ORBITS": negative.N_MAP_ORBITS, "MIN_CROSSINGS": negative.MIN_CROSSINGS,
             "T_LONG": negative.T_LONG, "FF_T_LONG": formula_free.T_LONG,
             "FF_N_RUNS": formula_free.N_RUNS, "FF_MIN_CROSSINGS": formula_free.MIN_CROSSINGS,
-            "FF_CONTROL_BREAKS": formula_free.CONTROL_BREAKS}
+            "FF_CONTROL_BREAKS": formula_free.CONTROL_BREAKS,
+            "EXACT_BITS": exact_points.BITS, "EXACT_K": exact_certify.K_POINTS}
 
 
 def kinds() -> list[dict]:
@@ -89,15 +92,23 @@ def kinds() -> list[dict]:
          "points": f"{c['N_SETTINGS']} parameter draws × {c['FF_N_RUNS']} runs, plus the "
                    "off-axis control",
          "tolerance": f"spread of the returns ≤ {c['TOL']:g}"},
-        {"id": "exact", "title": "Exact certificates",
+        {"id": "exact", "title": "Exact certificates and proofs",
          "checks": [],
-         "computed": "the residual of a polynomial (or rational) identity evaluated in exact "
-                     "rational arithmetic at random rational points: a nonzero value proves "
-                     "the identity false; zero at a random point of a set S means that a "
-                     "nonzero polynomial of degree d would vanish there with probability at "
-                     "most d/|S| (Schwartz–Zippel lemma), so several zeros make a wrong "
-                     "identity vanishingly unlikely.",
-         "points": "random rational points; the bound d/|S| per point",
+         "computed": "the residual of a polynomial (or rational) identity, in exact rational "
+                     "arithmetic. Proof: with every free coordinate (parameters, γ's angle "
+                     "parameters, M) a symbol, the residual is a rational function; its "
+                     "numerator expanded over Q is the zero polynomial, so the identity holds "
+                     "with certainty. Certificate, where the expansion is too large: the "
+                     f"residual at k = {c['EXACT_K']} random rational points, every coordinate "
+                     f"(parameters included) uniform over N = 2^{c['EXACT_BITS']} exact grid "
+                     "values; a nonzero value proves the identity false; zero at all k points "
+                     "means a nonzero numerator of degree ≤ d (tracked through the arithmetic) "
+                     "would vanish there with probability at most (d/N)^k (Schwartz–Zippel "
+                     "lemma). A record whose degree is not known states no probability. The "
+                     "points are seeded by the claim id: reproducible, but not random against "
+                     "someone who picks a formula after seeing them.",
+         "points": f"a proof, or k = {c['EXACT_K']} points with the bound (d/N)^k, "
+                   f"N = 2^{c['EXACT_BITS']}",
          "tolerance": "exactly zero (no floating point)"},
         {"id": "recorded", "title": "Recorded, not computed",
          "checks": [CheckName.OPEN_PROBLEM, CheckName.FORMULA_NOT_PRINTED,
