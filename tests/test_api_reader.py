@@ -155,7 +155,7 @@ def test_search_shows_marks_not_coarse_verdicts(client):
     items = re.findall(r'<ul class="results" data-testid="claim-results">(.*?)</ul>', page, re.S)
     rows = re.findall(r"<li>(.*?)</li>", items[0], re.S)
     assert len(rows) == len(r["claims"][:200])
-    for row, c in zip(rows, r["claims"]):
+    for row, c in zip(rows, r["claims"][:200], strict=True):
         m = vocab.by_id()[c["mark"]]
         assert f'data-mark="{m.id}"' in row and f"{m.shape} {m.word}" in html.unescape(row), row
         # the coarse verdict word is no longer what the result shows
