@@ -103,7 +103,12 @@ def test_findings_include_inconclusive_results_that_lean_against_the_paper(clien
     found = {f["claim"]: f for f in client.get("/api/findings").json()}
     third = found["sphere/chaplygin-ball/negative/third-integral"]
     assert third["kind"] == "inconclusive" and third["leans"] == "against the paper"
-    assert third["finding"].startswith("inconclusive") and third["evidence"]["orbits"] > 0
+    assert third["kind"] == "inconclusive" and third["evidence"]["orbits"] > 0
+    # what was found, in the plain words of the mark's note (issue 17); the checking code's
+    # message, with its statistic's name, stays in `message` for the JSON
+    assert third["message"].startswith("inconclusive") and "Poincaré map" in third["finding"]
+    assert not re.search(r"s\d/s\d", third["finding"]) and re.search(r"s\d/s\d",
+                                                                      third["message"])
     assert third["anchor"] == "f-sphere/chaplygin-ball/negative/third-integral"
     # Fig. 7: the caption's "not situated on any surface" is not confirmed
     fig = found["figure/ris-4"]
@@ -133,3 +138,26 @@ def test_fig_6_has_its_own_caption_analysis(client):
     assert any("three trajectories" in n for n in n6)
     assert any("two-dimensional" in n for n in n6)
     assert figs["ris-4"]["finding"]["status"] == "inconclusive"
+
+
+def test_rows_name_the_claim_as_case_pages_do_not_by_its_id(client):
+    """Issue 17: a row of /errata names its claim by what a reader knows, the case's title
+    and the claim's kind and printed number ("integral (2.24)", as case pages name it);
+    the record id is data only (the anchor, the link's target, data-claim)."""
+    rows = [*client.get("/api/errata").json(), *client.get("/api/conventions").json(),
+            *client.get("/api/findings").json()]
+    assert rows
+    for e in rows:
+        assert e["case_title"] == CAT.case(e["case"]).title, e["claim"]
+        if e["claim"].startswith("figure/"):
+            assert e["claim_name"] == f"the caption of {e['number']}"
+            continue
+        c = CAT.claim(e["claim"])
+        number = printed(c.label) if c.label else None
+        assert e["claim_name"] == c.kind.value.replace("-", " ") + (
+            f" {number}" if number else ""), e["claim"]
+        assert "/" not in e["claim_name"] and e["claim"] not in e["claim_name"]
+    # the page's script names rows by these fields, never by the record id in text
+    js = open("app/static/js/errata.js", encoding="utf-8").read()
+    assert "claim_name" in js and "case_title" in js
+    assert not re.search(r">\$\{escapeHtml\(e\.(claim|case)\)\}<", js)

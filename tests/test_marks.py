@@ -4,6 +4,7 @@ real records of `rolling verify` for the cases that carry every kind of mark; th
 /how-we-check and the CLI say the same marks."""
 
 import io
+import re
 import typing
 
 import pytest
@@ -121,6 +122,32 @@ def test_an_inconclusive_check_says_what_it_found(by):
     assert "orbits" in r["mark_note"] and r["residual"] is not None
 
 
+def test_evidence_and_inconclusive_notes_speak_plain_words(records, by):
+    """Issue 17: the note beside "evidence for", "evidence against" and "inconclusive" is
+    written for a reader (solvers/verify/plain_notes.py), as the pages show it (printed
+    numbers, views.record); the checking code's message, with its program words, stays in
+    the record for the JSON and the Details toggle."""
+    from app.services.views import record
+    from tests.e2e.test_reader_pages_browser import developer_words
+
+    noted = [r for r in records if r["mark"] in ("evidence-for", "evidence-against",
+                                                 "inconclusive")]
+    # formula and cell records, evidence for and inconclusive, among the real records (a
+    # cell that is inconclusive: the ellipsoid's, test_the_ellipsoid_no_further_integral...)
+    assert {(r["level"], r["mark"]) for r in noted} >= {
+        ("formula", "evidence-for"), ("formula", "inconclusive"), ("cell", "evidence-for")}
+    problems = {r["claim"]: developer_words(record(r)["mark_note"]) for r in noted}
+    assert not {k: v for k, v in problems.items() if v}, problems
+    assert all(record(r)["mark_note"] for r in noted)
+    # the note says what the check found: its numbers, not a stock sentence
+    r = by["sphere/chaplygin-ball/negative/third-integral"]
+    note = record(r)["mark_note"]
+    assert "Poincaré map" in note and f"{r['evidence']['orbits']} orbits" in note
+    assert re.search(r"s\d/s\d", r["message"]) and not re.search(r"s\d/s\d", note)
+    r = by["sphere/round-disk/gyrostat/linear-integrals/formula-free"]
+    assert f"each of {r['evidence']['crossings']} crossings" in r["mark_note"]
+
+
 def test_formula_free_tests_are_evidence_and_support_their_cell(by):
     r = by["sphere/round-disk/gyrostat/linear-integrals/formula-free"]
     assert r["verdict"] == "verified" and r["mark"] == "evidence-for"
@@ -154,8 +181,13 @@ def test_the_ellipsoid_no_further_integral_cell_is_inconclusive():
     cell = next(r for r in recs if r["claim"] == "plane/ellipsoid/cell/integrals")
     assert cell["verdict"] == "unchecked" and cell["mark"] == "inconclusive"
     note = cell["mark_note"]            # what the check found, not the word again
-    assert "orbits of the section map" in note and "no chaotic layer found" in note
-    assert not note.startswith("inconclusive")
+    # in plain words (issue 17): the message keeps the statistic's name, the note does not
+    assert "orbits of the Poincaré map" in note and "no chaotic layer was found" in note
+    assert not note.startswith("inconclusive") and "s3/s1" not in note
+    assert "s3/s1" in cell["message"]
+    from app.services.views import record
+    from tests.e2e.test_reader_pages_browser import developer_words
+    assert not developer_words(record(cell)["mark_note"])
 
 
 def test_cell_mark_order():

@@ -7,6 +7,9 @@ class _Entry(BaseModel):
     claim: str = Field(description="the claim (record id) in the catalogue; figure/<key> for a "
                        "finding about one of the paper's figures")
     case: str
+    case_title: str | None = Field(None, description="the case's title, as its page names it")
+    claim_name: str | None = Field(None, description="the claim as a reader knows it: its "
+                                   "kind and printed number, 'integral (2.24)'")
     kind: str | None = Field(None, description="misprint | inherited | convention | "
                              "refuted-conjecture | refuted | inconclusive")
     label: str | None = Field(None, description="the equation's LaTeX label (data)")

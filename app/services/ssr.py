@@ -33,6 +33,19 @@ def badge_html(mark: str) -> str:
     return f'<strong class="badge {escape(mark)}">{m.shape} {escape(m.name)}</strong>'
 
 
+def claim_label(c: dict) -> str:
+    """A claim as a reader knows it: its kind and printed number (cite.js claimLabel)."""
+    return c["kind"].replace("-", " ") + (f' {c["number"]}' if c.get("number") else "")
+
+
+def permalink_html(c: dict) -> str:
+    """The claim's visible permalink, the same as the script draws (cite.js permalinkHtml):
+    with scripts off a reader can still link to one claim (issue 17, item 5)."""
+    a = _anchor(c["id"])
+    return (f'<a class="permalink" href="#{a}" title="Permalink to this claim" '
+            f'aria-label="Permalink to the claim {escape(claim_label(c))}">¶</a>')
+
+
 def claim_html(c: dict) -> str:
     v = c["verdict"]
     residual = (f"; largest normalised residual {v['residual']:.1e}"
@@ -45,7 +58,7 @@ def claim_html(c: dict) -> str:
     msg = (f"<details><summary>How it was checked</summary><p>{escape(v['message'])}</p>"
            f"</details>") if v.get("message") else ""
     return (f'<article class="claim ssr" id="{_anchor(c["id"])}">'
-            f'<h3>{escape(c["kind"])}: {escape(c["plain"])}</h3>'
+            f'<h3>{permalink_html(c)} {escape(claim_label(c))}: {escape(c["plain"])}</h3>'
             f'<p>Mark: {badge_html(v.get("mark") or "not-checkable")}'
             f'{escape(residual)}.</p>{note}{where}{msg}</article>')
 

@@ -127,9 +127,17 @@ def corrected_display(fid: str | None, cat: Catalogue) -> dict:
             "corrected_section": section_number(number, where)}
 
 
+def claim_name(kind: str, number: str | None) -> str:
+    """A claim as a reader knows it, as case pages name it: its kind and printed number
+    ("integral (2.24)"); the record id stays data (the row's anchor, its link)."""
+    return kind.replace("-", " ") + (f" {number}" if number else "")
+
+
 def _base(rec: dict, cat: Catalogue) -> dict:
     claim = cat.claim(rec["claim"])
     return {"claim": rec["claim"], "case": rec["case"], "kind": rec.get("qualifier"),
+            "case_title": cat.case(rec["case"]).title,
+            "claim_name": claim_name(claim.kind.value, printed_number(claim.label)),
             "label": claim.label, "number": printed_number(claim.label),
             "where": cite(claim.where), "section": section_of(claim.label),
             "printed": cite_latex(claim.printed), "plain": cite(claim.plain),
@@ -206,7 +214,10 @@ def findings(records: list[dict], cat: Catalogue) -> list[dict]:
         claim = cat.claim(r["claim"])
         title = FINDING_TITLES.get(r["claim"]) or (
             f"{cat.case(r['case']).title}: {claim.plain}")
-        e.update(title=cite(title), finding=cite(r.get("finding") or r.get("message", "")),
+        # what was found in words: a refutation's finding, else the mark's plain note
+        # (solvers/verify/plain_notes.py); the checking code's message stays in `message`
+        e.update(title=cite(title), finding=cite(r.get("finding") or r.get("mark_note")
+                                                 or r.get("message", "")),
                  evidence=cite(r.get("evidence") or {}), anchor=f"f-{r['claim']}",
                  place=short_place(e["number"], e["where"]),
                  kind=r.get("qualifier") if refuted else INCONCLUSIVE,
@@ -229,6 +240,7 @@ def figure_findings(figures: dict, cat: Catalogue) -> list[dict]:
         number = printed_number(label)
         out.append({
             "claim": f"figure/{key}", "case": fig["case"], "kind": f["status"],
+            "case_title": cat.case(fig["case"]).title, "claim_name": f"the caption of {number}",
             "label": label, "number": number, "where": f"the caption of {number}",
             "section": "section 2", "section_title": SECTIONS["2"],
             "printed": f["statement"], "plain": cite(f["statement"]),

@@ -54,6 +54,7 @@ its JSON and the API.
 from __future__ import annotations
 
 from catalogue.schema import Case, Catalogue
+from solvers.verify import plain_notes
 
 NEUTRAL_CHECKS = frozenset({"open_problem", "formula_not_printed", "not_checkable"})
 CELL_NOTE = {"corrected": "holds; printed formula corrected",
@@ -183,7 +184,8 @@ def formula_mark(r: dict, cl, by_claim: dict) -> tuple[str, str | None, list[str
         if q == "convention":
             return "under-convention", r.get("convention"), []
         if q == "formula-free":
-            return "evidence-for", f"a formula-free test along trajectories: {r['message']}", []
+            return "evidence-for", "a formula-free test along trajectories: " + \
+                plain_notes.note(r, "evidence-for", _what(cl, r)), []
         return "as-printed", None, []
     if v == "fails":
         if q == "misprint":
@@ -199,23 +201,22 @@ def formula_mark(r: dict, cl, by_claim: dict) -> tuple[str, str | None, list[str
                     "which is misprinted; with that correction it holds",
                     [r["claim"], r["inherits"]])
         if q == "formula-free":
-            return "evidence-against", f"a formula-free test along trajectories: " \
-                f"{r['message']}", []
+            return "evidence-against", "a formula-free test along trajectories: " + \
+                plain_notes.note(r, "evidence-against", _what(cl, r)), []
         if q == "refuted-conjecture":
             return "fails", f"the paper doubts it exists; found: {r['finding']}", []
         return "fails", (f"{_what(cl, r)} does not hold{_res(r.get('residual'))} and the "
                          "project found no correction that does"), []
-    if v == "evidence":
-        return "evidence-for", r.get("message") or None, []
+    if v == "evidence":     # the reader's note in plain words; the message stays as it is
+        return "evidence-for", plain_notes.note(r, "evidence-for", _what(cl, r)), []
     # unchecked: did anything run?
     check, msg = r.get("check"), r.get("message") or ""
     if check == "open_problem":
         return "open", msg or None, []
     if check in NEUTRAL_CHECKS or msg.startswith("not implemented"):
         return "not-checkable", msg or None, []
-    # what the check found, without repeating the mark's own word
-    return "inconclusive", msg.removeprefix("inconclusive: ") or "the check ran and could " \
-        "not decide", []
+    # what the check found, in plain words, without repeating the mark's own word
+    return "inconclusive", plain_notes.note(r, "inconclusive", _what(cl, r)), []
 
 
 # a cell's mark over its claims' marks: the first present of DECIDING, else of HOLDING
@@ -265,7 +266,8 @@ def _claim_mark(r: dict, basis: str | None, on: list[str], by_claim: dict):
         return ("after-correction", note or "the printed formula has a misprint; the "
                 "project's correction holds", r.get("errata") or [r["claim"]])
     if basis == "formula-free":
-        tests = "; ".join(by_claim[x]["message"] for x in on[1:])
+        tests = "; ".join(plain_notes.note(by_claim[x], "evidence-for", "the property")
+                          for x in on[1:])
         return ("evidence-for", "the printed formula fails and no correction was found; a "
                 f"formula-free test along trajectories shows the property: {tests}", [])
     return r["mark"], r.get("mark_note"), list(r.get("errata") or [])

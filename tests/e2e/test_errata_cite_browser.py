@@ -66,6 +66,29 @@ def test_errata_index_fits_three_screens_and_rows_have_anchors(page, verified, a
         "Fig. 7")
 
 
+def test_errata_rows_name_claims_not_record_ids(page, verified):
+    """Issue 17: every row, opened, names its claim as the case pages do (the case's title,
+    the claim's kind and printed number); no record id in what a reader sees (the copyable
+    command line aside); the id is the link's target and data-claim."""
+    page.goto(verified + "/errata")
+    ready(page)
+    page.evaluate("document.querySelectorAll('details.erow').forEach((d) => { d.open = true; })")
+    text = page.evaluate("""() => {
+      const hide = [...document.querySelectorAll('.katex-mathml, annotation, .repro code')];
+      hide.forEach((e) => { e.style.display = 'none'; });
+      return document.body.innerText; }""")
+    ids = re.findall(r"\b(?:plane|sphere)/[a-z0-9-]+(?:/[a-z0-9*-]+)*", text)
+    assert not ids, sorted(set(ids))
+    rows = [*httpx.get(f"{verified}/api/errata").json(),
+            *httpx.get(f"{verified}/api/conventions").json(),
+            *httpx.get(f"{verified}/api/findings").json()]
+    names = page.locator("a.claimname").evaluate_all(
+        "els => els.map((a) => [a.dataset.claim, a.textContent])")
+    assert len(names) == len(rows)
+    want = {e["claim"]: f"{e['claim_name']} of {e['case_title']}" for e in rows}
+    assert {c: t for c, t in names} == want
+
+
 def test_an_erratum_anchor_opens_its_row(page, verified, artifacts):
     anchor = "e-plane/body-of-revolution/poisson/antigradient"
     page.goto(f"{verified}/errata#{anchor}")
@@ -134,6 +157,19 @@ def test_a_search_result_lands_on_its_claim(page, verified):
     ready(page)
     target = page.locator(f"#{m[2]}")
     expect(target).to_be_in_viewport()
+
+
+def test_search_results_show_marks(page, verified):
+    """Issue 17: a result shows its claim's mark, shape and word, as the case page does."""
+    page.goto(f"{verified}/search?q=Chaplygin")
+    results = httpx.get(f"{verified}/api/search", params={"q": "Chaplygin"}).json()["claims"]
+    marks = {m["id"]: m for m in httpx.get(f"{verified}/api/how-we-check").json()["marks"]}
+    badges = page.locator('[data-testid="claim-results"] li .badge')
+    expect(badges).to_have_count(min(len(results), 200))
+    shown = badges.all_inner_texts()
+    for c, text in zip(results[:200], shown, strict=True):
+        assert text == f"{marks[c['mark']]['shape']} {marks[c['mark']]['word']}", (c["id"], text)
+    assert any(c["mark"] not in ("pending", "not-checkable") for c in results)
 
 
 def test_bibliography_cite_box_takes_the_pages_address_and_todays_date(page, verified):

@@ -29,6 +29,8 @@ DEVELOPER_WORDS = {
     "citation key": r"\[[a-z][a-z0-9]*(?:[-_][a-z0-9*]+)+\]|\[[a-z]+\d+\]",
     "data key: value": r"\b(?:potential|S|I|a|k|lambda_?|z): (?:any|zero|none|nonzero|brun)\b",
     "record id": r"\b(?:plane|sphere)/[a-z0-9-]+/[a-z0-9*-]+",
+    # a statistic's program name (the section map's thickness "median s3/s1")
+    "statistic name": r"\bs\d/s\d\b",
 }
 DEV_RE = {k: re.compile(v) for k, v in DEVELOPER_WORDS.items()}
 
@@ -84,7 +86,8 @@ def test_the_label_pattern_finds_the_issues_examples():
 def test_the_developer_word_patterns_find_the_issues_examples():
     text = ("conditions: potential: any, S: zero, I: I1!=I2!=I3!=I1; mean_logdet; "
             "0.833967+0.521929j; (catalogue/scenes.yaml); pass allow_any_inertia / "
-            "--allow-any-inertia; [bm-new]; plane/chaplygin-ball/integral/M2")
+            "--allow-any-inertia; [bm-new]; plane/chaplygin-ball/integral/M2; "
+            "max median s3/s1 = 0.00")
     assert set(developer_words(text)) == set(DEVELOPER_WORDS)
     assert not developer_words("I1 ≠ I2 ≠ I3 ≠ I1, no gyrostat (S = 0), any potential U(γ); "
                                "(2.24); Fig. 3; 1.2e-15; e.g. a − b; the Chaplygin ball "

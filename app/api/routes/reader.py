@@ -15,6 +15,7 @@ from app.services.search import facets, search
 from catalogue.glossary import load_glossary
 from catalogue.load import load_catalogue
 from catalogue.numbering import cite, printed, printed_numbers
+from solvers.verify import marks as vocab
 
 router = APIRouter(tags=["reader"])
 pages = APIRouter(include_in_schema=False)
@@ -70,9 +71,11 @@ Filter = Annotated[str, Query(max_length=MAX_FILTER)]
 @router.get("/search")
 async def search_api(verdicts: VerdictsDep, q: str = Query("", max_length=200),
                      body: Filter = "", surface: Filter = "", kind: Filter = "",
-                     verdict: Filter = "") -> dict:
-    """Cases and claims matching every word of q, filtered by body, surface, kind, verdict."""
-    return search(q, body, surface, kind, verdict, verdicts.by_claim(), verdicts.pending())
+                     verdict: Filter = "", mark: Filter = "") -> dict:
+    """Cases and claims matching every word of q, filtered by body, surface, kind, verdict
+    and mark (solvers/verify/marks.yaml: the mark each claim shows on its case page)."""
+    return search(q, body, surface, kind, verdict, verdicts.by_claim(), verdicts.pending(),
+                  mark)
 
 
 @pages.get("/how-we-check", response_class=HTMLResponse)
@@ -97,17 +100,34 @@ def _select(name: str, options: list[str], value: str) -> str:
             f"{opts}</select></label>")
 
 
+def _mark_html(m) -> str:
+    """A claim's mark as its case page draws it (marks.js badgeHtml): shape and word, told
+    apart without colour; the full name for a screen reader and on hover."""
+    return (f'<span class="badge {escape(m.id)}" title="{escape(m.name)}" '
+            f'data-mark="{escape(m.id)}">{escape(m.shape)} {escape(m.word)}</span>')
+
+
 @pages.get("/search", response_class=HTMLResponse)
 async def search_page(verdicts: VerdictsDep, q: str = Query("", max_length=200),
                       body: Filter = "", surface: Filter = "", kind: Filter = "",
-                      verdict: Filter = "") -> str:
-    r = search(q, body, surface, kind, verdict, verdicts.by_claim(), verdicts.pending())
+                      verdict: Filter = "", mark: Filter = "") -> str:
+    r = search(q, body, surface, kind, verdict, verdicts.by_claim(), verdicts.pending(), mark)
     f = facets()
+    marks = vocab.by_id()
+    # the marks by their names (the value is the API's `mark` id); a verdict in the query
+    # (an old link) still filters, kept as a hidden field so the form does not drop it
+    mark_opts = "".join(f'<option value="{escape(i)}"{" selected" * (i == mark)}>'
+                        f'{escape(marks[i].shape)} {escape(marks[i].name)}</option>'
+                        for i in f["mark"])
+    old_verdict = (f'<input type="hidden" name="verdict" value="{escape(verdict)}">'
+                   if verdict else "")
     form = (f'<form class="searchform" role="search" action="/search" method="get">'
             f'<label><span>text</span><input type="search" name="q" value="{escape(q)}" '
             'placeholder="e.g. Chaplygin"></label>'
             + "".join(_select(n, f[n], v) for n, v in (("body", body), ("surface", surface),
-                                                       ("kind", kind), ("verdict", verdict)))
+                                                       ("kind", kind)))
+            + f'<label><span>mark</span><select name="mark"><option value="">any</option>'
+            f'{mark_opts}</select></label>{old_verdict}'
             + '<button type="submit">Search</button></form>')
     cases = "".join(f'<li><a href="{escape(c["href"])}">{escape(c["title"])}</a> '
                     f'<span class="hint">Table {c["table"]}, {escape(c["surface"])}, '
@@ -115,7 +135,7 @@ async def search_page(verdicts: VerdictsDep, q: str = Query("", max_length=200),
     claims = "".join(
         f'<li><a href="{escape(c["href"])}">{escape(c["case_title"])}</a>: '
         f'{escape(c["number"] + " " if c["number"] else "")}{escape(c["plain"] or "")} '
-        f'<span class="mark {c["verdict"]}">{escape(c["verdict"])}</span></li>'
+        f'{_mark_html(marks[c["mark"]])}</li>'
         for c in r["claims"][:200])
     more = (f"<p>First 200 of {len(r['claims'])} claims.</p>" if len(r["claims"]) > 200 else "")
     body_html = (form + f'<h2 id="cases">Cases ({len(r["cases"])})</h2>'

@@ -28,9 +28,18 @@ const rowLink = (anchor) => `<a class="permalink" href="#${escapeHtml(anchor)}" 
 
 let CASES = {};       // case id -> title
 
+// a row names its claim as the case pages do: the case's title, the claim's kind and printed
+// number (claim_name, solvers/verify/errata.py); the record id only in the link and data-claim
+const caseTitle = (e) => e.case_title || CASES[e.case] || "the case";
 function caseLink(e) {
-  const title = CASES[e.case] || e.case;
-  return `<a href="${escapeHtml(caseHref(e))}" title="${escapeHtml(title)}">${escapeHtml(title)}</a>`;
+  const title = caseTitle(e);
+  const tip = e.claim_name ? `${e.claim_name}, ${title}` : title;
+  return `<a href="${escapeHtml(caseHref(e))}" title="${escapeHtml(tip)}" data-claim="${escapeHtml(e.claim)}">${escapeHtml(title)}</a>`;
+}
+// the claim itself, linked: "integral (2.24) of the Chaplygin ball"
+function claimLink(e) {
+  const text = e.claim_name ? `${e.claim_name} of ${caseTitle(e)}` : caseTitle(e);
+  return `<a class="claimname" href="${escapeHtml(caseHref(e))}" data-claim="${escapeHtml(e.claim)}">${escapeHtml(text)}</a>`;
 }
 
 function exactHtml(ex, what) {
@@ -72,7 +81,7 @@ function erratumHtml(e) {
     `<p class="where">Corrected display: <strong>${escapeHtml(e.corrected_display || "")}</strong>` +
     `${e.corrected_where && e.corrected_number ? "" : e.corrected_where ? ` (${escapeHtml(e.corrected_where)})` : ""}` +
     `${e.section_title ? `, section ${escapeHtml(sectionOf(e))}, “${escapeHtml(e.section_title)}”` : ""}. ` +
-    `The claim that fails as printed stands at ${escapeHtml(e.number || e.where || e.place)}: ${caseLink(e)}.</p>` +
+    `The claim that fails as printed stands at ${escapeHtml(e.number || e.where || e.place)}: ${claimLink(e)}.</p>` +
     `<div class="pair"><div><h4>Printed ${escapeHtml(e.corrected_display || "")}</h4>` +
     `<div class="printed" tabindex="0">${printedHtml(e.corrected_printed || e.printed)}</div>` +
     `<p>residual of the claim as printed ${res(e.residual_printed)} (fails)</p></div>` +
@@ -96,7 +105,7 @@ function conventionHtml(e) {
     `<span class="change">${escapeHtml(e.convention || "")}</span>` +
     `<span class="res"><span title="residual under the convention">${res(e.residual_under_convention)}</span> · ` +
     `<span title="residual read with the project's convention">${res(e.residual_printed)}</span></span></summary>` +
-    `<div class="ebody">${rowLink(e.anchor)} ` +
+    `<div class="ebody">${rowLink(e.anchor)} <p class="where">The claim: ${claimLink(e)}.</p>` +
     `<div class="printed" tabindex="0">${printedHtml(e.printed)}</div>` +
     `<p><strong>Convention:</strong> ${escapeHtml(e.convention || "")}</p>` +
     `<p>Under this convention the printed form holds: residual ${res(e.residual_under_convention)}. ` +
@@ -133,7 +142,7 @@ function findingHtml(e) {
     `<span class="case">${caseLink(e)}</span>` +
     `<span class="change">${escapeHtml(e.title)}</span>` +
     `<span class="res">${escapeHtml(word)}${leans}</span></summary>` +
-    `<div class="ebody">${rowLink(e.anchor)} <p class="where">The paper (${escapeHtml(e.where || e.place || "")}):</p>${stmt}` +
+    `<div class="ebody">${rowLink(e.anchor)} <p class="where">The paper (${escapeHtml(e.where || e.place || "")}), ${claimLink(e)}:</p>${stmt}` +
     `<p><strong>Found:</strong> ${escapeHtml(e.finding)}</p>${inconclusive}${evidenceHtml(e.evidence)}` +
     exactHtml(e.exact, "claim") + reproHtml(e.reproduce) + `</div></details>`;
 }
@@ -143,7 +152,7 @@ function findingHtml(e) {
 function indexHtml(errata, conventions, findings) {
   const secs = new Map();
   const add = (e, what, label) => {
-    const tip = `${CASES[e.case] || e.case}${e.place && e.place !== label ? `, claim at ${e.place}` : ""}`;
+    const tip = `${caseTitle(e)}${e.claim_name ? `, ${e.claim_name}` : ""}${e.place && e.place !== label && !(e.claim_name || "").endsWith(e.place) ? `, claim at ${e.place}` : ""}`;
     const s = sectionOf(e);
     if (!secs.has(s)) secs.set(s, { title: e.section_title || "", errata: [], conventions: [], findings: [] });
     const rec = secs.get(s);
