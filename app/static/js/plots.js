@@ -121,6 +121,47 @@ export function plotGamma(el, run) {
   return window.Plotly.react(el, traces, layout, CONFIG);
 }
 
+// A teaching scene's check as it was measured (GET /api/scenes/{id}/checks/{k},
+// solvers/scenes/scene_checks.py): the traces are the very data of the verdict. The
+// title is the HTML heading above the plot and the legend sits on top of the plot area,
+// so no axis title, legend or toolbar is drawn over another (tests/e2e layout test).
+const ROLE = {
+  claim: (j) => ({ mode: "lines", line: { width: 2.4, color: COLORS[j % COLORS.length] } }),
+  contrast: () => ({ mode: "lines", line: { width: 1.6, color: "#8c959f", dash: "dash" } }),
+  limit: () => ({ mode: "lines", line: { width: 1.5, color: "#c21c2c", dash: "dot" }, hoverinfo: "skip" }),
+  raw: () => ({ mode: "lines", line: { width: 1, color: "#9fb7cf" } }),
+  event: () => ({ mode: "markers", marker: { size: 11, color: "#c21c2c", symbol: "diamond",
+    line: { width: 1, color: "#fff" } } }),
+};
+
+export function plotClaim(el, plot) {
+  let j = 0;
+  const traces = plot.traces.map((tr) => {
+    const style = (ROLE[tr.role] || ROLE.claim)(tr.role === "claim" ? j++ : 0);
+    const t = { type: "scatter", x: tr.x, y: tr.y, name: tr.name, ...style };
+    if (tr.mode === "markers") {
+      Object.assign(t, { mode: "markers", marker: { size: 4, color: style.line ? style.line.color : undefined } });
+      delete t.line;
+    }
+    return t;
+  });
+  const shapes = plot.vline ? [{ type: "line", xref: "x", yref: "paper", x0: plot.vline.x, x1: plot.vline.x,
+    y0: 0, y1: 1, line: { color: "#c21c2c", dash: "dot", width: 1.5 } }] : [];
+  const layout = {
+    font: FONT, paper_bgcolor: "#fff", plot_bgcolor: "#fff", height: 330,
+    margin: { l: 72, r: 14, t: 8, b: 46 },
+    xaxis: { title: { text: plot.x_title, standoff: 6 }, zeroline: false, automargin: true },
+    yaxis: { title: { text: plot.y_title, standoff: 6 }, automargin: true,
+      ...(plot.log_y ? { type: "log", exponentformat: "power" } : { zeroline: true }),
+      ...(plot.y_range ? { range: plot.y_range } : {}) },
+    showlegend: true,
+    legend: { orientation: "h", x: 0, xanchor: "left", y: 1.02, yanchor: "bottom", font: { size: 12 } },
+    shapes,
+  };
+  // teaching plots: no toolbar over the legend (a class reads them, zooming is not the point)
+  return window.Plotly.react(el, traces, layout, { ...CONFIG, displayModeBar: false });
+}
+
 export function purge(el) {
   if (window.Plotly && el) window.Plotly.purge(el);
 }
