@@ -80,7 +80,7 @@ def check_integrals(scene, check, res=None) -> CheckResult:
                    "y": [check.tol, check.tol], "role": "limit"})
     names = ", ".join(PRETTY.get(n, n) for n in check.names)
     plot = {"title": f"Conserved: {names}", "x_title": "time t",
-            "y_title": "relative change |F(t) − F(0)|", "log_y": True, "traces": traces,
+            "y_title": "relative change", "log_y": True, "traces": traces,
             "headline": f"largest relative change {worst:.1e}"}
     return CheckResult("integrals", ok, worst, f"largest relative drift of "
                        f"{', '.join(check.names)} over t <= {res.t[-1]:g}: {worst:.2e}"
@@ -98,7 +98,7 @@ def check_stays_up(scene, check, res=None) -> CheckResult:
     limit = float(np.degrees(np.arccos(check.min_tilt)))
     t = res.t
     plot = {"title": "Tilt of the disk from the vertical", "x_title": "time t",
-            "y_title": "tilt (degrees; 90° = lying flat)", "log_y": False,
+            "y_title": "tilt (degrees)", "log_y": False,
             "y_range": [0, 90],
             "traces": [{"name": "tilt", "x": _list(t), "y": _list(tilt), "role": "claim",
                         "quantity": "tilt"},
@@ -138,7 +138,7 @@ def check_spin_reversal(scene, check, res=None) -> CheckResult:
         traces.append({"name": f"reversal at t = {first:.1f}", "x": [first], "y": [0.0],
                        "role": "event"})
     plot = {"title": "Spin about the vertical", "x_title": "time t",
-            "y_title": "spin −(ω, γ) (> 0 counterclockwise)", "log_y": False,
+            "y_title": "spin −(ω, γ)", "log_y": False,
             "traces": traces,
             "vline": {"x": check.before, "name": f"check: before t = {check.before:g}"},
             "headline": (f"reverses at t = {first:.1f}" if times else "no reversal")}
@@ -184,7 +184,7 @@ def check_map(scene, check) -> CheckResult:
     ok = ratio >= check.factor and tr.check.get("missed", 0) == 0
     n = np.arange(len(dist))
     plot = {"title": f"Returns approach a {k}-cycle", "x_title": "return n",
-            "y_title": f"distance |x(n+{k}) − x(n)|", "log_y": True,
+            "y_title": f"|x(n+{k}) − x(n)|", "log_y": True,
             "traces": [{"name": f"|x(n+{k}) − x(n)|", "x": _list(n), "y": _list(
                 np.where(dist > 0, dist, np.nan)), "role": "claim", "mode": "markers",
                 "quantity": "cycle_distance"},
