@@ -229,7 +229,7 @@ const form = document.getElementById("map-form");
 form.addEventListener("submit", compute);
 cases().then(() => {
   // a permalink (?case=...&energy=...&run=1): fill the form and compute that map
-  if (applyFormQuery(form, location.search)) form.requestSubmit();
+  if (applyFormQuery(form, location.search, { flag: "map", result: "map-plot" })) form.requestSubmit();
 }).catch((e) => {
   const s = document.getElementById("map-status");
   s.textContent = `Could not load the cases: ${e.message}`;
