@@ -58,3 +58,25 @@ def test_every_scene_plots_its_claim_first_and_in_view(page, server, scene_id):
         box = page.locator(sel).bounding_box()
         assert box and box["y"] >= 0 and box["y"] + box["height"] <= 720 + 1, (sel, box)
         assert box["x"] >= 0 and box["x"] + box["width"] <= 1280 + 1, (sel, box)
+
+
+SMALL = """() => [...document.querySelectorAll(
+    'main button, main input, main select, main summary, main a.button')]
+  .filter((e) => e.offsetParent !== null && e.type !== 'hidden')
+  .map((e) => { const r = e.getBoundingClientRect();
+    return { what: e.id || e.name || e.textContent.trim().slice(0, 30) || e.className || e.tagName,
+             w: Math.round(r.width), h: Math.round(r.height) }; })
+  .filter((b) => b.w < 24 || b.h < 24)"""
+
+
+def test_no_control_under_24px_on_a_phone(page, server):
+    page.set_viewport_size({"width": 390, "height": 844})
+    page.goto(f"{server}/scenes#rolling-disk-stays-up")
+    page.locator("body[data-playing='rolling-disk-stays-up']").wait_for(
+        state="attached", timeout=90_000)
+    small = page.evaluate(SMALL)
+    assert small == [], small
+    page.goto(f"{server}/poincare")
+    page.locator("#case option").first.wait_for(state="attached")
+    small = page.evaluate(SMALL)
+    assert small == [], small
