@@ -7,7 +7,10 @@ from playwright.sync_api import expect
 
 def at_top_of_view(page, selector) -> bool:
     box = page.locator(selector).bounding_box()
-    return box is not None and -2 <= box["y"] <= 120 and page.evaluate("scrollY") > 300
+    head = page.locator("header.site").bounding_box()
+    top = head["y"] + head["height"] if head else 0
+    return (box is not None and top - 2 <= box["y"] <= top + 40
+            and page.evaluate("scrollY") > 300)
 
 
 def test_link_to_this_run_opens_at_the_results(page, server):

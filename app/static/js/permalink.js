@@ -20,7 +20,15 @@ export function runQuery(req) {
  * as case.js sets `run` and poincare.js sets `map`), scroll to it: a link to a run opens at
  * its result, not at the top of the page 1,800 px above (issue 20). */
 export function scrollToResultWhenDone(flag, id) {
-  const go = () => document.getElementById(id)?.scrollIntoView({ block: "start" });
+  const go = () => {
+    const el = document.getElementById(id);
+    if (!el) return;
+    // below the site's sticky header, not under it
+    const head = document.querySelector("header.site");
+    const pos = head ? getComputedStyle(head).position : "";
+    const cover = pos === "sticky" || pos === "fixed" ? head.getBoundingClientRect().height : 0;
+    window.scrollTo({ top: el.getBoundingClientRect().top + window.scrollY - cover - 8 });
+  };
   if (document.body.dataset[flag]) { go(); return; }
   const seen = new MutationObserver(() => {
     if (!document.body.dataset[flag]) return;
