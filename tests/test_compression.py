@@ -80,5 +80,7 @@ def test_the_poincare_stream_is_not_compressed(client):
         assert r.status_code == 200
         assert "content-encoding" not in r.headers
         lines = [json.loads(x) for x in r.iter_lines() if x]
-    assert lines[0] == {"event": "progress", "done": 0, "total": 2}
+    # the stream opens with its estimate (issue 20), then progress on every trajectory
+    assert lines[0]["event"] == "estimate"
+    assert {"event": "progress", "done": 0, "total": 2} in lines
     assert lines[-1]["event"] == "result" and len(lines[-1]["result"]["trajectories"]) == 2
