@@ -26,6 +26,14 @@ def _fail(message: str, code: int = EXIT_INPUT):
     raise typer.Exit(code)
 
 
+def _input_message(e) -> str:
+    """An InputError's message, with the flag of this command line that accepts the input
+    anyway where there is one (the message itself names no interface's flag)."""
+    option = getattr(e, "option", None)
+    flag = f" (--{option.replace('_', '-')} studies such input anyway)" if option else ""
+    return f"{e}{flag}"
+
+
 def _write_json(obj) -> None:
     from app.services.jobs import dumps
 
@@ -33,30 +41,79 @@ def _write_json(obj) -> None:
 
 
 TimeoutOpt = Annotated[float | None, typer.Option(
-    "--timeout", help="stop after this many seconds of wall time (exit 3)")]
+    "--timeout", help="stop after this many seconds of wall time (exit 3; at most a week)")]
+# bounds of the inputs that size the machine's work (issue 21): a week of wall time (a
+# larger timer overflows the watchdog's wait), 4 worker processes per core, and the seeds
+# the API accepts (app/schemas/poincare.py)
+MAX_TIMEOUT_S = 7 * 86400.0
+MAX_SEED = 2**32 - 1
+
+
+def _max_workers() -> int:
+    return 4 * (os.cpu_count() or 1)
+
+
+def _check_workers(n: int | None, zero: str | None = None) -> None:
+    """--workers: 1 .. 4 x the cores; 0 only where it has a meaning (`zero`)."""
+    if n is None or (n == 0 and zero):
+        return
+    hi = _max_workers()
+    if not 1 <= n <= hi:
+        also = f"0 ({zero}) or " if zero else ""
+        _fail(f"--workers {n}: must be {also}a number of processes from 1 to {hi} "
+              f"(4 x the {os.cpu_count() or 1} cores)")
+
+
+def _check_seed(seed: int) -> None:
+    if not 0 <= seed <= MAX_SEED:
+        _fail(f"--seed {seed}: must lie in [0, 2**32 - 1] (as in the API)")
+
+
+def _check_timeout(seconds: float | None) -> None:
+    if seconds is None:
+        return
+    if not (seconds > 0 and seconds <= MAX_TIMEOUT_S):     # NaN fails both
+        _fail(f"--timeout {seconds!r}: must be a positive number of seconds, at most "
+              f"{MAX_TIMEOUT_S:g} (a week)")
 
 
 @contextlib.contextmanager
-def _timeout(seconds: float | None):
+def _timeout(seconds: float | None, graceful: bool = False):
     """Stop the whole process when `seconds` have passed: the compiled kernels run without
-    returning to Python, so a watchdog thread ends the process (exit 3) from outside."""
+    returning to Python, so a watchdog thread ends the process (exit 3) from outside.
+    `graceful` (sweep): first interrupt the main thread, so that the dask cluster is shut
+    down by its own `finally` (a process that exits under it leaves its semaphores to the
+    resource tracker, which complains on stderr); the hard exit follows 15 s later."""
     if seconds is None:
         yield
         return
-    if not seconds > 0 or seconds != seconds or seconds == float("inf"):
-        _fail(f"--timeout {seconds!r}: must be a positive number of seconds")
-    done = threading.Event()
+    _check_timeout(seconds)
+    done, fired = threading.Event(), threading.Event()
+    message = f"stopped by --timeout after {seconds:g} s"
 
     def watch():
-        if not done.wait(seconds):
-            sys.stdout.flush()
-            sys.stderr.write(f"error: stopped by --timeout after {seconds:g} s\n")
-            sys.stderr.flush()
-            os._exit(EXIT_SINGULAR)
+        if done.wait(seconds):
+            return
+        if graceful:
+            fired.set()
+            import _thread
+
+            _thread.interrupt_main()
+            if done.wait(15.0):
+                return
+        sys.stdout.flush()
+        sys.stderr.write(f"error: {message}\n")
+        sys.stderr.flush()
+        os._exit(EXIT_SINGULAR)
 
     threading.Thread(target=watch, daemon=True).start()
     try:
         yield
+    except KeyboardInterrupt:
+        if not fired.is_set():
+            raise
+        done.set()
+        _fail(message, EXIT_SINGULAR)
     finally:
         done.set()
 
@@ -78,11 +135,12 @@ def _parse_state(text: str) -> list[str]:
 @cli.command()
 def cases():
     """List the case ids (Tables 1 and 2) with their parameters."""
+    from catalogue.numbering import cite
     from solvers.models.cases import registry
 
     for cid, c in registry().items():
         opt = " ".join(f"[{k}]" for k in c.optional)
-        typer.echo(f"{cid:32s} {c.title}\n{'':32s} params: {' '.join(c.required)} {opt}")
+        typer.echo(f"{cid:32s} {cite(c.title)}\n{'':32s} params: {' '.join(c.required)} {opt}")
 
 
 @cli.command()
@@ -118,6 +176,7 @@ def simulate(
     from solvers.errors import InputError
     from solvers.models.cases import get_case
 
+    _check_timeout(timeout)
     try:
         spec = get_case(case)
         params = {**(spec.example if example else {}), **_parse_sets(set_)}
@@ -134,7 +193,7 @@ def simulate(
                                allow_any_inertia=allow_any_inertia, step=step, field=field,
                                precision=precision)
     except InputError as e:
-        _fail(str(e))
+        _fail(_input_message(e))
     if as_json:
         _write_json(res.to_json())
     else:
@@ -184,6 +243,8 @@ def verify(
     from solvers.errors import InputError
     from solvers.verify.parallel import verify_parallel
 
+    _check_workers(workers, zero="one per core")
+    _check_timeout(timeout)
     if claim is not None:
         known = {cl.id for c in load_catalogue().cases() if case in (None, c.id)
                  for cl in c.claims}
@@ -195,7 +256,7 @@ def verify(
         with _timeout(timeout):
             records = verify_parallel(case=case, claim=claim, workers=workers)
     except InputError as e:
-        _fail(str(e))
+        _fail(_input_message(e))
     if as_json:
         _write_json(records)
         return
@@ -208,16 +269,21 @@ def _verify_tables(records, only_case):
     from rich.table import Table
 
     from catalogue.load import load_catalogue
-    from solvers.verify.table import MARKS, cell_notes, table_marks
+    from catalogue.numbering import cite
+    from solvers.verify import marks as vocab
+    from solvers.verify.table import cell_id
 
     con = Console(width=max(Console().width, 160))
     cat = load_catalogue()
+    by_claim = {r["claim"]: r for r in records}
+    # the same marks, shapes and words as the explorer and /how-we-check (marks.yaml)
+    con.print("marks: " + "  ".join(f"{m.shape} {m.name}" for m in vocab.vocabulary()
+                                    if m.id != "pending"), markup=False, soft_wrap=True)
     for table in cat.tables():
         cases = [c for c in table.cases if only_case in (None, c.id)]
         if not cases:
             continue
-        marks, notes = table_marks(table, records), cell_notes(table, records)
-        tab = Table(title=f"Table {table.number}: {table.caption_plain} "
+        tab = Table(title=f"{table.caption_plain} "
                     "(cells: the property each states)", show_lines=True)
         tab.add_column("row")
         for c in cases:
@@ -226,10 +292,14 @@ def _verify_tables(records, only_case):
             cells = []
             for c in cases:
                 cell = c.cells[row.key]
-                mark = MARKS[marks[c.id][row.key.value]]
-                text = cell.plain if len(cell.plain) < 60 else cell.plain[:57] + "..."
-                note = "".join(f" ({n})" for n in notes[c.id][row.key.value])
-                cells.append(escape(f"{mark} {text}{note}" if mark else text))
+                rec = by_claim.get(cell_id(c.id, row.key.value))
+                plain = cite(cell.plain)      # printed numbers before the cut
+                text = plain if len(plain) < 60 else plain[:57] + "..."
+                if rec is None:
+                    cells.append(escape(text))
+                    continue
+                m = vocab.by_id()[rec["mark"]]
+                cells.append(escape(f"{m.shape} {m.word}: {text}"))
             tab.add_row(row.plain, *cells)
         con.print(tab)
     _verify_summary(con, records)
@@ -238,46 +308,47 @@ def _verify_tables(records, only_case):
 def _verify_summary(con, records):
     from collections import Counter
 
-    from solvers.verify.table import MARKS
+    from catalogue.numbering import cite, printed
+    from solvers.verify import marks as vocab
 
     for level in ("cell", "formula"):
-        recs = [r for r in records if r.get("level", "formula") == level]
-        counts = Counter(r["verdict"] for r in recs)
-        name = "cells: " if level == "cell" else "claims: "
-        what = " (properties of table cells)" if level == "cell" else " (printed formulas)"
-        con.print(f"{name}{len(recs)}{what}  " + "  ".join(
-            f"{MARKS[v]} {v}: {counts.get(v, 0)}"
-            for v in ("verified", "fails", "evidence", "unchecked")))
+        # the project's corrections are records of their own, not claims of the paper
+        recs = [r for r in records if r.get("level", "formula") == level
+                and r.get("origin") != "project-correction"]
+        counts = Counter(r["mark"] for r in recs)
+        unit, units = ("cell", "cells") if level == "cell" else ("claim", "claims")
+        what = " (properties of table cells)" if level == "cell" else " (printed formulas " \
+            "and statements)"
+        con.print(f"{units}: {len(recs)}{what}: " + vocab.sentence(
+            {k: counts[k] for k in vocab.IDS if counts.get(k)}, unit, units), markup=False)
     con.print(_exact_summary(records))
     quals = Counter(r.get("qualifier") for r in records if r.get("qualifier"))
     if quals:
         con.print("formula qualifiers: " + ", ".join(f"{k}: {v}" for k, v in sorted(
             quals.items())))
     cells = [r for r in records if r.get("level") == "cell"]
-    for r in cells:
-        if r["verdict"] == "fails":
-            con.print(f"✗ cell {r['claim']}: {r['message']}", markup=False)
-    noted = [r for r in cells if r.get("notes")]
-    if noted:
-        con.print("cells whose property holds while a printed formula under them does not:")
-    for r in noted:
-        con.print(f"✓ cell {r['claim']}: {'; '.join(r['notes'])} (rests on "
-                  f"{', '.join(r['rests_on'])})", markup=False)
-    con.print("formula records that do not hold as printed (errata: `rolling errata`):")
+    shown = [r for r in cells if r["mark"] != "as-printed"]
+    if shown:
+        con.print("cells that do not simply hold as printed:")
+    for r in shown:
+        m = vocab.by_id()[r["mark"]]
+        note = f": {cite(r['mark_note'])}" if r.get("mark_note") else ""
+        errata = f" (errata: {', '.join(r['errata'])})" if r.get("errata") else ""
+        con.print(f"{m.shape} {m.name}: cell {r['claim']}{note}{errata}", markup=False)
+    con.print("claims that do not hold as printed, or that a check could not decide "
+              "(errata: `rolling errata`):")
     for r in records:
-        if r.get("level", "formula") != "formula":
+        if r.get("level", "formula") != "formula" or r.get("origin") == "project-correction":
             continue
-        if r["verdict"] == "fails" or r.get("qualifier") == "convention":
-            res = "n/a" if r["residual"] is None else f"{r['residual']:.2e}"
-            from catalogue.numbering import cite, printed
-
-            num = printed(r["label"]) or r["label"] or ""
-            kind = r.get("qualifier") or "fails"
-            extra = f" (inherits {r['inherits']})" if r.get("inherits") else ""
-            mark = "✓" if r["verdict"] == "verified" else "✗"
-            where = f" ({num})" if num else ""
-            con.print(f"{mark} [{kind}]{extra} {r['claim']}{where}: "
-                      f"residual {res} — {cite(r['message'])}", markup=False)
+        if r["mark"] in ("as-printed", "evidence-for", "open", "not-checkable"):
+            continue
+        res = "n/a" if r["residual"] is None else f"{r['residual']:.2e}"
+        num = printed(r["label"]) or r["label"] or ""
+        where = f" ({num})" if num else ""
+        m = vocab.by_id()[r["mark"]]
+        note = cite(r.get("mark_note") or r["message"])
+        con.print(f"{m.shape} {m.name}: {r['claim']}{where}: residual {res} — {note}",
+                  markup=False)
 
 
 @cli.command()
@@ -292,6 +363,7 @@ def errata(
     from solvers.verify import errata as er
     from solvers.verify.parallel import verify_parallel
 
+    _check_workers(workers, zero="one per core")
     cat = load_catalogue()
     records = verify_parallel(workers=workers)
     out = {"errata": er.errata(records, cat), "conventions": er.conventions(records, cat),
@@ -315,6 +387,9 @@ def errata(
                   f"{', ' + e['section'] if e['section'] else ''}", markup=False)
         con.print(f"   printed:   {' '.join(e['printed'].split())[:200]}", markup=False)
         con.print(f"   corrected: {e['corrected']}", markup=False)
+        if e.get("corrected_display"):
+            con.print(f"   display corrected: {e['corrected_display']} — {e['change']}",
+                      markup=False)
         con.print(f"   residual printed {res(e['residual_printed'])}, corrected "
                   f"{res(e['residual_corrected'])}", markup=False)
         ex = e.get("exact")
@@ -336,22 +411,17 @@ def errata(
 
 
 def _exact_summary(records) -> str:
-    """One line: how many verified records carry an exact certificate that holds
-    (solvers/verify/exact), and how many failing ones an exact rational witness."""
-    # formula records: a cell record's certificates are those of the records it rests on
-    verified = [r for r in records if r["verdict"] == "verified"
-                and r.get("level", "formula") == "formula"]
-    certified = [r for r in verified if (r.get("exact") or {}).get("holds") is True
-                 and not r["exact"].get("negative") and r["exact"].get("bounded", True)]
-    fails = [r for r in records if r["verdict"] == "fails"]
-    # a witness (the residual is nonzero at a rational point), or for a refuted negative
-    # claim the exactly certified object that refutes it
-    witnessed = [r for r in fails if r.get("exact") is not None]
-    share = 100.0 * len(certified) / len(verified) if verified else 0.0
-    return (f"exact: {len(certified)} of {len(verified)} verified formula records certified "
-            "exactly with a Schwartz-Zippel bound "
-            f"({share:.0f}%); {len(witnessed)} of {len(fails)} failing records settled exactly "
-            "(rational witness or certified counter-object)")
+    """One line: of the verified formula records, how many are proved symbolically, how
+    many certified with a Schwartz-Zippel bound (N and k read from the code), how many
+    neither (solvers/verify/exact/report.py gives each one's reason); and how many failing
+    records an exact rational witness settles."""
+    from solvers.verify.exact.report import exact_counts
+    c = exact_counts(records)
+    return (f"exact: of {c['verified']} verified formula records, {c['proved']} proved "
+            f"symbolically, {c['certified']} certified (Schwartz-Zippel, N = 2^{c['bits']} "
+            f"grid values per coordinate, k = {c['k']} points seeded by the claim id), "
+            f"{c['neither']} neither; {c['witnessed']} of {c['fails']} failing records settled "
+            "exactly (rational witness or certified counter-object)")
 
 
 @cli.command()
@@ -387,8 +457,7 @@ def serve(
     """Start the web explorer (FastAPI + uvicorn) on http://127.0.0.1:8000."""
     import os
 
-    import uvicorn
-
+    _check_workers(workers)
     if workers is not None:
         os.environ["ROLLING_WORKERS"] = str(workers)
     if host is not None:   # the app derives its Host allow-list from the address it serves
@@ -398,7 +467,9 @@ def serve(
     s = get_settings()
     host, port = host or s.host, port or s.port
     typer.echo(f"rolling-hierarchy explorer on http://{host}:{port}/  (API docs: /docs)")
-    uvicorn.run("app.main:app", host=host, port=port, log_level=s.log_level)
+    from app.core.server import run  # uvicorn with the bounds of issue 21
+
+    run(host, port, log_level=s.log_level)
 
 
 def _parse_section(text: str) -> float:
@@ -443,6 +514,8 @@ def poincare(
     from solvers.models.cases import get_case
     from solvers.simulate import compiled_methods
 
+    _check_seed(seed)
+    _check_timeout(timeout)
     if method not in compiled_methods():
         _fail(f"--method {method!r}: choose a compiled method ({', '.join(compiled_methods())})")
     try:
@@ -461,7 +534,7 @@ def poincare(
                       progress=lambda done, total: bar.update(task, completed=done,
                                                               total=total))
     except InputError as e:
-        _fail(str(e))
+        _fail(_input_message(e))
     except ValueError as e:
         _fail(str(e))
     out = res.to_json()
@@ -493,17 +566,27 @@ def sweep(
     example: Annotated[bool, typer.Option("--example", help="the case's demo parameters "
                                           "(--set overrides)")] = False,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
+    timeout: TimeoutOpt = None,
 ):
     """Maps over a parameter (--vary) or over energy levels (--energies) on dask."""
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TimeElapsedColumn
 
     from solvers.errors import InputError
-    from solvers.maps.sweeps import DaskSettings, energy_tasks, parameter_tasks
+    from solvers.maps.sweeps import (
+        DaskSettings,
+        energy_tasks,
+        parameter_tasks,
+        seeded,
+        validate,
+    )
     from solvers.maps.sweeps import sweep as run
     from solvers.models.cases import get_case
 
     if (vary is None) == (energies is None):
         _fail("give exactly one of --vary NAME=v1,v2,... and --energies e1,e2,...")
+    _check_workers(workers)     # 0 would start a cluster without workers and wait forever
+    _check_seed(seed)
+    _check_timeout(timeout)
     try:
         params = {**(get_case(case).example if example else {}), **_parse_sets(set_)}
         kw = {"g0": _parse_section(section), "trajectories": trajectories, "points": points}
@@ -520,9 +603,11 @@ def sweep(
         settings = base.model_copy(update={k: v for k, v in
                                            {"workers": workers, "scheduler": scheduler}.items()
                                            if v is not None})
-        with Progress("[progress.description]{task.description}", BarColumn(),
-                      MofNCompleteColumn(), TimeElapsedColumn(),
-                      console=_stderr_console(), transient=as_json) as bar:
+        validate(seeded(tasks, seed))     # bad input: one line, before a bar is drawn
+        with _timeout(timeout, graceful=True), Progress(
+                "[progress.description]{task.description}", BarColumn(),
+                MofNCompleteColumn(), TimeElapsedColumn(),
+                console=_stderr_console(), transient=True) as bar:
             task = bar.add_task("maps", total=len(tasks))
             res = run(tasks, seed=seed, settings=settings,
                       progress=lambda done, total: bar.update(task, completed=done))

@@ -1,4 +1,5 @@
-"""The explorer: FastAPI app `app.main:app` (uvicorn app.main:app, or `rolling serve`).
+"""The explorer: FastAPI app `app.main:app`, served by `rolling serve` (app.core.server:
+uvicorn with bounds on what a client can hold; plain `uvicorn app.main:app` lacks them).
 
     /                 Tables 1 and 2 as in the paper, verdict marks, links to the cases
     /case/{id}        a case: claims with sources and verdicts, simulate panel, plots
@@ -18,15 +19,14 @@ import anyio
 from fastapi import FastAPI
 from fastapi.openapi.docs import get_swagger_ui_html
 from fastapi.responses import HTMLResponse
-from fastapi.staticfiles import StaticFiles
 from starlette.middleware.trustedhost import TrustedHostMiddleware
 
 from app import __version__
 from app.api.main import api_router
 from app.api.routes import pages, poincare, reader, scenes, work_precision
-from app.core import errors
+from app.core import compress, errors
 from app.core.config import Settings, get_settings
-from app.core.guards import CSP, HeadAsGet, RequestGuard, SecurityHeaders
+from app.core.guards import CSP, HeadAsGet, HeaderLimit, RequestGuard, SecurityHeaders
 from app.core.pool import WorkerPool
 from app.services import jobs
 from app.services.page_cache import PageCache
@@ -95,6 +95,13 @@ async def lifespan(app: FastAPI):
             async with anyio.create_task_group() as tg:
                 for _ in range(settings.workers):
                     tg.start_soon(_warm, pool)
+        if settings.precompress:
+            from app.api.routes.pages import plotly_js
+
+            paths = [plotly_js(), *compress.static_paths(settings.static_dir)]
+            made = await anyio.to_thread.run_sync(app.state.assets.precompress, paths)
+            if made:
+                log.info("static files: %d compressed forms made", made)
         if settings.verify_on_start:
             await store.verify_all(pool, settings.verify_deadline_s)
 
@@ -119,12 +126,17 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     app.include_router(poincare.pages)
     app.include_router(scenes.pages)
     app.include_router(work_precision.pages)
-    app.mount("/static", StaticFiles(directory=Path(settings.static_dir)), name="static")
+    # static files compressed once (Brotli or gzip), the routes' answers by GZipMiddleware
+    app.state.assets = compress.AssetCache(settings.cache_dir)
+    app.mount("/static", compress.CompressedStaticFiles(
+        directory=Path(settings.static_dir), assets=app.state.assets), name="static")
+    compress.install(app, app.state.assets)
     # outermost last: headers on every answer (the guards' own included), then the Host
     # allow-list, HEAD as GET, and the checks of state-changing requests
     app.add_middleware(RequestGuard, max_body=settings.max_body_bytes,
                        allowed_origins=tuple(settings.allowed_origins))
     app.add_middleware(HeadAsGet)
+    app.add_middleware(HeaderLimit, max_headers=settings.max_headers)
     app.add_middleware(TrustedHostMiddleware, allowed_hosts=settings.trusted_hosts())
     app.add_middleware(SecurityHeaders)
 

@@ -21,7 +21,9 @@ from app.core.config import Settings
 
 # quiet, quick defaults for tests: no background verification, no disk cache
 # ("testserver" is the Host of Starlette's TestClient)
+# (no start-up compression of the static files: a test that needs it asks for it)
 TEST_SETTINGS = {"verify_on_start": False, "use_verdict_cache": False, "workers": 2,
+                 "precompress": False,
                  "deadline_s": 20.0, "log_level": "warning",
                  "allowed_hosts": ["127.0.0.1", "localhost", "::1", "testserver"]}
 
@@ -38,8 +40,10 @@ def free_port() -> int:
 
 
 @contextlib.contextmanager
-def live_server(timeout: float = 60.0, **settings) -> Iterator[str]:
-    """Start `uvicorn app.main:app` on 127.0.0.1 and a free port with ROLLING_* settings;
+def live_server(timeout: float = 60.0, plain_uvicorn: bool = False,
+                **settings) -> Iterator[str]:
+    """Start the explorer's server (app.core.server: uvicorn app.main:app with its bounds)
+    on 127.0.0.1 and a free port with ROLLING_* settings;
     yield its base URL once /api/health answers; stop it (SIGTERM, then SIGKILL)."""
     port = free_port()
     # pydantic-settings reads a list or dict from the environment as JSON
@@ -50,7 +54,10 @@ def live_server(timeout: float = 60.0, **settings) -> Iterator[str]:
                    str(Path(tempfile.gettempdir()) / "rolling-hierarchy-test-cache"))
     log = tempfile.TemporaryFile()  # a file, not a pipe: a chatty server never blocks
     proc = subprocess.Popen(
-        [sys.executable, "-m", "uvicorn", "app.main:app", "--host", "127.0.0.1",
+        # plain_uvicorn: uvicorn's defaults (httptools, no bounds), for bench/load.py's
+        # comparison only
+        [sys.executable, "-m", "uvicorn" if plain_uvicorn else "app.core.server",
+         *(["app.main:app"] if plain_uvicorn else []), "--host", "127.0.0.1",
          "--port", str(port), "--log-level", "warning"],
         env=env, stdout=subprocess.DEVNULL, stderr=log)
     url = f"http://127.0.0.1:{port}"

@@ -93,41 +93,144 @@ async def browser(client: httpx.AsyncClient, stop: float, lat: list[float],
 
 async def big_bodies(url: str, stop: float, out: dict) -> None:
     """POST 50 MB bodies over a raw connection: send in 1 MB chunks while reading the
-    answer, stop sending once it has come (what a browser's fetch does)."""
+    answer, stop sending once it has come (what a browser's fetch does). The server
+    answers 413 and stops reading: a send that blocks is not waited for."""
     host, port = url.split("//", 1)[1].split(":")
     chunk = b"[" + b"0," * (2**19 - 1) + b"0"    # 1 MB of a JSON array
     k = 0
     while time.monotonic() < stop:
         chunked = k % 2 == 1
         k += 1
-        reader, writer = await asyncio.open_connection(host, int(port))
+        try:
+            reader, writer = await asyncio.open_connection(host, int(port))
+        except OSError as exc:
+            out["errors"].append(f"connect: {exc}")
+            await asyncio.sleep(0.2)
+            continue
         head = (f"POST /api/simulate HTTP/1.1\r\nHost: {host}:{port}\r\n"
                 "Content-Type: application/json\r\n"
                 + ("Transfer-Encoding: chunked\r\n" if chunked else f"Content-Length: {BIG}\r\n")
                 + "\r\n").encode()
         t0 = time.perf_counter()
-        answer = asyncio.create_task(reader.readuntil(b"\r\n\r\n"))
-        sent = 0
-        try:
+        sent = [0]
+
+        async def send(writer=writer, head=head, sent=sent, chunked=chunked):
             writer.write(head)
-            while sent < BIG and not answer.done():
-                piece = chunk[:BIG - sent]
+            while sent[0] < BIG:
+                piece = chunk[:BIG - sent[0]]
                 writer.write(b"%x\r\n%s\r\n" % (len(piece), piece) if chunked else piece)
                 await writer.drain()
-                sent += len(piece)
-            raw = await asyncio.wait_for(answer, 60)
-            code = int(raw.split(b" ", 2)[1])
-        except (TimeoutError, ConnectionError, asyncio.IncompleteReadError) as exc:
+                sent[0] += len(piece)
+
+        answer = asyncio.create_task(reader.readuntil(b"\r\n\r\n"))
+        sender = asyncio.create_task(send())
+        try:
+            await asyncio.wait({answer}, timeout=60)
+            raw = answer.result() if answer.done() else b""
+            code = int(raw.split(b" ", 2)[1]) if raw else 0
+            if not raw:
+                out["errors"].append(f"no answer after {sent[0]} bytes")
+        except (ConnectionError, asyncio.IncompleteReadError, OSError) as exc:
             code = 0
-            out["errors"].append(f"{type(exc).__name__} after {sent} bytes")
+            out["errors"].append(f"{type(exc).__name__} after {sent[0]} bytes")
         finally:
-            answer.cancel()
+            for t in (answer, sender):
+                t.cancel()
+            await asyncio.gather(answer, sender, return_exceptions=True)
             writer.close()
         key = f"{'chunked' if chunked else 'length'}:{code}"
         out["status"][key] = out["status"].get(key, 0) + 1
         out["answer_ms"].append(1e3 * (time.perf_counter() - t0))
-        out["sent_mb"].append(sent / 2**20)
+        out["sent_mb"].append(sent[0] / 2**20)
         await asyncio.sleep(0.2)
+
+
+async def header_bombs(url: str, stop: float, out: dict) -> None:
+    """A 50 MB header, sent in 64 KB pieces while reading: the server should answer 431
+    after its head limit and close, long before the 50 MB."""
+    host, port = url.split("//", 1)[1].split(":")
+    piece = b"a" * 65536
+    while time.monotonic() < stop:
+        try:
+            reader, writer = await asyncio.open_connection(host, int(port))
+        except OSError as exc:
+            out["errors"].append(f"connect: {exc}")
+            await asyncio.sleep(0.2)
+            continue
+        t0, sent = time.perf_counter(), [0]
+
+        async def send(writer=writer, sent=sent):
+            writer.write(f"GET /api/health HTTP/1.1\r\nHost: {host}:{port}\r\n"
+                         "X-Bomb: ".encode())
+            while sent[0] < BIG:
+                writer.write(piece)
+                await writer.drain()
+                sent[0] += len(piece)
+
+        answer = asyncio.create_task(reader.readuntil(b"\r\n\r\n"))
+        sender = asyncio.create_task(send())
+        try:
+            await asyncio.wait({answer}, timeout=60)
+            raw = answer.result() if answer.done() else b""
+            code = int(raw.split(b" ", 2)[1]) if raw else 0
+        except (ConnectionError, asyncio.IncompleteReadError, OSError) as exc:
+            code = 0
+            out["errors"].append(f"{type(exc).__name__} after {sent[0]} bytes")
+        finally:
+            for t in (answer, sender):
+                t.cancel()
+            await asyncio.gather(answer, sender, return_exceptions=True)
+            writer.close()
+        out["status"][code] = out["status"].get(code, 0) + 1
+        out["answer_ms"].append(1e3 * (time.perf_counter() - t0))
+        out["sent_mb"].append(sent[0] / 2**20)
+        await asyncio.sleep(0.2)
+
+
+STALLED_HEAD = b"GET /api/health HTTP/1.1\r\nHost: 127.0.0.1\r\nX-Stalled: "
+STALLED_BODY = (b"POST /api/validate HTTP/1.1\r\nHost: 127.0.0.1\r\n"
+                b"Content-Type: application/json\r\nContent-Length: 1000\r\n\r\n{\"case\": ")
+
+
+async def stalled_flood(url: str, count: int, stop: float, out: dict) -> None:
+    """Open `count` sockets (bounded), half of them with half a head, half with half a
+    body, at about 500 a second, and hold each until the server closes it or the run
+    ends. Reported: how many the server closed and after how long."""
+    host, port = url.split("//", 1)[1].split(":")
+
+    async def one(k: int) -> None:
+        try:
+            reader, writer = await asyncio.open_connection(host, int(port))
+        except OSError as exc:
+            out["connect_errors"] += 1
+            if len(out["errors"]) < 5:
+                out["errors"].append(f"connect: {exc}")
+            return
+        out["opened"] += 1
+        t0 = time.monotonic()
+        try:
+            writer.write(STALLED_HEAD if k % 2 == 0 else STALLED_BODY)
+            await writer.drain()
+            left = stop - time.monotonic()
+            if left > 0:
+                await asyncio.wait_for(reader.read(), left)   # b"" or an answer: closed
+                out["closed_by_server"] += 1
+                out["held_s"].append(time.monotonic() - t0)
+        except TimeoutError:
+            out["still_open_at_end"] += 1
+        except (ConnectionError, OSError):
+            out["closed_by_server"] += 1
+            out["held_s"].append(time.monotonic() - t0)
+        finally:
+            writer.close()
+
+    async with asyncio.TaskGroup() as tg:
+        for k in range(count):
+            if time.monotonic() >= stop:
+                break
+            tg.create_task(one(k))
+            if k % 50 == 49:
+                await asyncio.sleep(0.1)
 
 
 def prober(url: str, duration: float, out) -> None:
@@ -149,7 +252,7 @@ def prober(url: str, duration: float, out) -> None:
 
 
 async def load(url: str, users: int, duration: float, pages: int | None = None,
-               big: int | None = None) -> dict:
+               big: int | None = None, bombs: int = 0, stalled: int = 0) -> dict:
     load0 = os.getloadavg()[0]
     limits = httpx.Limits(max_connections=users + 2, max_keepalive_connections=users + 2)
     timeout = httpx.Timeout(120.0)
@@ -169,7 +272,14 @@ async def load(url: str, users: int, duration: float, pages: int | None = None,
         n_pages = users // 4 if pages is None else pages
         n_big = (1 if users >= 4 else 0) if big is None else big
         big = {"status": {}, "answer_ms": [], "sent_mb": [], "errors": []}
+        bomb = {"status": {}, "answer_ms": [], "sent_mb": [], "errors": []}
+        flood = {"opened": 0, "connect_errors": 0, "closed_by_server": 0,
+                 "still_open_at_end": 0, "held_s": [], "errors": []}
         async with asyncio.TaskGroup() as tg:
+            for _ in range(bombs):
+                tg.create_task(header_bombs(url, stop, bomb))
+            if stalled:
+                tg.create_task(stalled_flood(url, stalled, stop, flood))
             for k in range(users - n_pages - n_big):
                 tg.create_task(user(client, cases, k, stop, sim_lat, sim_status, errors))
             for _ in range(n_pages):
@@ -179,11 +289,13 @@ async def load(url: str, users: int, duration: float, pages: int | None = None,
         wall = time.monotonic() - t0
         health_lat, health_status = await asyncio.to_thread(queue.get, True, duration + 60)
         probe.join(10)
-        pool = (await client.get("/api/health")).json()["pool"]
+        final = (await client.get("/api/health")).json()
+        pool, server_conn = final["pool"], final.get("connections")
     unplanned = sum(n for s, n in [*sim_status.items(), *health_status.items(),
                                    *page_status.items()] if s >= 500 and s != 503)
     unplanned += sim_status.get(0, 0) + health_status.get(0, 0) + page_status.get(0, 0)
     unplanned += sum(n for k, n in big["status"].items() if not k.endswith(":413"))
+    unplanned += sum(n for k, n in bomb["status"].items() if k != 431)
     return {
         "users": users, "duration_s": duration, "wall_s": wall, "loadavg_before": load0,
         "mix": {"simulate": users - n_pages - n_big, "pages": n_pages, "big_body": n_big},
@@ -203,6 +315,16 @@ async def load(url: str, users: int, duration: float, pages: int | None = None,
                    "p99_ms": 1e3 * pct(health_lat, 99),
                    "max_ms": 1e3 * max(health_lat) if health_lat else None,
                    "status": {str(k): v for k, v in sorted(health_status.items())}},
+        "header_bombs": {"clients": bombs, "sent": len(bomb["answer_ms"]),
+                         "status": {str(k): v for k, v in bomb["status"].items()},
+                         "answer_p50_ms": pct(bomb["answer_ms"], 50),
+                         "answer_max_ms": max(bomb["answer_ms"], default=float("nan")),
+                         "max_sent_mb": max(bomb["sent_mb"], default=0.0),
+                         "errors": bomb["errors"][:5]},
+        "stalled": {"attempted": stalled, **{k: v for k, v in flood.items() if k != "held_s"},
+                    "held_p50_s": pct(flood["held_s"], 50),
+                    "held_max_s": max(flood["held_s"], default=float("nan"))},
+        "server_connections": server_conn,
         "unplanned_5xx": unplanned,
         "errors": errors[:10],
         "server_pool": pool,
@@ -233,10 +355,24 @@ def report(r: dict, settings: dict) -> str:
         "sent before the answer",
         f"health:   {h['probes']} probes every 0.1 s; p50 {h['p50_ms']:.1f} ms, "
         f"p99 {h['p99_ms']:.1f} ms, max {h['max_ms']:.1f} ms (goal p99 < 100 ms)",
-        "unplanned 5xx (5xx other than 503, no answer, or a big body not refused with 413): "
-        f"{r['unplanned_5xx']}",
+        "unplanned 5xx (5xx other than 503, no answer, a big body not refused with 413, or "
+        f"a header bomb not refused with 431): {r['unplanned_5xx']}",
         f"server pool afterwards: {r['server_pool']}",
     ]
+    b, f = r["header_bombs"], r["stalled"]
+    if b["clients"]:
+        lines.insert(-2, f"50 MB heads: {b['clients']} clients, {b['sent']} heads; answers "
+                     f"{b['status']}; answer after p50 {b['answer_p50_ms']:.1f} ms, max "
+                     f"{b['answer_max_ms']:.1f} ms; at most {b['max_sent_mb']:.1f} MB sent "
+                     "before the answer")
+    if f["attempted"]:
+        lines.insert(-2, f"stalled:  {f['attempted']} sockets attempted (half a head or half "
+                     f"a body), {f['opened']} opened, {f['connect_errors']} refused at "
+                     f"connect; {f['closed_by_server']} closed by the server after p50 "
+                     f"{f['held_p50_s']:.1f} s, max {f['held_max_s']:.1f} s; "
+                     f"{f['still_open_at_end']} still open at the end")
+    if r.get("server_connections"):
+        lines.append(f"server connection guards: {r['server_connections']}")
     if r["errors"]:
         lines.append(f"errors: {r['errors']}")
     return "\n".join(lines) + "\n"
@@ -249,17 +385,33 @@ def main(argv=None) -> int:
     ap.add_argument("--url", help="an explorer already running (default: start one)")
     ap.add_argument("--pages", type=int, help="users browsing pages (default users // 4)")
     ap.add_argument("--big", type=int, help="users sending 50 MB bodies (default 1)")
+    ap.add_argument("--bombs", type=int, default=0,
+                    help="extra clients sending 50 MB headers in a loop (at most 8)")
+    ap.add_argument("--stalled", type=int, default=0,
+                    help="stalled sockets to attempt (half a head or body; at most 5000)")
+    ap.add_argument("--hostile", action="store_true",
+                    help="the hostile mix of issue 21: --big 3 --bombs 2 --stalled 3000")
+    ap.add_argument("--plain-uvicorn", action="store_true",
+                    help="start `uvicorn app.main:app` with its defaults (httptools, no "
+                    "bounds) instead of app.core.server, for comparison")
     ap.add_argument("--json", action="store_true", help="print the figures as JSON")
     ap.add_argument("--out", help="also write the report to this file")
     args = ap.parse_args(argv)
+    if args.hostile:
+        args.big = 3 if args.big is None else args.big
+        args.bombs = args.bombs or 2
+        args.stalled = args.stalled or 3000
     if not (1 <= args.users <= 200 and 0 < args.duration <= 600):
         ap.error("users in [1, 200], duration in (0, 600] s")
+    if not (0 <= args.bombs <= 8 and 0 <= args.stalled <= 5000):
+        ap.error("--bombs in [0, 8], --stalled in [0, 5000]")
     if (args.pages or 0) + (args.big or 0) > args.users or min(args.pages or 0,
                                                                args.big or 0) < 0:
         ap.error("--pages and --big are parts of --users")
 
     def run(url: str, settings: dict) -> dict:
-        r = asyncio.run(load(url, args.users, args.duration, args.pages, args.big))
+        r = asyncio.run(load(url, args.users, args.duration, args.pages, args.big,
+                             args.bombs, args.stalled))
         text = report(r, settings)
         print(json.dumps(r, indent=1) if args.json else text, end="" if not args.json else "\n")
         if args.out:
@@ -276,9 +428,12 @@ def main(argv=None) -> int:
 
         s = Settings()
         settings = {"workers": s.workers, "queue_size": s.queue_size,
-                    "deadline_s": s.deadline_s, "max_steps": s.max_steps}
+                    "deadline_s": s.deadline_s, "max_steps": s.max_steps,
+                    "server": "plain uvicorn (httptools)" if args.plain_uvicorn else
+                    "app.core.server (h11 + bounds)"}
         # the defaults of `rolling serve`, without the background verification
-        with live_server(verify_on_start=False, workers=s.workers, queue_size=s.queue_size,
+        with live_server(plain_uvicorn=args.plain_uvicorn,
+                         verify_on_start=False, workers=s.workers, queue_size=s.queue_size,
                          deadline_s=s.deadline_s, max_steps=s.max_steps) as url:
             wait_idle(url, timeout=600)
             r = run(url, settings)

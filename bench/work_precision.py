@@ -332,7 +332,8 @@ def main(argv=None):
         f"python {platform.python_version()}, {platform.machine()}")
     data = {"tolerances": list(tols), "samples": SAMPLES, "repeats": REPEATS, "cases": [],
             "runs": [], "quick": args.quick,
-            "error": "max over the output grid of |y - y_ref|_inf / max(1, max|y_ref|_inf)"}
+            "error": "max over the output grid of ‖y − y*‖∞ / max(1, max ‖y*‖∞), "
+                     "y* the reference solution"}
     for case in cases:
         runs, info = run_case(case, tols, args.quick, say)
         data["cases"].append({"id": case.id, "overrides": case.overrides, "t_end": case.t_end,

@@ -15,7 +15,7 @@ from typing import Any
 
 import yaml
 
-from catalogue.schema import Catalogue
+from catalogue.schema import Catalogue, CorrectedForm, CorrectedForms
 
 DATA_DIR = Path(__file__).resolve().parent
 FILES = {
@@ -65,3 +65,17 @@ def build(raw: dict[str, Any]) -> Catalogue:
 def load_catalogue() -> Catalogue:
     """The catalogue shipped with the package, parsed and validated once per process."""
     return build(read_raw(DATA_DIR))
+
+
+@cache
+def load_corrected_forms(directory: Path = DATA_DIR) -> dict[str, CorrectedForm]:
+    """corrected_forms.yaml validated: formula id -> its corrected form (latex, change and
+    the formula whose display is corrected); every `display` names a formula."""
+    with open(directory / "corrected_forms.yaml", encoding="utf-8") as fh:
+        raw = yaml.load(fh, Loader=_UniqueKeyLoader)
+    forms = CorrectedForms.model_validate(raw).root
+    known = {f.id for f in load_catalogue().formulas} if directory == DATA_DIR else None
+    for fid, cf in forms.items():
+        if known is not None and (fid not in known or (cf.display and cf.display not in known)):
+            raise ValueError(f"corrected form {fid}: unknown formula {fid!r} or {cf.display!r}")
+    return forms

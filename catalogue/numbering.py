@@ -17,6 +17,9 @@ the journal class (rcdj) numbers them, walking the seed in order (docs/equation-
   the corner of a rotated table (inside a zero-size `picture`), carries no caption and no
   number.
 
+tests/test_printed_numbers_latex.py confirms the result by compiling the seed with TeX Live
+against a stand-in class (tests/latex/rcdj.cls; its assumptions in docs/equation-numbers.md).
+
 `scripts/printed_numbers.py` runs this on the seed and writes `printed_numbers.yaml`, which
 the package reads at run time, so an installed copy does not need the seed.
 """

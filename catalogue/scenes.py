@@ -29,7 +29,12 @@ class _Strict(BaseModel):
     model_config = ConfigDict(extra="forbid", frozen=True)
 
 
-class IntegralsCheck(_Strict):
+class _Check(_Strict):
+    caption: str = Field("", description="plain words under the check's plot on /scenes: "
+                         "what to look for and what the numbers mean")
+
+
+class IntegralsCheck(_Check):
     """The named integrals (solvers/kernels/integrals.py NAMES) stay constant along the
     scene's run: max |F(t) - F(0)| / max(|F(0)|, 1) <= tol."""
 
@@ -38,7 +43,7 @@ class IntegralsCheck(_Strict):
     tol: float = Field(1e-8, gt=0)
 
 
-class StaysUpCheck(_Strict):
+class StaysUpCheck(_Check):
     """A disk that does not fall: sin(theta) = sqrt(g1^2 + g2^2) stays >= min_tilt over
     [0, t_end] (the run reaches t_end; theta is the angle of the axis to the vertical)."""
 
@@ -46,7 +51,7 @@ class StaysUpCheck(_Strict):
     min_tilt: float = Field(gt=0, lt=1)
 
 
-class SpinReversalCheck(_Strict):
+class SpinReversalCheck(_Check):
     """The spin about the vertical, averaged over `window` (to remove the rocking),
     changes sign before time `before`."""
 
@@ -55,7 +60,7 @@ class SpinReversalCheck(_Strict):
     before: float = Field(gt=0)
 
 
-class MapCheck(_Strict):
+class MapCheck(_Check):
     """On the 3D point map (section g = g0, the scene's own energy) of the scene's state:
     expect "curve": correlation dimension of the points within dim_tol of 1 (two extra
     integrals); "condenses": |x_{n+period} - x_n| falls by at least `factor` from the

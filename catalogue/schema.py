@@ -23,7 +23,7 @@ import re
 from enum import StrEnum
 from typing import Literal
 
-from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
+from pydantic import BaseModel, ConfigDict, Field, RootModel, field_validator, model_validator
 
 
 class Strict(BaseModel):
@@ -113,6 +113,7 @@ class CheckName(StrEnum):
     JACOBI_FAILS = "jacobi_fails"  # the printed tensor does NOT satisfy Jacobi
     NEGATIVE_MEASURE = "negative_measure"  # evidence of no smooth measure (attractors, ...)
     NEGATIVE_INTEGRAL = "negative_integral"  # evidence of no further integral (3D maps)
+    NO_MEASURE = "no_measure"  # proof of no smooth measure: exact obstruction at a rest point
     # formula-free: a property tested without any printed formula (issue 10, item 2)
     LINEAR_INTEGRALS_RETURN = "linear_integrals_return"  # two integrals linear in M: (M, gamma)
     # and M3 return to the same values at every crossing of one level of gamma3
@@ -129,6 +130,7 @@ NEGATIVE_CHECKS = frozenset(
         CheckName.JACOBI_FAILS,
         CheckName.NEGATIVE_MEASURE,
         CheckName.NEGATIVE_INTEGRAL,
+        CheckName.NO_MEASURE,
     }
 )
 
@@ -152,6 +154,7 @@ REQUIRED_ARGS: dict[CheckName, tuple[str, ...]] = {
     CheckName.JACOBI_FAILS: ("bracket",),
     CheckName.NEGATIVE_MEASURE: (),
     CheckName.NEGATIVE_INTEGRAL: (),
+    CheckName.NO_MEASURE: (),
     CheckName.LINEAR_INTEGRALS_RETURN: (),
     CheckName.OPEN_PROBLEM: (),
     CheckName.FORMULA_NOT_PRINTED: (),
@@ -180,6 +183,14 @@ FORMULA_ROLE_OF_CHECK: dict[CheckName, tuple[str, ...]] = {
 }
 
 
+class Origin(StrEnum):
+    """Whose statement a claim or formula records."""
+
+    PAPER = "paper"
+    PROJECT = "project"  # the paper asserts the property but prints no formula: the formula
+    #                      and its check are the project's (e.g. hamiltonian_sphere.py)
+
+
 class StateVariables(StrEnum):
     """Variables a claim or formula is written in (the phase space of the check)."""
 
@@ -194,6 +205,7 @@ class StateVariables(StrEnum):
     THETA_OMEGA3 = "(theta, omega3)"  # eq2.9, eq3.4
     X_OMEGA3 = "(x, omega3)"  # hypergeometric form
     U_K1_K2 = "(u, K1, K2)"  # eq3.19
+    U_K1_K2_K3 = "(u, K1, K2, K3)"  # flat base reduced to 4 variables (hamiltonian_sphere.py)
     GAMMA = "(gamma)"  # shape of the body
     GAMMA3 = "(gamma3)"  # meridian of a body of revolution
     PARAMETERS = "(parameters)"  # conditions on parameters only
@@ -360,6 +372,7 @@ class Claim(Strict):
     variables: StateVariables
     check: CheckName
     check_args: CheckArgs = CheckArgs()
+    origin: Origin = Origin.PAPER  # project: `printed` is the assertion, the formula ours
     convention_note: str | None = None
     remarks: str | None = None
     # verdict layer (issue 10): how this record relates to others of its case
@@ -386,6 +399,9 @@ class Claim(Strict):
                 raise ValueError(f"claim {self.id}: check {self.check} needs check_args.{arg}")
         if self.check in NEGATIVE_CHECKS and self.kind is not ClaimKind.NEGATIVE:
             raise ValueError(f"claim {self.id}: check {self.check} is only for kind negative")
+        if self.origin is Origin.PROJECT and not self.remarks:
+            raise ValueError(f"claim {self.id}: a project claim says in `remarks` what the "
+                             "paper asserts and what the project derived")
         return self
 
 
@@ -536,8 +552,23 @@ class Reference(Strict):
     year_note: str | None = None
     title: str | None = None
     title_source: str | None = None
+    journal: str | None = None  # journal or book series, only as the seed gives it
+    volume: str | None = None
+    number: str | None = None
+    pages: str | None = None
+    doi: str | None = None
+    # complete: authors, title, journal and year are known; unresolved: the seed lacks one
+    # of them (it has no reference list), and `missing` says which
+    status: Literal["complete", "unresolved"]
     cited_for: list[str]
     remarks: str | None = None
+
+    @property
+    def missing(self) -> list[str]:
+        """What a full bibliographic entry needs and the seed does not give."""
+        have = {"authors": bool(self.authors), "title": bool(self.title),
+                "journal": bool(self.journal), "year": bool(self.years)}
+        return [k for k, ok in have.items() if not ok]
 
     @model_validator(mode="after")
     def _key(self) -> Reference:
@@ -545,7 +576,30 @@ class Reference(Strict):
             raise ValueError(f"malformed reference id {self.id!r}")
         if self.cite_key is not None and self.cite_key != self.id:
             raise ValueError(f"reference {self.id}: id must equal the cite key {self.cite_key}")
+        if (self.status == "complete") != (not self.missing):
+            raise ValueError(f"reference {self.id}: status {self.status!r} but missing "
+                             f"{self.missing or 'nothing'}")
         return self
+
+
+class CorrectedForm(Strict):
+    """One registered correction of a printed formula (corrected_forms.yaml, keyed by the
+    formula id): its TeX, what it changes in words, and, when the misprint stands in
+    another formula's display, that formula."""
+
+    latex: str
+    change: str
+    display: str | None = None  # a formula id of formulas.yaml
+
+    @model_validator(mode="after")
+    def _nonempty(self) -> CorrectedForm:
+        if not self.latex.strip() or not self.change.strip():
+            raise ValueError("a corrected form needs its latex and its change")
+        return self
+
+
+class CorrectedForms(RootModel[dict[str, CorrectedForm]]):
+    pass
 
 
 class Formula(Strict):
@@ -556,6 +610,7 @@ class Formula(Strict):
     where: str | None = None
     variables: StateVariables
     role: FormulaRole
+    origin: Origin = Origin.PAPER  # project: `printed` is the sentence asserting it
     convention_note: str | None = None
     remarks: str | None = None
 

@@ -2,6 +2,7 @@
 page and in the case JSON, how we check with the code's constants, glossary, bibliography
 with the Cite box, search."""
 
+import html
 import json
 import re
 
@@ -135,8 +136,45 @@ def test_errata_entries_show_printed_numbers_not_labels():
     for e in entries:
         shown = {k: v for k, v in e.items()
                  if k not in ("label", "claim", "case", "corrected_claim", "reproduce",
-                              "exact", "corrected_exact", "corrected_formula")}
+                              "exact", "corrected_exact", "corrected_formula",
+                              "corrected_label", "anchor")}
         found = INTERNAL.findall(json.dumps(shown))
         assert not found, (e["claim"], sorted(set(found)))
         assert (e["number"] is None) == (e["label"] is None or errata.printed_number(
             e["label"]) is None)
+
+
+def test_search_shows_marks_not_coarse_verdicts(client):
+    """Issue 17: a search result shows the claim's mark (shape and word, as on its case
+    page), not the coarse verdict; the API carries `mark` and filters by it."""
+    from solvers.verify import marks as vocab
+
+    r = client.get("/api/search", params={"q": "Chaplygin"}).json()
+    assert r["claims"] and all(c["mark"] in vocab.IDS for c in r["claims"])
+    page = client.get("/search", params={"q": "Chaplygin"}).text
+    items = re.findall(r'<ul class="results" data-testid="claim-results">(.*?)</ul>', page, re.S)
+    rows = re.findall(r"<li>(.*?)</li>", items[0], re.S)
+    assert len(rows) == len(r["claims"][:200])
+    for row, c in zip(rows, r["claims"][:200], strict=True):
+        m = vocab.by_id()[c["mark"]]
+        assert f'data-mark="{m.id}"' in row and f"{m.shape} {m.word}" in html.unescape(row), row
+        # the coarse verdict word is no longer what the result shows
+        assert f'class="mark {c["verdict"]}"' not in row
+    # the form filters by mark, by name
+    assert '<select name="mark">' in page and "holds after correction</option>" in page
+    r = client.get("/api/search", params={"mark": "not-checkable", "q": "ball"}).json()
+    assert all(c["mark"] == "not-checkable" for c in r["claims"])
+
+
+def test_search_mark_is_the_records_mark():
+    """With a real verdict record (one claim checked here), the result's mark is the
+    record's own mark, the one the case page shows."""
+    from app.services.search import search
+    from solvers.verify.run import verify
+
+    cid = "plane/chaplygin-ball/measure"
+    recs = {x["claim"]: x for x in verify(claim=cid)}
+    r = search("Chaplygin", by_claim=recs)
+    hit = [c for c in r["claims"] if c["id"] == cid]
+    assert hit and hit[0]["mark"] == recs[cid]["mark"] != "not-checkable"
+    assert search("Chaplygin", by_claim=recs, mark=recs[cid]["mark"])["claims"]

@@ -6,6 +6,7 @@ from fastapi.testclient import TestClient
 from app.main import create_app
 from app.testing import settings_for_tests
 from catalogue.load import load_catalogue
+from solvers.verify import marks as vocab
 
 pytestmark = pytest.mark.filterwarnings("ignore::DeprecationWarning")
 
@@ -32,7 +33,9 @@ def test_layout_matches_the_catalogue(client, tid):
         for cell in row["cells"]:
             assert cell["shade"] in ("full", "partial", "none")
             if cell["claims"]:
-                assert cell["verdict"]["mark"] in ("verified", "fails", "evidence", "unchecked")
+                assert cell["verdict"]["mark"] in vocab.IDS
+                assert cell["verdict"]["verdict"] in ("verified", "fails", "evidence",
+                                                      "unchecked", "pending")
             else:
                 assert cell["verdict"] is None
 

@@ -38,7 +38,8 @@ def test_verify_a_case_and_see_the_verdicts_everywhere(client):
     t = client.get("/api/tables/plane").json()
     marks = [cell["verdict"] for row in t["grid"] for cell in row["cells"]
              if CASE in cell["merged"] and cell["verdict"]]
-    assert marks and any(m["mark"] != "unchecked" for m in marks)
+    assert marks and any(m["verdict"] != "unchecked" for m in marks)
+    assert all(m["mark"] != "pending" for m in marks)
     assert {rec["claim"] for rec in client.get("/api/verdicts").json()} == set(by_id)
 
 
@@ -48,29 +49,38 @@ def test_unknown_case_is_404(client):
 
 
 def test_summary_rules():
-    """A cell's mark is the verdict of its property per spanned case (the cell records of
-    solvers.verify.levels), not of its printed formulas (changed with issue 10)."""
+    """A cell's mark is the mark of its property per spanned case (the cell records of
+    solvers.verify.levels), not of its printed formulas (changed with issue 10); since
+    issue 17 `mark` is one of the vocabulary (solvers/verify/marks.yaml) and the coarse
+    verdict is kept beside it in `verdict`."""
     a, b, c = "sphere/body-of-revolution", "sphere/round-disk", "sphere/routh-ball"
+    V = {"as-printed": "verified", "after-correction": "verified", "fails": "fails",
+         "evidence-for": "evidence", "inconclusive": "unchecked"}
 
-    def rec(case, verdict, notes=()):
-        return {f"{case}/cell/measure": {"claim": f"{case}/cell/measure", "verdict": verdict,
+    def rec(case, mark, notes=()):
+        return {f"{case}/cell/measure": {"claim": f"{case}/cell/measure", "verdict": V[mark],
+                                          "mark": mark, "mark_note": None, "errata": [],
                                           "notes": list(notes), "message": "m"}}
     assert summary([], {}, "measure", [a]) is None
-    s = summary(["x"], {**rec(a, "verified", ["holds; printed formula corrected"]),
-                        **rec(b, "verified"), **rec(c, "verified")}, "measure", [a, b, c])
-    assert s["mark"] == "verified" and [m["column"] for m in s["marks"]] == [6, 7, 8]
+    s = summary(["x"], {**rec(a, "after-correction", ["holds; printed formula corrected"]),
+                        **rec(b, "as-printed"), **rec(c, "as-printed")}, "measure", [a, b, c])
+    assert s["mark"] == "after-correction" and s["verdict"] == "verified"
+    assert [m["column"] for m in s["marks"]] == [6, 7, 8]
+    assert s["mark_counts"] == {"as-printed": 2, "after-correction": 1}
     assert s["notes"] == ["holds; printed formula corrected"]
-    assert summary(["x"], {**rec(a, "verified"), **rec(b, "fails")}, "measure",
-                   [a, b])["mark"] == "fails"
-    assert summary(["x"], {**rec(a, "verified"), **rec(b, "evidence")}, "measure",
-                   [a, b])["mark"] == "evidence"
-    s = summary(["x"], rec(a, "verified"), "measure", [a, b])   # b being checked
-    assert s["mark"] == "pending" and [m["mark"] for m in s["marks"]] == ["verified",
+    s = summary(["x"], {**rec(a, "as-printed"), **rec(b, "fails")}, "measure", [a, b])
+    assert s["mark"] == "fails" and s["verdict"] == "fails"
+    s = summary(["x"], {**rec(a, "as-printed"), **rec(b, "evidence-for")}, "measure", [a, b])
+    assert s["mark"] == "evidence-for" and s["verdict"] == "evidence"
+    s = summary(["x"], {**rec(a, "as-printed"), **rec(b, "inconclusive")}, "measure", [a, b])
+    assert s["mark"] == "inconclusive" and s["verdict"] == "unchecked"
+    s = summary(["x"], rec(a, "as-printed"), "measure", [a, b])   # b being checked
+    assert s["mark"] == "pending" and [m["mark"] for m in s["marks"]] == ["as-printed",
                                                                           "pending"]
-    # b has no verdict and is not being checked (its check failed): not "checking"
-    s = summary(["x"], rec(a, "verified"), "measure", [a, b], pending=set())
-    assert s["mark"] == "unchecked" and [m["mark"] for m in s["marks"]] == ["verified",
-                                                                            "unchecked"]
+    # b has no verdict and is not being checked (its check failed): nothing was run there
+    s = summary(["x"], rec(a, "as-printed"), "measure", [a, b], pending=set())
+    assert [m["mark"] for m in s["marks"]] == ["as-printed", "not-checkable"]
+    assert s["mark"] == "as-printed" and s["verdict"] == "unchecked"
 
 
 def test_store_cache_round_trip(tmp_path):

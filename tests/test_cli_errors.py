@@ -82,3 +82,58 @@ def test_an_unexpected_failure_is_one_line(monkeypatch, capsys):
     assert exit_.value.code == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and err.startswith("error: ") and "Traceback" not in err
+
+
+# --- the holes of issue 21: every input that sizes the work is bounded -----------------
+
+SWEEP = ["sweep", "plane/chaplygin-ball", "--example", "--vary", "m=1,2",
+         "--trajectories", "1", "--points", "5"]
+MAP = ["poincare", "plane/chaplygin-ball", "--example", "--trajectories", "1",
+       "--points", "5"]
+
+
+@pytest.mark.parametrize("args,says", [
+    # before: an OverflowError traceback from the watchdog thread, exit 0, no timeout
+    (["simulate", "plane/chaplygin-ball", "--example", "--t-end", "10", "--timeout",
+      "1e308"], "--timeout"),
+    (["poincare", "plane/chaplygin-ball", "--example", "--timeout", "nan"], "--timeout"),
+    (["verify", "--case", "sphere/borisov-fedorov", "--timeout", "inf"], "--timeout"),
+    # before: a cluster without workers, waiting forever
+    ([*SWEEP, "--workers", "0"], "--workers 0"),
+    ([*SWEEP, "--workers", "-1"], "--workers -1"),
+    # before: 100,000 processes started (load average 465)
+    (["errata", "--workers", "100000"], "--workers 100000"),
+    (["verify", "--workers", "100000"], "--workers 100000"),
+    # before: "ValueError: max_workers must be greater than 0"
+    (["verify", "--workers", "-1"], "--workers -1"),
+    (["serve", "--workers", "0"], "--workers 0"),
+    # before: accepted, while the API caps seeds at 2**32 - 1
+    ([*MAP, "--seed", str(2**70)], "--seed"),
+    ([*SWEEP, "--workers", "1", "--seed", "-1"], "--seed"),
+    ([*SWEEP, "--workers", "1", "--timeout", "0"], "--timeout"),
+])
+def test_inputs_that_size_the_work_are_bounded(args, says):
+    line = _one_line_error(rolling(*args, timeout=120), 2)
+    assert says in line and "ValueError" not in line
+
+
+@pytest.mark.parametrize("args,says", [
+    (["--trajectories", "0"], "trajectories"),
+    (["--energies", "1e308"], "energy = 1e+308"),
+])
+def test_a_bad_sweep_is_one_line_without_a_dask_traceback(args, says):
+    """Before: exit 2 with the right line, but dask's "Compute Failed ... Traceback"
+    blocks from the workers on stderr as well."""
+    base = ["sweep", "plane/chaplygin-ball", "--example", "--trajectories", "1",
+            "--points", "5", "--workers", "1"]
+    if "--energies" not in args:
+        base += ["--vary", "m=1,2"]
+    line = _one_line_error(rolling(*base, *args, timeout=180), 2)
+    assert says in line
+
+
+def test_sweep_has_a_timeout():
+    proc = rolling(*SWEEP[:-4], "--trajectories", "64", "--points", "2000", "--workers", "1",
+                   "--timeout", "2", timeout=120)
+    line = _one_line_error(proc, 3)
+    assert "--timeout" in line

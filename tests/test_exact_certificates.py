@@ -4,6 +4,8 @@ deliberately wrong formula caught exactly."""
 import pytest
 
 from catalogue.load import load_catalogue
+from solvers.verify.exact.certify import K_POINTS
+from solvers.verify.exact.points import BITS
 from solvers.verify.exact.registry import CERTIFIERS
 
 CAT = load_catalogue()
@@ -35,11 +37,17 @@ def test_exact_agrees_with_complex_step(records, claim):
         assert rec["verdict"] in ("verified", "fails", "evidence"), rec
         assert _agrees(rec), (cid, rec["verdict"], rec["residual"], rec["exact"])
         ex = rec["exact"]
-        if ex["holds"] and ex.get("bounded", True):
-            assert ex["witness"] is None and ex["points"] >= 2 and "Schwartz-Zippel" in ex["bound"]
-        elif ex["holds"]:        # zeros whose degree was not tracked: no probability claimed
+        if ex["kind"] == "proof":           # symbolic (issue 18 item 2): no probability
+            assert ex["holds"] and ex["witness"] is None and ex["bound"].startswith("proved")
+        elif ex["kind"] == "certificate":
+            assert ex["holds"] and ex["witness"] is None and ex["points"] >= 2
+            assert "Schwartz-Zippel" in ex["bound"] and ex["degree"] >= 1
+            assert f"2^{BITS}" in ex["bound"] and f"k = {K_POINTS}" in ex["bound"]
+        elif ex["kind"] == "zeros":      # zeros whose degree is not known: no probability
+            assert ex["holds"] and ex.get("bounded") is False
             assert ex["witness"] is None and "no Schwartz-Zippel probability" in ex["bound"]
         else:
+            assert ex["kind"] == "witness" and not ex["holds"]
             assert ex["witness"]["residual"] not in ("0", "") and ex["witness"]["point"]
 
 
@@ -48,6 +56,22 @@ def test_summary_counts(records):
     holds = [r for r in records.values() if r["exact"] and r["exact"]["holds"]
              and r["exact"].get("bounded", True) and r["verdict"] == "verified"]
     assert len(holds) >= 60
+
+
+def test_proved_certified_neither(records):
+    """Issue 18: at least 100 verified formula records proved symbolically; the summary
+    line counts proved / certified / neither, and every verified record that is neither
+    has a reason."""
+    from app.cli import _exact_summary
+    from solvers.verify.exact.report import exact_counts, neither_reasons
+    recs = list(records.values())
+    c = exact_counts(recs)
+    assert c["proved"] >= 100, c
+    assert c["proved"] + c["certified"] + c["neither"] == c["verified"]
+    assert len(neither_reasons(recs)) == c["neither"]
+    line = _exact_summary(recs)
+    assert f"{c['proved']} proved" in line and f"{c['certified']} certified" in line
+    assert f"N = 2^{BITS}" in line and f"k = {K_POINTS}" in line
 
 
 def test_certified_kinds_are_the_pointwise_ones(records):

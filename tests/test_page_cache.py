@@ -25,13 +25,14 @@ def test_pages_are_cached_until_the_verdicts_change(tmp_path):
         assert built == 2
         assert client.get("/").text == home and client.get(f"/case/{CASE}").text == case
         assert pages.renders == built                     # served from the cache
-        assert "not checkable" in case and "fails as printed" not in case
+        # issue 17: the marks (shape and name) instead of the coarse verdict's words
+        assert "— not checkable" in case and "✗ fails" not in case
         # a verdict is computed: both pages are built again and show it
         claim = load_catalogue().case(CASE).claims[0].id
         store.put(CASE, [{"claim": claim, "verdict": "fails", "residual": 0.5,
                           "message": "a test verdict"}])
         case2 = client.get(f"/case/{CASE}").text
-        assert pages.renders == built + 1 and "fails as printed" in case2
+        assert pages.renders == built + 1 and "✗ fails" in case2
         client.get("/")
         assert pages.renders == built + 2
         # a check starts (a fresh server's background verification): built again

@@ -55,7 +55,30 @@ def test_case_page_holds_its_claims_without_scripts(client, case_id):
     # internal labels)
     for c in client.get(f"/api/cases/{case_id}").json()["claims"]:
         assert html.escape(c["plain"]) in text
-    assert "Verdict: " in text and "Loading…" not in text.split('id="claimlist"')[0][-200:]
+    # issue 17: each claim's mark (shape and name) instead of the coarse verdict
+    assert text.count("<p>Mark: <strong class=\"badge ") == len(case.claims)
+    assert "Loading…" not in text.split('id="claimlist"')[0][-200:]
+
+
+@pytest.mark.parametrize("case_id", ["plane/chaplygin-ball", "sphere/borisov-fedorov"])
+def test_claims_have_visible_permalinks_without_scripts(client, case_id):
+    """Issue 17, item 5, in the HTML as served (no script run): every claim's heading
+    starts with a ¶ link to its own anchor, named by the claim's kind and printed number
+    as the script names it (cite.js), and the anchor is the claim's article."""
+    import re
+
+    text = client.get(f"/case/{case_id}").text
+    claims = client.get(f"/api/cases/{case_id}").json()["claims"]
+    for c in claims:
+        anchor = "claim-" + re.sub(r"[^A-Za-z0-9_-]+", "_", c["id"])
+        art = text.split(f'<article class="claim ssr" id="{anchor}">', 1)
+        assert len(art) == 2, c["id"]
+        head = art[1].split("</h3>", 1)[0]
+        label = c["kind"].replace("-", " ") + (f' {c["number"]}' if c["number"] else "")
+        assert head.startswith(f'<h3><a class="permalink" href="#{anchor}" '), head
+        assert f'aria-label="Permalink to the claim {html.escape(label)}">¶</a>' in head
+        assert f"{html.escape(label)}: " in head and c["id"] not in head.split('">¶')[1]
+    assert text.count('class="permalink"') >= len(claims)
 
 
 def test_home_page_holds_both_tables_without_scripts(client):

@@ -59,9 +59,13 @@ def test_no_table_cell_shows_a_cross(records):
     finally:
         Console.__init__ = orig
     text = buf.getvalue()
-    tables = text.split("\ncells: ")[0]
+    # the first line is the key to the marks (issue 17), which names ✗ fails itself
+    legend, tables = text.split("\ncells: ")[0].split("\n", 1)
+    assert legend.startswith("marks: ✓ holds as printed")
     assert "Table 1" in tables and "Table 2" in tables and "✗" not in tables
-    assert "✓ cell sphere/round-disk/cell/gyrostat: holds; printed formula corrected" in text
+    # issue 17: the cell's mark says what was shown: after correction, with its erratum
+    assert "✎ holds after correction: cell sphere/round-disk/cell/gyrostat: " in text
+    assert "(errata: sphere/round-disk/gyrostat/linear-integrals" in text
 
 
 def test_misprints_still_fail_with_their_correction_verified(records, by):
@@ -78,14 +82,24 @@ def test_cells_over_misprints_are_verified_with_the_note(by):
         for row in ("measure", "gyrostat"):
             cell = by[f"{case}/cell/{row}"]
             assert cell["verdict"] == "verified", cell
+            if (case, row) == ("sphere/routh-ball", "measure"):
+                # issue 18 audit: Table 2's density holds for the ball in the table's own
+                # notation r3 = gamma3 f2 (holds_under), no longer a misprint
+                assert levels.CELL_NOTE["convention"] in cell["notes"]
+                continue
             assert "holds; printed formula corrected" in cell["notes"]
         assert by[f"{case}/cell/gyrostat"]["evidence"]["basis"][
             f"{case}/gyrostat/linear-integrals"] == "corrected"
         assert f"{case}/gyrostat/linear-integrals/formula-free" in \
             by[f"{case}/cell/gyrostat"]["rests_on"]
-    for cid in ("plane/spherical-inertia/cell/measure", "plane/routh-ball/cell/gyrostat"):
-        assert by[cid]["verdict"] == "verified" and by[cid]["notes"] == [
-            "holds; printed formula corrected"]
+    cid = "plane/routh-ball/cell/gyrostat"
+    assert by[cid]["verdict"] == "verified" and by[cid]["notes"] == [
+        "holds; printed formula corrected"]
+    # issue 17: the spherical-inertia measure cell rests on Table 1's printed formula, which
+    # holds as printed (only the text's display drops m); it no longer needs a correction
+    cid = "plane/spherical-inertia/cell/measure"
+    assert by[cid]["verdict"] == "verified" and by[cid]["notes"] == []
+    assert by[cid]["mark"] == "as-printed"
     ham = by["plane/chaplygin-ball/cell/hamiltonian_form"]
     assert ham["verdict"] == "verified" and ham["evidence"]["basis"][
         "plane/chaplygin-ball/hamiltonian-after-time-change"] == "convention"
@@ -145,7 +159,8 @@ def test_refuted_conjecture(by):
     # hedged claims the project only gathers evidence for are not refuted conjectures
     hedged = {cl.id for cl in CAT.claims() if cl.hedged}
     assert len(hedged) >= 10
-    assert by["plane/unbalanced-ball/negative/measure"]["verdict"] == "evidence"
+    # (issue 18: the absence of a measure is now proved exactly, check no_measure)
+    assert by["plane/unbalanced-ball/negative/measure"]["verdict"] == "verified"
     assert by["plane/unbalanced-ball/negative/measure"]["qualifier"] is None
     for rid, rec in by.items():
         if rec.get("qualifier") == "refuted-conjecture":
@@ -196,7 +211,10 @@ def test_cell_rescued_only_by_a_verified_formula_free_test(records):
     cell = next(c for c in levels.cell_records(recs, CAT, {"sphere/round-disk"})
                 if c["row"] == "gyrostat")
     assert cell["verdict"] == "verified" and levels.CELL_NOTE["formula-free"] in cell["notes"]
-    assert levels.CELL_NOTE["corrected"] not in cell["notes"]
+    # (issue 18: the cell also rests on the exact reduced equations eq3.10, corrected, so the
+    # "corrected" note stays; the linear integrals themselves rest on the formula-free test)
+    assert cell["evidence"]["basis"]["sphere/round-disk/gyrostat/linear-integrals"] == \
+        "formula-free"
     for r in recs:
         if r["claim"] == GYRO_FREE[1]:
             r["verdict"] = "fails"                 # ... and without the formula-free test
@@ -234,13 +252,21 @@ def test_errata_and_findings(records, by):
         assert e["reproduce"] == f"rolling verify --claim {e['claim']} --json"
         assert e["label"] or e["where"]
     f = {e["claim"]: e for e in er.findings(records, CAT)}
-    assert set(f) == {"plane/spherical-inertia/negative/sphere-generalization",
-                      "sphere/borisov-fedorov/reduction/to-chaplygin"}
+    refuted = {c for c, e in f.items() if e["kind"] != "inconclusive"}
+    assert refuted == {"plane/spherical-inertia/negative/sphere-generalization",
+                       "sphere/borisov-fedorov/reduction/to-chaplygin",
+                       # issue 18: no smooth measure for the general ellipsoid, proved
+                       "plane/ellipsoid/negative/general-measure"}
+    # issue 17: the negative checks that ran and could not decide are findings too
+    assert set(f) - refuted == {r["claim"] for r in records if er.is_inconclusive(r)}
+    assert all(f[c]["leans"] == "against the paper" for c in set(f) - refuted)
     assert "det(E - k J)" in f["plane/spherical-inertia/negative/sphere-generalization"][
         "finding"]
     assert f["sphere/borisov-fedorov/reduction/to-chaplygin"]["evidence"]["rate |M~|^2"] > 1e-3
     conv = er.conventions(records, CAT)
-    assert len(conv) == 2 and all(c["residual_under_convention"] <= TOL for c in conv)
+    # the bracket orientation (2) and, from the issue 18 audit, eq2.8's labels, the second
+    # form of rho0 in eq3.2 and the Routh ball's Table 2 density (r3 = gamma3 f2)
+    assert len(conv) == 5 and all(c["residual_under_convention"] <= TOL for c in conv)
 
 
 def test_api_errata_tables_and_page(records):
@@ -256,7 +282,10 @@ def test_api_errata_tables_and_page(records):
             store.records[cid] = [r for r in records if r["case"] == cid]
         errata = client.get("/api/errata").json()
         assert errata and all({"claim", "printed", "corrected"} <= set(e) for e in errata)
-        assert len(client.get("/api/findings").json()) == 2
+        found = client.get("/api/findings").json()
+        # + the ellipsoid (issue 18)
+        assert len([e for e in found if e["kind"] in ("refuted", "refuted-conjecture")]) == 3
+        assert "figure/ris-4" in {e["claim"] for e in found}        # Fig. 7's caption
         for tid in ("plane", "sphere"):
             t = client.get(f"/api/tables/{tid}").json()
             for row in t["grid"]:
@@ -264,14 +293,15 @@ def test_api_errata_tables_and_page(records):
                     v = cell["verdict"]
                     if v is None:
                         continue
-                    assert v["mark"] != "fails"
+                    assert v["mark"] != "fails" and v["verdict"] != "fails"
                     assert [m["case"] for m in v["marks"]] == cell["merged"]
                     assert all(m["mark"] != "fails" for m in v["marks"])
         case = client.get("/api/cases/sphere/round-disk").json()
         claims = {c["id"]: c for c in case["claims"]}
         assert claims[GYRO_FREE[1]]["verdict"]["qualifier"] == "formula-free"
         gyro = next(c for c in case["cells"] if c["row"] == "gyrostat")
-        assert gyro["verdict"]["marks"][0]["mark"] == "verified"
+        assert gyro["verdict"]["marks"][0]["verdict"] == "verified"
+        assert gyro["verdict"]["marks"][0]["mark"] == "after-correction"
         page = client.get("/errata")
         assert page.status_code == 200 and "errata.js" in page.text
         assert "/api/errata" in client.get("/openapi.json").json()["paths"]

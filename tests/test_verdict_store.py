@@ -4,8 +4,10 @@
 import sqlite3
 import threading
 import time
+from pathlib import Path
 
 import httpx
+import pytest
 
 from app.services.verdict_db import VerdictDB
 from app.services.verdict_keys import case_keys
@@ -130,3 +132,139 @@ def test_cases_without_a_verdict_are_pending_only_while_checked(tmp_path):
     full.load_cache()
     full.expect_checks()                         # every case stored: nothing to check
     assert full.state == "done" and full.pending() == set()
+
+
+# --- a store that heals (issue 21) ------------------------------------------------------
+
+KEYS = {"plane/a": "ka", "plane/b": "kb"}
+
+
+def _store(cache_dir):
+    s = VerdictStore(list(KEYS), cache_dir)
+    s._keys = dict(KEYS)
+    return s
+
+
+def _filled(tmp_path):
+    s = _store(tmp_path)
+    s.put("plane/a", [{"claim": "plane/a/x", "verdict": "verified"}])
+    return tmp_path / DB_NAME
+
+
+def _damage_garbage(path):
+    path.write_bytes(b"this is not a database, it was overwritten" * 200)
+
+
+def _damage_truncated(path):
+    con = sqlite3.connect(path)
+    con.execute("PRAGMA wal_checkpoint(TRUNCATE)")
+    for i in range(200):    # enough pages that a truncation cuts a table's b-tree
+        con.execute("INSERT INTO verdicts VALUES (?, 0, 'c', 'k', ?, 0, 'v')",
+                    (f"z/{i}", "x" * 500))
+    con.commit()
+    con.execute("PRAGMA wal_checkpoint(TRUNCATE)")
+    con.close()
+    data = path.read_bytes()
+    path.write_bytes(data[:len(data) // 3])
+
+
+def _damage_garbled(path):
+    con = sqlite3.connect(path)
+    con.execute("PRAGMA wal_checkpoint(TRUNCATE)")
+    con.close()
+    data = bytearray(path.read_bytes())
+    data[100:4096] = b"\xff" * (4096 - 100)     # the first page's b-tree header and cells
+    path.write_bytes(bytes(data))
+
+
+@pytest.mark.parametrize("damage", [_damage_garbage, _damage_truncated, _damage_garbled],
+                         ids=["overwritten", "truncated", "garbled"])
+def test_a_damaged_store_is_moved_aside_and_rebuilt(tmp_path, damage, caplog):
+    """Before: the server kept a damaged file, failed to store every verdict ("cannot
+    store" x16) and computed everything again at every restart."""
+    path = _filled(tmp_path)
+    damage(path)
+    broken = path.read_bytes()
+    s = _store(tmp_path)
+    with caplog.at_level("WARNING", logger="rolling.verdicts"):
+        assert not s.load_cache()                   # nothing served from a damaged file
+    aside = list(tmp_path.glob(f"{DB_NAME}.corrupt-*"))
+    assert len(aside) == 1 and aside[0].read_bytes()[:len(broken)] == broken
+    assert "moved aside" in caplog.text
+    s.put("plane/b", [{"claim": "plane/b/y", "verdict": "fails"}])   # stored again
+    t = _store(tmp_path)
+    assert t.load_cache() and set(t.records) == {"plane/b"}
+    con = sqlite3.connect(path)
+    assert con.execute("PRAGMA quick_check").fetchone()[0] == "ok"
+    con.close()
+
+
+def test_a_store_deleted_while_serving_is_recreated_with_what_memory_holds(tmp_path, caplog):
+    """Before: a 0-byte file was left and new verdicts stayed in memory only."""
+    path = _filled(tmp_path)
+    s = _store(tmp_path)
+    s.load_cache()
+    for p in tmp_path.glob(f"{DB_NAME}*"):
+        p.unlink()
+    with caplog.at_level("WARNING", logger="rolling.verdicts"):
+        s.put("plane/b", [{"claim": "plane/b/y", "verdict": "fails"}])
+    assert "deleted" in caplog.text and path.stat().st_size > 0
+    t = _store(tmp_path)
+    assert t.load_cache() and set(t.records) == {"plane/a", "plane/b"}
+
+
+def test_an_uncreatable_cache_dir_serves_from_memory_and_says_so(tmp_path, caplog):
+    (tmp_path / "file").write_text("a file where the directory should be")
+    s = _store(tmp_path / "file" / "cache")
+    with caplog.at_level("WARNING", logger="rolling.verdicts"):
+        assert not s.load_cache()
+        s.put("plane/a", [{"claim": "plane/a/x", "verdict": "verified"}])
+    assert "NOT SAVED" in caplog.text and s.records["plane/a"]
+
+
+READ_ONLY_CHILD = r"""
+import json, logging, sys
+from app.services.verdicts import VerdictStore
+logging.basicConfig(level=logging.WARNING, stream=sys.stderr)
+s = VerdictStore(["plane/a", "plane/b"], sys.argv[1])
+s._keys = {"plane/a": "ka", "plane/b": "kb"}
+served = s.load_cache()
+s.put("plane/b", [{"claim": "plane/b/y", "verdict": "fails"}])
+print(json.dumps({"served": served, "cases": sorted(s.records), "mode": s.db().mode}))
+"""
+
+
+def test_a_read_only_store_is_served_read_only(tmp_path):
+    """Before: a valid store that the process may not write was not used at all (opening
+    it tried to write). The child runs as an unprivileged user (root writes anyway)."""
+    import json
+    import os
+    import shutil
+    import subprocess
+    import sys
+    import tempfile
+
+    if os.geteuid() == 0 and shutil.which("setpriv") is None:
+        pytest.skip("root without setpriv: cannot take write permission away")
+    cache = Path(tempfile.mkdtemp(prefix="rolling-ro-"))
+    try:
+        _filled(cache)
+        for p in cache.glob(f"{DB_NAME}-*"):     # a clean close leaves no journal
+            p.unlink()
+        before = (cache / DB_NAME).read_bytes()
+        os.chmod(cache / DB_NAME, 0o444)
+        os.chmod(cache, 0o555)
+        prefix = (["setpriv", "--reuid=65534", "--regid=65534", "--clear-groups"]
+                  if os.geteuid() == 0 else [])
+        r = subprocess.run([*prefix, sys.executable, "-c", READ_ONLY_CHILD, str(cache)],
+                           capture_output=True, text=True, timeout=120,
+                           env={**os.environ, "PYTHONPATH": str(Path(__file__).parents[1])},
+                           cwd="/")
+        assert r.returncode == 0, r.stderr[-2000:]
+        out = json.loads(r.stdout.strip().splitlines()[-1])
+        assert out == {"served": True, "cases": ["plane/a", "plane/b"], "mode": "read-only"}
+        assert "read-only" in r.stderr and "NOT SAVED" in r.stderr
+        assert (cache / DB_NAME).read_bytes() == before
+    finally:
+        os.chmod(cache, 0o755)
+        shutil.rmtree(cache)

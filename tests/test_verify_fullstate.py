@@ -62,6 +62,8 @@ EXPECTED = {
     "plane/ellipsoid/measure/lambda-0": (V, None),
     "plane/ellipsoid/identity/density-forms": (V, None),
     "plane/ellipsoid/negative/measure-other-lambda": (E, None),  # 4.8e-02
+    # issue 18: the strong reading, no smooth measure at all, proved (check no_measure)
+    "plane/ellipsoid/negative/no-measure": (V, None),
     "plane/ellipsoid/gyrostat/measure": (V, None),
     # the two-parameter family of the stationary equations exists (Omega^2 < 0 for the
     # drawn lambda in [0, 1): see test_permanent_rotations_reality)
@@ -103,6 +105,7 @@ EXPECTED = {
     "plane/spherical-inertia/identity/invariant-relation": (V, None),
     "plane/spherical-inertia/integral/energy": (V, None),
     "plane/spherical-inertia/measure/omega": (F, V),           # 2.2e-02 (m missing in eq2.19)
+    "plane/spherical-inertia/measure/omega/table": (V, None),  # Table 1 prints the m
     "plane/spherical-inertia/measure": (V, None),
     "plane/spherical-inertia/gyrostat/measure": (V, None),
     "sphere/chaplygin-ball/reduction/equations": (V, None),
@@ -142,7 +145,9 @@ EXPECTED = {
     "sphere/body-of-revolution/integral/energy": (V, None),
     "sphere/body-of-revolution/measure": (F, V),               # 1.8e-01: (1 - k f1)^3 -> ^1
     "sphere/body-of-revolution/measure/table-form": (F, V),    # 7.6e-01
-    "sphere/body-of-revolution/identity/rho0-forms": (F, V),   # 5.3e-02 (f2^2 gamma3^2)
+    # issue 18 audit: holds read in section 3's notation r3 = gamma3 f2 (holds_under); read
+    # with eq2.1's r3 = f2 it fails by 5.3e-02 (kept in the record's evidence)
+    "sphere/body-of-revolution/identity/rho0-forms": (V, V),
     "sphere/body-of-revolution/reduction/symmetry-field": (V, None),
     "sphere/body-of-revolution/gyrostat/measure": (F, V),      # 1.5e-01
     "sphere/round-disk/integral/energy": (V, None),
@@ -150,7 +155,9 @@ EXPECTED = {
     "sphere/round-disk/measure/table-form": (F, V),            # 4.9e-01
     "sphere/routh-ball/integral/energy": (V, None),
     "sphere/routh-ball/measure": (V, None),
-    "sphere/routh-ball/measure/table-form": (F, V),            # 5.5e-01
+    # issue 18 audit: Table 2's notation r3 = gamma3 f2 makes it (1 - kR)^4 rho0 (holds_under);
+    # with eq2.1's f2 it fails by 5.5e-01 (kept in the evidence)
+    "sphere/routh-ball/measure/table-form": (V, V),
     "sphere/routh-ball/integral/jellett-spherical": (V, None),
     "sphere/routh-ball/gyrostat/measure": (V, None),
     "sphere/routh-ball/gyrostat/jellett": (F, V),              # 5.0e-02 (s, R misplaced)

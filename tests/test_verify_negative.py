@@ -95,9 +95,16 @@ def test_regular_maps_are_inconclusive(claim_id):
 
 
 def test_registered_and_run_through_verify():
+    """The flat base's 'no measure' claim now rests on the exact proof (check no_measure,
+    tests/test_nonexistence.py; it was `evidence` from negative_measure); negative_measure
+    stays registered for the claim it decides (the spherical-inertia body on a sphere)."""
+    from solvers.verify.registry import CHECKS
+
     recs = verify(case="sphere/flat-base", claim="sphere/flat-base/negative/measure")
-    assert [r["verdict"] for r in recs] == ["evidence"]
+    assert [r["verdict"] for r in recs] == ["verified"]
+    assert recs[0]["check"] == "no_measure"
     assert recs[0]["evidence"]["control"].startswith("z = 0")
+    assert CHECKS["negative_measure"] is ng.check_negative_measure
 
 
 # --- sanity of the tools --------------------------------------------------------------------

@@ -104,10 +104,14 @@ def problem(status: int, detail: str, errors: list[FieldError] | None = None,
     return JSONResponse(body.model_dump(), status_code=status, headers=headers)
 
 
-async def _validation(request: Request, exc: RequestValidationError) -> JSONResponse:
+async def _validation(request: Request, exc: RequestValidationError) -> Response:
     errs = list(exc.errors())
     sentences = [_sentence(e) for e in errs]
     detail = "; ".join(sentences[:3]) + (f" (and {len(errs) - 3} more)" if len(errs) > 3 else "")
+    if not _is_api(request.url.path):
+        # a page (e.g. /search with a 300-character q): a page in return, not JSON
+        return error_page(request.app.state.settings.static_dir, 422,
+                          "This address cannot be shown", detail or "invalid request")
     items = [FieldError(loc=[_part(p) for p in e.get("loc", ())],
                         msg=s, type=str(e.get("type", "invalid")))
              for e, s in zip(errs, sentences, strict=True)]
@@ -168,12 +172,17 @@ async def _gone(request: Request, exc: ClientDisconnected) -> Response:
 def not_found_page(static_dir: Path, heading: str, message: str) -> HTMLResponse:
     """The HTML 404 page (with the site's navigation) for a person who mistyped an
     address; /api/* keeps its JSON Problem answers."""
+    return error_page(static_dir, 404, heading, message)
+
+
+def error_page(static_dir: Path, status: int, heading: str, message: str) -> HTMLResponse:
+    """An HTML error page with the site's navigation (the 404 page's template)."""
     text = (Path(static_dir) / "404.html").read_text()
     text = text.replace("{{heading}}", html.escape(heading)).replace(
-        "{{message}}", html.escape(message))
+        "{{message}}", html.escape(message[:500]))
     from app.services.reader_pages import render_page  # the site's navigation, lazily
 
-    return HTMLResponse(render_page(text, "404.html"), status_code=404)
+    return HTMLResponse(render_page(text, "404.html"), status_code=status)
 
 
 def _is_api(path: str) -> bool:

@@ -10,9 +10,12 @@
   only send form or text types), and a body over `max_body` bytes is 413, counted from
   Content-Length and from the streamed chunks, before anything parses it. Bodies are read
   in full only up to that limit, so a 50 MB upload neither stalls the event loop nor fills
-  the memory. The connection is not closed after a 413: closing a socket with unread data
-  resets it, and a client still sending would lose the answer; uvicorn drops the rest of
-  the body as it arrives, unparsed.
+  the memory. Every answer of the guard says `Connection: close`: the rest of the body is
+  never read. The server's protocol (app.core.server) stops reading, sends the answer and
+  closes the socket a moment later, so the discarded bytes never pass through the event
+  loop and a client still sending has the time to read the answer.
+- `HeaderLimit`: a request with more than `max_headers` header fields is 431 (their total
+  size is bounded by the server's parser, app.core.server).
 
 The Host allow-list (DNS rebinding) is Starlette's TrustedHostMiddleware, set up in
 app.main from Settings.trusted_hosts().
@@ -85,12 +88,14 @@ class HeadAsGet:
 
 
 def _problem(status: int, detail: str, kind: str) -> tuple[dict, bytes]:
+    loc = {"origin": ["header", "origin"], "headers": ["header"]}.get(kind, ["body"])
     body = json.dumps({"detail": detail, "errors": [
-        {"loc": ["body"] if kind != "origin" else ["header", "origin"], "msg": detail,
-         "type": kind}]}).encode()
+        {"loc": loc, "msg": detail, "type": kind}]}).encode()
+    # the body of the request (if any) is not read: the connection ends with this answer
     start = {"type": "http.response.start", "status": status,
              "headers": [(b"content-type", b"application/json"),
-                         (b"content-length", str(len(body)).encode())]}
+                         (b"content-length", str(len(body)).encode()),
+                         (b"connection", b"close")]}
     return start, body
 
 
@@ -111,6 +116,19 @@ def _is_json(content_type: str) -> bool:
     media = content_type.split(";", 1)[0].strip().lower()
     return media == "application/json" or (media.startswith("application/")
                                            and media.endswith("+json"))
+
+
+class HeaderLimit:
+    def __init__(self, app: ASGIApp, max_headers: int = 100):
+        self.app = app
+        self.max_headers = max_headers
+
+    async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
+        if scope["type"] == "http" and len(scope.get("headers", ())) > self.max_headers:
+            return await _answer(send, 431, f"the request has {len(scope['headers'])} header "
+                                 f"fields; this server accepts at most {self.max_headers}",
+                                 "headers")
+        await self.app(scope, receive, send)
 
 
 class RequestGuard:

@@ -8,6 +8,12 @@ counts from the moment a worker takes the job: when it passes, or when the calle
 cancelled (the client went away), anyio kills that worker process (SIGKILL) and starts a
 fresh one for the next job. The event loop never runs the work itself.
 
+A worker that dies in mid-job (killed from outside, out of memory) gives that job
+`WorkerCrashed` (503 with Retry-After); the death is logged and, as after a deadline,
+the pool starts and warms a new process at once (`refill`), so that the next request does
+not pay a cold start (issue 21: the pool stayed at one process and the next concurrent
+request waited 1.0-1.9 s).
+
 Idle workers are kept alive: anyio's pool kills a worker idle for 5 minutes, after which the
 next request would pay a cold start (a new process, the compiled kernels loaded again, about
 2 s). The number of processes is bounded by `workers` anyway, so keeping them costs nothing.
@@ -15,6 +21,7 @@ next request would pay a cold start (a new process, the compiled kernels loaded 
 
 from __future__ import annotations
 
+import logging
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -22,6 +29,8 @@ from dataclasses import dataclass
 import anyio
 import anyio.abc
 from anyio import to_process
+
+log = logging.getLogger("rolling")
 
 
 class QueueFull(Exception):
@@ -58,6 +67,8 @@ class PoolStats:
     rejected: int
     cancelled: int
     timed_out: int
+    crashed: int = 0
+    replaced: int = 0
 
 
 class WorkerPool:
@@ -81,6 +92,7 @@ class WorkerPool:
         self._running = 0
         self._completed = self._rejected = self._cancelled = self._timed_out = 0
         self._warming = 0
+        self._crashed = self._replaced = 0
 
     def attach(self, tg: anyio.abc.TaskGroup) -> None:
         """Background tasks (re-warming) run in this task group (the app's lifespan)."""
@@ -88,13 +100,35 @@ class WorkerPool:
 
     def _replace_killed_worker(self) -> None:
         if self.warm is not None and self._tg is not None:
-            self._tg.start_soon(self._rewarm)
+            self._tg.start_soon(self.refill)
 
-    async def _rewarm(self) -> None:
+    @staticmethod
+    def live_workers() -> int:
+        """Worker processes of anyio's pool that are alive (0 before the first job)."""
         try:
-            await self.prewarm()
-        except Exception:  # the next job will start its own worker
-            pass
+            procs = to_process._process_pool_workers.get()
+        except LookupError:
+            return 0
+        return sum(1 for p in procs if p.returncode is None)
+
+    async def refill(self) -> None:
+        """Bring the pool back to `workers` warm processes after one was killed or died.
+        As many warm-ups as there are workers run at once: the idle processes take some
+        (a warm process finishes in milliseconds), the rest start new processes, which
+        the next jobs then find warm."""
+        missing = self.workers - self.live_workers()
+        if missing <= 0 or self.warm is None:
+            return
+        try:
+            async with anyio.create_task_group() as tg:
+                for _ in range(self.workers):
+                    tg.start_soon(self.prewarm)
+        except Exception as exc:  # the next job will start its own worker
+            log.warning("replacing a worker failed: %r", exc)
+            return
+        self._replaced += missing
+        log.info("worker pool: %d new warm worker process(es), %d of %d alive", missing,
+                 self.live_workers(), self.workers)
 
     async def prewarm(self) -> None:
         """Start one worker process and load the kernels in it (no deadline, not counted
@@ -116,7 +150,7 @@ class WorkerPool:
         return PoolStats(self.workers, self.queue_size, self._running,
                          self._admitted - self._running, self._warming, self._completed,
                          self._rejected,
-                         self._cancelled, self._timed_out)
+                         self._cancelled, self._timed_out, self._crashed, self._replaced)
 
     async def run(self, fn: Callable, *args, deadline: float | None = None):
         """fn(*args) in a worker process; see the module docstring."""
@@ -141,6 +175,11 @@ class WorkerPool:
                         self._replace_killed_worker()
                         raise DeadlineExceeded(deadline)
                 except anyio.BrokenWorkerProcess as exc:
+                    self._crashed += 1
+                    log.warning("a worker process died while computing %s (%s); starting "
+                                "a warmed one in its place", getattr(fn, "__name__", fn),
+                                exc.__cause__ or exc)
+                    self._replace_killed_worker()
                     raise WorkerCrashed("the worker process died while computing; "
                                         "the request can be retried") from exc
                 except anyio.get_cancelled_exc_class():

@@ -83,6 +83,8 @@ class ClaimPublic(BaseModel):
     where: str | None = None
     attribution: list[AttributionPublic] = Field(default_factory=list)
     conditions: dict[str, str] = Field(default_factory=dict)
+    conditions_text: list[str] = Field(default_factory=list, description="the conditions "
+                                       "as a reader reads them, e.g. 'no gyrostat (S = 0)'")
     variables: str
     check: str
     check_args: dict[str, Any] = Field(default_factory=dict)
@@ -99,4 +101,9 @@ class CasePublic(CaseHead):
     claims: list[ClaimPublic]
     runnable: RunnablePublic
     verdicts: dict[str, int] = Field(description="number of claims per verdict")
+    marks: dict[str, int] = Field(default_factory=dict, description="number of claims "
+                                  "(printed formulas and statements) per mark")
+    cell_marks: dict[str, int] = Field(default_factory=dict, description="number of this "
+                                       "case's table cells per mark")
+    summary: str = Field("", description="the cell and claim counts by mark, in words")
     verification: str = Field(description="done | running | idle | unavailable | failed")

@@ -11,6 +11,9 @@ class PoolPublic(BaseModel):
     rejected: int
     cancelled: int
     timed_out: int
+    crashed: int = Field(0, description="worker processes that died in mid-job")
+    replaced: int = Field(0, description="worker processes started warm after a death "
+                          "or a deadline")
 
 
 class VerificationStatus(BaseModel):
@@ -28,9 +31,24 @@ class LimitsPublic(BaseModel):
     max_frames: int
 
 
+class ConnectionsPublic(BaseModel):
+    """What the server's connection guards did since it started (app.core.server)."""
+    open: int = Field(description="connections open now")
+    peak: int = Field(description="most connections open at once")
+    max_connections: int
+    evicted: int = Field(description="idle or stalled connections closed to make room")
+    refused: int = Field(description="connections closed at once: the cap was reached")
+    header_timeouts: int
+    body_timeouts: int
+    header_too_large: int
+    lingered: int = Field(description="connections closed with a request body unread")
+
+
 class HealthPublic(BaseModel):
     status: str = Field(description="always 'ok' when the service answers")
     version: str
     pool: PoolPublic
     limits: LimitsPublic
     verification: VerificationStatus
+    connections: ConnectionsPublic | None = Field(
+        None, description="null when the app runs under a server other than rolling serve")

@@ -37,13 +37,32 @@ EXAMPLE = {"case": "plane/chaplygin-ball",
            "t_end": 100, "method": "dop853", "rtol": 1e-10, "atol": 1e-12, "samples": 201}
 
 
+GAUSS = [m for m in METHODS if m.startswith("gauss")]
+# the rules between fields, in the schema (JSON Schema 2020-12, as OpenAPI 3.1 has it), so
+# that a request valid by the schema is not refused for them (issue 21): `step` goes with
+# the Gauss methods and only with them; without example = true, params and state are
+# required. Each case's own parameter names are in GET /api/cases/{id} (runnable.params):
+# a wrong name is a 422 that names it.
+CROSS_FIELD_RULES = [
+    {"if": {"properties": {"method": {"enum": GAUSS}}, "required": ["method"]},
+     "then": {"required": ["step"], "properties": {"step": {"type": "number"}}},
+     "else": {"properties": {"step": {"type": "null"}}}},
+    {"if": {"not": {"properties": {"example": {"const": True}}, "required": ["example"]}},
+     "then": {"required": ["params", "state"]}},
+]
+
+
 class SimulateRequest(BaseModel):
     """A run, as `rolling simulate`: the case, its named parameters, the initial state
-    (M, gamma) or (M, r1, r2) and the final time."""
+    (M, gamma) or (M, r1, r2) and the final time. Rules between fields: `step` is given
+    with the Gauss methods (gauss4/6/8) and only with them; `params` and `state` are
+    required unless `example` is true; the parameter names are the case's own (GET
+    /api/cases/{id}: runnable.params)."""
 
     # strict: a string "1.5" or 0 for false is a mistake to report, not to guess around
     model_config = ConfigDict(extra="forbid", strict=True,
-                              json_schema_extra={"examples": [EXAMPLE]})
+                              json_schema_extra={"examples": [EXAMPLE],
+                                                 "allOf": CROSS_FIELD_RULES})
 
     case: CaseId = Field(description="case id, e.g. plane/chaplygin-ball (GET /api/cases)")
     params: Annotated[dict[Annotated[str, Field(max_length=16)], FiniteFloat],
@@ -113,6 +132,8 @@ class ValidatePublic(BaseModel):
                                      "defaults filled in")
     state_labels: list[str]
     invariants: list[str] = Field(description="integrals the run will report")
+    invariants_text: list[str] = Field(default_factory=list, description="the same "
+                                       "integrals as a reader names them, e.g. 'energy H'")
 
 
 class ScenePublic(BaseModel):

@@ -1,4 +1,4 @@
-from pydantic import BaseModel
+from pydantic import BaseModel, Field
 
 from app.schemas.cases import CellPublic
 
@@ -33,3 +33,6 @@ class TablePublic(BaseModel):
     rows: list[RowPublic]
     columns: list[ColumnPublic]
     grid: list[GridRow]
+    mark_counts: dict[str, int] = Field(default_factory=dict, description="the table's "
+                                        "cells (one per body and row) per mark")
+    summary: str = Field("", description="mark_counts in words")

@@ -6,6 +6,22 @@ from pydantic import BaseModel, Field
 # recomputing changed cases); unchecked: nothing can be computed, or the check did not run
 Verdict = Literal["verified", "fails", "evidence", "unchecked", "pending"]
 
+# the vocabulary of marks (solvers/verify/marks.yaml): one mark per meaning; a test checks
+# that this list is the YAML's
+MarkId = Literal["as-printed", "after-correction", "under-convention", "project-formula",
+                 "fails", "evidence-for",
+                 "evidence-against", "inconclusive", "open", "not-checkable", "pending"]
+MARK_FIELD = Field("not-checkable", description="what was shown, one mark per meaning "
+                   "(GET /api/marks defines each): as-printed | after-correction | "
+                   "under-convention | project-formula | fails | evidence-for | "
+                   "evidence-against | inconclusive | open | not-checkable | pending (being "
+                   "checked now)")
+MARK_NOTE_FIELD = Field(None, description="one sentence that goes with the mark: the "
+                        "convention, the misprint, or what an inconclusive check found")
+ERRATA_FIELD = Field(default_factory=list, description="after-correction: the formula "
+                     "records whose printed form is misprinted and whose correction holds "
+                     "(their errata)")
+
 
 class VerdictPublic(BaseModel):
     """The outcome of a claim's check (solvers.verify), or 'unchecked' when there is none."""
@@ -43,28 +59,63 @@ class VerdictPublic(BaseModel):
                                     "formula corrected'")
     exact: dict[str, Any] | None = Field(None, description="exact certificate in rational "
                                          "arithmetic, when one applies")
+    mark: MarkId = MARK_FIELD
+    mark_note: str | None = MARK_NOTE_FIELD
+    errata: list[str] = ERRATA_FIELD
 
 
 class CellMark(BaseModel):
-    """The verdict of a cell's property for one case (body) the cell spans."""
+    """The mark of a cell's property for one case (body) the cell spans."""
 
     case: str
     column: int
-    mark: Verdict | Literal["pending"] = Field(description="pending: not computed yet")
+    mark: MarkId = MARK_FIELD
+    mark_note: str | None = MARK_NOTE_FIELD
+    errata: list[str] = ERRATA_FIELD
+    verdict: Verdict = Field(description="the coarse verdict (kept for compatibility); "
+                             "pending: not computed yet")
     notes: list[str] = Field(default_factory=list)
     message: str = ""
     rests_on: list[str] = Field(default_factory=list)
 
 
 class VerdictSummary(BaseModel):
-    """The verdict of a table cell: the property it states, per case it spans."""
+    """The mark of a table cell: the property it states, per case it spans."""
 
-    mark: Verdict
+    mark: MarkId = Field(description="the cell's mark over the cases it spans (the first "
+                         "of fails, evidence-against, inconclusive, pending, evidence-for, "
+                         "project-formula, after-correction, under-convention, as-printed, open, "
+                         "not-checkable among them)")
+    verdict: Verdict = Field(description="the coarse verdict (kept for compatibility)")
+    mark_counts: dict[str, int] = Field(default_factory=dict, description="number of "
+                                        "spanned cases per mark")
     counts: dict[str, int] = Field(description="number of spanned cases per verdict")
     claims: list[str]
     marks: list[CellMark] = Field(default_factory=list, description="one per case the "
                                   "cell spans, in column order")
     notes: list[str] = Field(default_factory=list)
+
+
+class MarkPublic(BaseModel):
+    """One mark of the vocabulary (solvers/verify/marks.yaml)."""
+
+    id: MarkId
+    shape: str = Field(description="the sign drawn before the word")
+    word: str = Field(description="the short word shown in a table cell")
+    name: str
+    counted: str = Field(description="a summary's words for several: 'N cells <counted>'")
+    counted_one: str
+    definition: str
+
+
+class MarksPublic(BaseModel):
+    """The vocabulary of marks, and how many table cells carry each so far."""
+
+    marks: list[MarkPublic]
+    cells: dict[str, int] = Field(description="table cells (one per body and row) per mark, "
+                                  "over both tables")
+    cells_total: int
+    summary: str = Field(description="the counts in words")
 
 
 class VerifyPublic(BaseModel):

@@ -4,7 +4,10 @@ the checking code itself (solvers/verify/checks), so the page cannot drift from 
 from __future__ import annotations
 
 from catalogue.schema import CheckName
-from solvers.verify.checks import common, formula_free, negative
+from solvers.verify.checks import common, formula_free, negative, nonexistence
+from solvers.verify.exact import certify as exact_certify
+from solvers.verify.exact import points as exact_points
+from solvers.verify.marks import vocabulary
 
 
 def constants() -> dict[str, float]:
@@ -15,7 +18,8 @@ def constants() -> dict[str, float]:
             "N_MAP_ORBITS": negative.N_MAP_ORBITS, "MIN_CROSSINGS": negative.MIN_CROSSINGS,
             "T_LONG": negative.T_LONG, "FF_T_LONG": formula_free.T_LONG,
             "FF_N_RUNS": formula_free.N_RUNS, "FF_MIN_CROSSINGS": formula_free.MIN_CROSSINGS,
-            "FF_CONTROL_BREAKS": formula_free.CONTROL_BREAKS}
+            "FF_CONTROL_BREAKS": formula_free.CONTROL_BREAKS,
+            "EXACT_BITS": exact_points.BITS, "EXACT_K": exact_certify.K_POINTS}
 
 
 def kinds() -> list[dict]:
@@ -60,6 +64,21 @@ def kinds() -> list[dict]:
                      "instead of a surface. This is evidence, never proof.",
          "points": f"{c['N_SETTINGS_NEG']} draws × {c['N_POINTS_NEG']} points, long runs",
          "tolerance": f"obstruction: residual > {c['TOL']:g}"},
+        {"id": "no-measure", "title": "No invariant measure, proved",
+         "checks": [CheckName.NO_MEASURE],
+         "computed": "for the cases whose field is homogeneous in M (no potential, no "
+                     "gyrostat: dM/dt quadratic, the position's rate linear in M), scaling "
+                     "M to 0 turns any smooth positive invariant density into one of the "
+                     "position alone (Kozlov's argument), which needs c · γ = 0 (c3 = 0 for "
+                     "the flat base) where div v = c · ω. The project computes c exactly in "
+                     "rational arithmetic (exact first derivatives of the exact field) at a "
+                     "rational point and finds it nonzero: a proof, for the example's "
+                     "parameters and every parameter value off the zero set of that rational "
+                     "function, and for each drawn parameter set. The control that restores "
+                     "a known measure gives exactly 0.",
+         "points": f"{len(nonexistence.GAMMAS)} rational points, the example and "
+                   f"{c['N_SETTINGS']} drawn parameter sets",
+         "tolerance": "none: exact rationals, the obstruction is ≠ 0"},
         {"id": "formula-free", "title": "Formula-free existence tests",
          "checks": [CheckName.LINEAR_INTEGRALS_RETURN],
          "computed": "that a property holds without using any printed formula for it: for "
@@ -73,15 +92,23 @@ def kinds() -> list[dict]:
          "points": f"{c['N_SETTINGS']} parameter draws × {c['FF_N_RUNS']} runs, plus the "
                    "off-axis control",
          "tolerance": f"spread of the returns ≤ {c['TOL']:g}"},
-        {"id": "exact", "title": "Exact certificates",
+        {"id": "exact", "title": "Exact certificates and proofs",
          "checks": [],
-         "computed": "the residual of a polynomial (or rational) identity evaluated in exact "
-                     "rational arithmetic at random rational points: a nonzero value proves "
-                     "the identity false; zero at a random point of a set S means that a "
-                     "nonzero polynomial of degree d would vanish there with probability at "
-                     "most d/|S| (Schwartz–Zippel lemma), so several zeros make a wrong "
-                     "identity vanishingly unlikely.",
-         "points": "random rational points; the bound d/|S| per point",
+         "computed": "the residual of a polynomial (or rational) identity, in exact rational "
+                     "arithmetic. Proof: with every free coordinate (parameters, γ's angle "
+                     "parameters, M) a symbol, the residual is a rational function; its "
+                     "numerator expanded over Q is the zero polynomial, so the identity holds "
+                     "with certainty. Certificate, where the expansion is too large: the "
+                     f"residual at k = {c['EXACT_K']} random rational points, every coordinate "
+                     f"(parameters included) uniform over N = 2^{c['EXACT_BITS']} exact grid "
+                     "values; a nonzero value proves the identity false; zero at all k points "
+                     "means a nonzero numerator of degree ≤ d (tracked through the arithmetic) "
+                     "would vanish there with probability at most (d/N)^k (Schwartz–Zippel "
+                     "lemma). A record whose degree is not known states no probability. The "
+                     "points are seeded by the claim id: reproducible, but not random against "
+                     "someone who picks a formula after seeing them.",
+         "points": f"a proof, or k = {c['EXACT_K']} points with the bound (d/N)^k, "
+                   f"N = 2^{c['EXACT_BITS']}",
          "tolerance": "exactly zero (no floating point)"},
         {"id": "recorded", "title": "Recorded, not computed",
          "checks": [CheckName.OPEN_PROBLEM, CheckName.FORMULA_NOT_PRINTED,
@@ -92,17 +119,23 @@ def kinds() -> list[dict]:
     ]
 
 
+def marks() -> list[dict]:
+    """What each mark means: the vocabulary itself (solvers/verify/marks.yaml), which
+    solvers/verify/levels.py assigns and every page draws; one source of truth."""
+    return [m.model_dump() for m in vocabulary()]
+
+
+# the coarse `verdict` every record also keeps (for compatibility); the mark says which
 VERDICTS = [
-    ("verified", "✓", "the check ran and the printed statement holds to round-off "
-     "(residual at or below the tolerance at every point)."),
+    ("verified", "✓", "the property was shown to hold by a computation to round-off: as "
+     "printed, under a stated convention, or, for a correction or a table cell, after "
+     "correction or by a formula-free test. The mark says which."),
     ("fails", "✗", "the check ran and the printed statement does not hold: the residual is far "
      "above the tolerance. The printed form is kept; a correction the project found is shown "
-     "beside it as its own record."),
-    ("evidence", "◐", "a negative claim: evidence for it was found (numbers in the details), "
-     "which is not a proof."),
-    ("unchecked", "?", "not checkable: nothing can be computed (open problem, no formula "
-     "printed, a statement no pointwise computation decides), or the check could not run on "
-     "this server (its details say why)."),
+     "beside it as its own record (mark: holds after correction)."),
+    ("evidence", "◐", "numerical evidence, not a proof (mark: evidence for)."),
+    ("unchecked", "?", "nothing decided: open in the paper, not checkable (nothing was run), "
+     "or inconclusive (a check ran and could not decide). The mark says which."),
     ("pending", "…", "checking: the check is running now (a fresh server recomputes the "
      "verdicts whose catalogue entry or checking code changed); the page updates when it "
      "finishes."),

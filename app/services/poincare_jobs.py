@@ -19,3 +19,17 @@ def trajectories(job: dict, starts: list[list[float]]) -> list[dict]:
 
 def trajectory(job: dict, y0: list[float]) -> dict:
     return trajectories(job, [y0])[0]
+
+
+def seconds_per_point(job: dict, y0: list[float], points: int) -> float:
+    """The estimate before a map starts: the wall time of one crossing of this start,
+    timed on `points` crossings after a first short run that pays the imports and the
+    kernel compilation (which a cold worker would otherwise put into the estimate)."""
+    import time
+
+    warm = {**job, "spec": {**job["spec"], "points": 1}}
+    trajectories(warm, [y0])
+    timed = {**job, "spec": {**job["spec"], "points": points}}
+    t0 = time.perf_counter()
+    trajectories(timed, [y0])
+    return (time.perf_counter() - t0) / points

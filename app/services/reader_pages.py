@@ -5,6 +5,7 @@ printed numbers every static page gets when it is served."""
 from __future__ import annotations
 
 import re
+from datetime import date
 from html import escape
 from pathlib import Path
 
@@ -75,8 +76,8 @@ def how_we_check() -> str:
         "<p>Every statement of Tables 1 and 2 and of the text is a <em>claim</em>, and every "
         "claim names the check that decides it. The checks evaluate the printed formulas at "
         "random states with exact derivatives, not by watching a trajectory drift. The numbers "
-        "below are read from the checking code (<code>solvers/verify/checks</code>) when the "
-        "page is served.</p>",
+        "below are read from the checking code itself when the page is served, so they cannot "
+        "drift from what the checks do.</p>",
         f'<p class="constants">Tolerance <strong>{c["TOL"]:g}</strong> on relative residuals; '
         f'<strong>{c["N_SETTINGS"]}</strong> parameter draws × <strong>{c["N_POINTS"]}'
         "</strong> random phase points per claim. Round-off gives residuals near 1e-15 to "
@@ -93,19 +94,33 @@ def how_we_check() -> str:
             f'{"<details><summary>check names</summary>" + names + "</details>" if names else ""}'
             f'</th><td>{escape(k["computed"])}</td><td>{escape(k["points"])}</td>'
             f'<td>{escape(k["tolerance"])}</td></tr>')
-    parts.append("</tbody></table></div><h2 id=\"verdicts\">What each verdict means</h2><dl>")
+    parts.append("</tbody></table></div><h2 id=\"marks\">What each mark means</h2>"
+                 "<p>Every table cell and every claim carries one mark, a shape and a word; "
+                 "the tables, the case pages, the JSON API (field <code>mark</code>) and "
+                 "<code>rolling verify</code> use these same marks.</p><dl class=\"marks\">")
+    for m in howcheck.marks():
+        parts.append(f'<dt id="mark-{escape(m["id"])}"><span class="mark {escape(m["id"])}" '
+                     f'aria-hidden="true">{m["shape"]}</span> {escape(m["name"])}</dt>'
+                     f'<dd>{escape(m["definition"])}</dd>')
+    parts.append("</dl><h2 id=\"verdicts\">The coarse verdict</h2><p>Each record also keeps "
+                 "its older, coarser <code>verdict</code> field in the JSON API:</p><dl>")
     for v, mark, text in howcheck.VERDICTS:
         parts.append(f'<dt><span class="mark {v}">{mark}</span> {v}</dt><dd>{escape(text)}</dd>')
-    parts.append("</dl><p>Each verdict on a case page carries the date it was computed and the "
+    parts.append("</dl><p>Each mark on a case page carries the date it was computed and the "
                  "project version that computed it.</p>")
     parts.append(
-        '<h2 id="numbers">Equation and figure numbers</h2><p>The pages show the numbers the '
-        "printed paper carries, e.g. (2.24) and Fig. 3. They are derived from the paper's LaTeX "
-        "by emulating the journal class: equations are numbered per section in order of "
-        "appearance (numbered display macros and environments count, starred ones, "
-        "<code>$$…$$</code> and lines marked <code>\\notag</code> do not); figures are numbered "
-        "through the paper. The LaTeX labels stay in the data (the API's <code>label</code> "
-        "fields) only.</p>")
+        '<h2 id="numbers">Equation and figure numbers</h2><p>The pages name equations and '
+        "figures by the numbers the paper prints, e.g. (2.24) and Fig. 3. These numbers are "
+        "derived from the paper's LaTeX source, not read off a printed copy (we had none). "
+        "LaTeX itself numbered them: the source was compiled with TeX Live against a "
+        "stand-in for the journal's class, which is not public. The stand-in assumes that "
+        "equations are numbered within each section; that each numbered display carries one "
+        "number however many lines it has; and that every figure is numbered through the "
+        "paper, with or without a caption. The result agrees with the project's own "
+        "emulation of the class for every equation and figure. Where the paper cites an "
+        "uncaptioned figure, which figure is meant is inferred from where it is cited. "
+        "A display without a number is named by where it stands, e.g. the display after "
+        "(2.24) in section 2.</p>")
     return layout("How we check", "\n".join(parts), "/how-we-check")
 
 
@@ -136,46 +151,105 @@ def glossary() -> str:
 
 # --- /bibliography and the Cite box -------------------------------------------------------
 
+PAPER_ID = "this-paper"
+SOFTWARE_AUTHOR = "rolling-hierarchy contributors"   # pyproject.toml names no authors
+SOFTWARE_TITLE = ("Rolling hierarchy: a checked knowledge base of a rigid body rolling on a "
+                  "plane and a sphere")
+
+
+def cite_data() -> dict:
+    """What the Cite boxes need (GET /api/cite, cite.js): the paper's entry from
+    catalogue/references.yaml and the explorer's; the page's URL, the year and the access
+    date are added where the page is shown (in the browser, or `bibtex_project`)."""
+    r = load_catalogue().reference(PAPER_ID)
+    paper = {"author": " and ".join(_bib_name(a) for a in r.authors), "title": r.title,
+             "journal": r.journal, "volume": r.volume, "number": r.number,
+             "pages": (r.pages or "").replace("-", "--"), "year": str(r.years[0]),
+             "doi": r.doi}
+    software = {"author": "{" + SOFTWARE_AUTHOR + "}", "title": SOFTWARE_TITLE,
+                "version": __version__,
+                "note": "Every claim of Borisov and Mamaev (2002), Tables 1 and 2, checked by "
+                        "computation"}
+    return {"paper": {"type": "article", "key": "BorisovMamaev2002", "fields": paper},
+            "software": {"type": "software", "key": "RollingHierarchy", "fields": software}}
+
+
+def _bib_name(name: str) -> str:
+    """'A. V. Borisov' -> 'Borisov, A. V.' (BibTeX's last-name-first form)."""
+    *first, last = name.split()
+    return f"{last}, {' '.join(first)}" if first else last
+
+
+def bibtex(entry: dict, **extra: str) -> str:
+    """One BibTeX entry; the same layout as cite.js's bibtex()."""
+    fields = {**entry["fields"], **extra}
+    width = max(len(k) for k in fields)
+    body = ",\n".join(f"  {k.ljust(width)} = {{{v}}}" for k, v in fields.items() if v)
+    return f"@{entry['type']}{{{entry['key']},\n{body}\n}}"
+
+
 def bibtex_paper() -> str:
-    return ("@article{BorisovMamaev2002,\n  author  = {Borisov, Alexey V. and Mamaev, Ivan S.},\n"
-            "  title   = {The rolling motion of a rigid body on a plane and a sphere. "
-            "Hierarchy of dynamics},\n  journal = {Regular and Chaotic Dynamics},\n"
-            "  volume  = {7},\n  number  = {2},\n  pages   = {177--200},\n  year    = {2002},\n"
-            f"  doi     = {{{PAPER_DOI}}}\n}}")
+    return bibtex(cite_data()["paper"])
 
 
-def bibtex_project() -> str:
-    return ("@software{RollingHierarchy,\n  title   = {Rolling hierarchy: a checked knowledge "
-            "base of a rigid body rolling on a plane and a sphere},\n"
-            f"  version = {{{__version__}}},\n  note    = {{Every claim of Borisov and Mamaev "
-            "(2002), Tables 1 and 2, checked by computation}}\n}")
+def bibtex_project(url: str = "/", today: date | None = None) -> str:
+    """The explorer's entry for the page at `url`, accessed `today` (the server's date; the
+    page's script puts in the reader's own date and the page's full address)."""
+    today = today or date.today()
+    return bibtex(cite_data()["software"], year=str(today.year), url=url,
+                  urldate=today.isoformat())
 
 
-def cite_box() -> str:
+def _pre(text: str) -> str:
+    # braces as character references: the shell's "{{...}}" placeholders never appear in a
+    # served page, and a corporate author's double braces are not one
+    return escape(text).replace("{{", "&#123;{").replace("}}", "}&#125;")
+
+
+def cite_box(url: str = "/") -> str:
     return (f'<section id="cite" class="cite" aria-labelledby="h-cite"><h2 id="h-cite">Cite</h2>'
             f'<p>The paper: <a href="https://doi.org/{PAPER_DOI}">doi:{PAPER_DOI}</a> '
-            "(Regular and Chaotic Dynamics 7(2), 2002, pp. 177–200; pages and DOI as the "
-            "paper's own LaTeX gives them).</p>"
-            f'<pre class="bibtex" tabindex="0">{escape(bibtex_paper())}</pre>'
-            f'<p>This project (version {escape(__version__)}):</p>'
-            f'<pre class="bibtex" tabindex="0">{escape(bibtex_project())}</pre></section>')
+            "(Regular and Chaotic Dynamics 7(2), 2002, pp. 177–200).</p>"
+            f'<pre class="bibtex" data-cite="paper" tabindex="0">{_pre(bibtex_paper())}</pre>'
+            f'<p>This explorer (version {escape(__version__)}), as this page shows it:</p>'
+            f'<pre class="bibtex" data-cite="software" tabindex="0">'
+            f"{_pre(bibtex_project(url))}</pre>"
+            '<link rel="stylesheet" href="/static/css/cite.css">'
+            '<script type="module" src="/static/js/cite.js"></script></section>')
+
+
+def _reference_html(r) -> str:
+    who = ", ".join(r.authors) or "authors not named in the paper"
+    years = ", ".join(str(y) for y in r.years) or "year not given"
+    title = f"<cite>{escape(r.title)}</cite>. " if r.title else ""
+    src = ", ".join(x for x in (r.journal, r.volume and f"vol. {r.volume}",
+                                r.number and f"no. {r.number}",
+                                r.pages and f"pp. {r.pages.replace('-', '–')}") if x)
+    src = f"{escape(src)}. " if src else ""
+    doi = (f'<a href="https://doi.org/{escape(r.doi)}">doi:{escape(r.doi)}</a>. '
+           if r.doi else "")
+    key = f" <code>\\cite{{{escape(r.cite_key)}}}</code>" if r.cite_key else ""
+    if r.status == "complete":
+        status = '<span class="refstatus complete">complete</span>'
+    else:
+        status = ('<span class="refstatus unresolved">unresolved</span> '
+                  f'<span class="hint">not in the seed: {escape(", ".join(r.missing))}</span>')
+    used = "".join(f"<li>{escape(cite(x))}</li>" for x in r.cited_for)
+    remark = f"<p>{escape(cite(r.remarks))}</p>" if r.remarks else ""
+    return (f'<li id="ref-{escape(r.id)}" data-status="{r.status}">{status}<br>'
+            f"<strong>{escape(who)}</strong> ({years}). {title}{src}{doi}{key}"
+            f"<ul>{used}</ul>{remark}</li>")
 
 
 def bibliography() -> str:
     refs = load_catalogue().references
-    items = []
-    for r in refs:
-        who = ", ".join(r.authors) or "authors not named in the paper"
-        years = ", ".join(str(y) for y in r.years) or "year not given"
-        title = f"<cite>{escape(r.title)}</cite>. " if r.title else ""
-        key = f" <code>\\cite{{{escape(r.cite_key)}}}</code>" if r.cite_key else ""
-        used = "".join(f"<li>{escape(cite(x))}</li>" for x in r.cited_for)
-        remark = f"<p>{escape(cite(r.remarks))}</p>" if r.remarks else ""
-        items.append(f'<li id="ref-{escape(r.id)}"><strong>{escape(who)}</strong> ({years}). '
-                     f"{title}{key}<ul>{used}</ul>{remark}</li>")
-    body = ("<p>Every reference the catalogue cites, resolved from its key. The paper as the "
-            "seed holds it has no reference list: authors and years come from its text and "
-            "tables, and titles are given only where the paper states them (none is "
-            "invented).</p>" + cite_box() +
-            f'<h2 id="refs">References ({len(refs)})</h2><ol class="refs">{"".join(items)}</ol>')
+    unresolved = sum(r.status == "unresolved" for r in refs)
+    body = ("<p>Every reference the catalogue cites, resolved from its key. The paper's LaTeX "
+            "(the seed) has no reference list: authors and years come from its text and "
+            "tables. An entry is <em>complete</em> when the seed gives its authors, title, "
+            "journal and year, and <em>unresolved</em> otherwise, saying what is missing; "
+            f"nothing is guessed. {len(refs) - unresolved} complete, {unresolved} unresolved."
+            "</p>" + cite_box("/bibliography") +
+            f'<h2 id="refs">References ({len(refs)})</h2><ol class="refs">'
+            f'{"".join(_reference_html(r) for r in refs)}</ol>')
     return layout("Bibliography", body, "/bibliography")

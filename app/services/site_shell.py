@@ -38,10 +38,11 @@ SEARCH = ('<form class="navsearch" role="search" action="/search" method="get">'
 FOOTER = f"""<footer class="site"><p>Rolling hierarchy {escape(__version__)}. Source:
 A.&thinsp;V.&nbsp;Borisov, I.&thinsp;S.&nbsp;Mamaev, <cite>The rolling motion of a rigid body on a
 plane and a sphere. Hierarchy of dynamics</cite>, Regular and Chaotic Dynamics 7(2), 2002,
-doi:10.1070/RD2002v007n02ABEH000204. Equation and figure numbers are those of the printed paper
-(<a href="/how-we-check#numbers">how they are derived</a>). Conventions: &gamma; is the unit
-normal at the contact point, from the body into the support; r(&gamma;) runs from the centre of
-mass to the contact point.</p></footer>"""
+doi:10.1070/RD2002v007n02ABEH000204. Equation and figure numbers are derived from the paper's
+LaTeX source by compiling it under stated assumptions about the journal's class; they have not
+been checked against a printed copy (<a href="/how-we-check#numbers">how they are derived</a>).
+Conventions: &gamma; is the unit normal at the contact point, from the body into the support;
+r(&gamma;) runs from the centre of mass to the contact point.</p></footer>"""
 
 
 def nav(current: str | None = None) -> str:

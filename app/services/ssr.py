@@ -11,9 +11,7 @@ from __future__ import annotations
 import re
 from html import escape
 
-VERDICT_WORDS = {"verified": "verified", "fails": "fails as printed",
-                 "evidence": "numerical evidence", "unchecked": "not checkable",
-                 "pending": "checking"}
+from solvers.verify import marks as vocab
 
 
 def _anchor(claim_id: str) -> str:
@@ -21,39 +19,65 @@ def _anchor(claim_id: str) -> str:
     return "claim-" + re.sub(r"[^A-Za-z0-9_-]+", "_", claim_id)
 
 
+def _info(mark: str):
+    return vocab.by_id().get(mark) or vocab.by_id()["not-checkable"]
+
+
+def _erratum_links(errata: list[str]) -> str:
+    # the same links as the page's script (static/js/marks.js erratumLinks)
+    return ", ".join(f'<a href="/errata#e-{escape(e)}">erratum</a>' for e in errata)
+
+
+def badge_html(mark: str) -> str:
+    m = _info(mark)
+    return f'<strong class="badge {escape(mark)}">{m.shape} {escape(m.name)}</strong>'
+
+
+def claim_label(c: dict) -> str:
+    """A claim as a reader knows it: its kind and printed number (cite.js claimLabel)."""
+    return c["kind"].replace("-", " ") + (f' {c["number"]}' if c.get("number") else "")
+
+
+def permalink_html(c: dict) -> str:
+    """The claim's visible permalink, the same as the script draws (cite.js permalinkHtml):
+    with scripts off a reader can still link to one claim (issue 17, item 5)."""
+    a = _anchor(c["id"])
+    return (f'<a class="permalink" href="#{a}" title="Permalink to this claim" '
+            f'aria-label="Permalink to the claim {escape(claim_label(c))}">¶</a>')
+
+
 def claim_html(c: dict) -> str:
     v = c["verdict"]
-    word = VERDICT_WORDS.get(v["verdict"], v["verdict"])
     residual = (f"; largest normalised residual {v['residual']:.1e}"
                 if isinstance(v.get("residual"), float) else "")
     where = f"<p class=\"status\">Printed in the paper: {escape(c['where'])}</p>" \
         if c.get("where") else ""
+    links = _erratum_links(v.get("errata") or []) if v.get("mark") == "after-correction" else ""
+    note = (f'<p class="marknote">{escape(v["mark_note"].rstrip("."))}'
+            f'{f" ({links})" if links else ""}.</p>') if v.get("mark_note") else ""
     msg = (f"<details><summary>How it was checked</summary><p>{escape(v['message'])}</p>"
            f"</details>") if v.get("message") else ""
     return (f'<article class="claim ssr" id="{_anchor(c["id"])}">'
-            f'<h3>{escape(c["kind"])}: {escape(c["plain"])}</h3>'
-            f'<p>Verdict: <strong class="badge {escape(v["verdict"])}">{escape(word)}</strong>'
-            f'{escape(residual)}.</p>{where}{msg}</article>')
+            f'<h3>{permalink_html(c)} {escape(claim_label(c))}: {escape(c["plain"])}</h3>'
+            f'<p>Mark: {badge_html(v.get("mark") or "not-checkable")}'
+            f'{escape(residual)}.</p>{note}{where}{msg}</article>')
 
 
 def case_page(template: str, detail: dict) -> str:
-    """case.html with the case's title and claims filled in."""
+    """case.html with the case's title, its counts by mark and its claims filled in."""
     title = escape(detail["title"])
     claims = "".join(claim_html(c) for c in detail["claims"])
-    counts = ", ".join(f"{n} {VERDICT_WORDS[k]}" for k, n in detail["verdicts"].items() if n)
+    summary = escape(detail.get("summary") or "")
     return (template
             .replace("<title>Case — Rolling hierarchy</title>",
                      f"<title>{title} — Rolling hierarchy</title>", 1)
             .replace('<h1 id="case-title">Loading…</h1>', f'<h1 id="case-title">{title}</h1>', 1)
+            .replace('<div class="tally" id="tally" aria-live="polite"></div>',
+                     '<div class="tally" id="tally" aria-live="polite"><p class="mark-summary" '
+                     f'id="mark-summary">{summary}</p></div>', 1)
             .replace('<div id="claimlist"></div>',
-                     f'<div id="claimlist"><p class="status ssr">{len(detail["claims"])} '
-                     f'claims: {escape(counts)}.</p>{claims}</div>', 1))
-
-
-MARK_ICONS = {"verified": "✓", "fails": "✗", "evidence": "◐", "unchecked": "?", "pending": "…"}
-MARK_WORDS = {"verified": "property holds", "fails": "property fails",
-              "evidence": "numerical evidence", "unchecked": "not checkable",
-              "pending": "checking"}
+                     f'<div id="claimlist"><p class="status ssr">{summary}</p>{claims}</div>',
+                     1))
 
 
 def shade_why(c: dict) -> str:
@@ -70,22 +94,52 @@ def _col(m: dict) -> str:
     return f'<sub class="col">{m["column"]}</sub>' if m.get("column") else ""
 
 
+def mark_why(marks: list[dict]) -> str:
+    """What goes with a cell's marks (the convention, the misprint and its erratum, what an
+    inconclusive check found): a disclosure, the same markup as static/js/marks.js."""
+    seen, parts = set(), []
+    for m in marks:
+        if not m.get("mark_note") and not m.get("errata"):
+            continue
+        key = (m["mark"], m.get("mark_note") or "")
+        if key in seen:
+            continue
+        seen.add(key)
+        who = f"column {m['column']}, " if len(marks) > 1 and m.get("column") else ""
+        links = _erratum_links(m.get("errata") or []) if m["mark"] == "after-correction" \
+            else ""
+        parts.append(f"<p>{who}{escape(_info(m['mark']).name)}: "
+                     f"{escape(m.get('mark_note') or '')}{f' ({links})' if links else ''}</p>")
+    return (f'<details class="mark-why"><summary>why?</summary>{"".join(parts)}</details>'
+            if parts else "")
+
+
 def mark_html(c: dict) -> str:
-    """The cell's verdict marks as text (one per body, column numbers when merged); the
-    script redraws them as links (static/js/marks.js)."""
+    """The cell's marks as text: each body's shape (column numbers when merged), the word
+    once per run of equal marks, the meaning for screen readers, and why; the script
+    redraws them as links (static/js/marks.js markHtml)."""
     v = c.get("verdict")
     if not v:
         return ""
-    marks = v.get("marks") or [{"mark": v["mark"], "column": None, "notes": []}]
+    marks = v.get("marks") or [{"mark": v["mark"], "column": None, "case": ""}]
     many = len(marks) > 1
-    spans = "".join(f'<span class="mk {escape(m["mark"])}" aria-hidden="true">'
-                    f'{MARK_ICONS.get(m["mark"], "?")}{_col(m) if many else ""}</span>'
-                    for m in marks)
-    said = ", ".join((f"column {m['column']}: " if many else "") + MARK_WORDS.get(
-        m["mark"], m["mark"]) for m in marks)
-    notes = "".join(f'<span class="cellnote">{escape(n)}</span>' for n in v.get("notes") or [])
-    return (f'<span class="cellmark {escape(v["mark"])}">{spans}'
-            f'<span class="sr-only">{escape(said)}</span></span>{notes}')
+    out = ""
+    for i, m in enumerate(marks):
+        info = _info(m["mark"])
+        out += (f'<span class="mk {escape(m["mark"])}" data-case="{escape(m.get("case", ""))}"'
+                f' aria-hidden="true">{info.shape}{_col(m) if many else ""}</span>')
+        if i + 1 == len(marks) or marks[i + 1]["mark"] != m["mark"]:
+            out += f'<span class="mkword" aria-hidden="true">{escape(info.word)}</span>'
+    said = ", ".join((f"column {m['column']}: " if many else "") + _info(m["mark"]).name
+                     for m in marks)
+    return (f'<span class="cellmark {escape(v["mark"])}">{out}'
+            f'<span class="sr-only">{escape(said)}</span></span>{mark_why(marks)}')
+
+
+def legend_html() -> str:
+    """The home page's key to the marks, from the vocabulary (solvers/verify/marks.yaml)."""
+    return "".join(f'<span class="key"><span class="mark {escape(m.id)}" aria-hidden="true">'
+                   f'{m.shape}</span>{escape(m.name)}</span>' for m in vocab.vocabulary())
 
 
 def table_html(t: dict) -> str:
@@ -116,8 +170,11 @@ def table_html(t: dict) -> str:
             f'<tbody>{"".join(rows)}</tbody></table>')
 
 
-def home_page(template: str, tables: dict[str, dict]) -> str:
-    """index.html with Tables 1 and 2 in the HTML itself."""
+def home_page(template: str, tables: dict[str, dict], summary: str = "") -> str:
+    """index.html with Tables 1 and 2, the key to the marks and the counts by mark in the
+    HTML itself."""
+    template = template.replace("<!--marks-legend-->", legend_html(), 1)
+    template = template.replace("<!--marks-summary-->", escape(summary), 1)
     for n, t in enumerate(tables.values(), start=1):
         loading = (f'<div class="table-wrap" tabindex="0"><p class="loading">'
                    f'Loading Table {n}…</p></div>')

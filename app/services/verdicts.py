@@ -38,6 +38,7 @@ class VerdictStore:
         self.loaded = 0                               # cases served from the database
         self._keys: dict[str, str] | None = None
         self._db: VerdictDB | None = None
+        self._no_store = False
 
     def keys(self) -> dict[str, str]:
         """case id -> hash of what its verdicts depend on (computed once per process)."""
@@ -100,10 +101,16 @@ class VerdictStore:
         self._save(case_id, records, now)
 
     def db(self) -> VerdictDB | None:
-        if self.cache_dir is None:
+        if self.cache_dir is None or self._no_store:
             return None
         if self._db is None:
-            self._db = VerdictDB(Path(self.cache_dir) / DB_NAME)
+            try:
+                self._db = VerdictDB(Path(self.cache_dir) / DB_NAME)
+            except (OSError, Exception) as exc:   # an uncreatable directory, a dead disk
+                self._no_store = True
+                log.warning("no verdict store in %s (%s): verdicts are computed at every "
+                            "start and NEW VERDICTS ARE NOT SAVED", self.cache_dir, exc)
+                return None
         return self._db
 
     def load_cache(self) -> bool:
@@ -129,9 +136,16 @@ class VerdictStore:
     def _save(self, case_id: str, records: list[dict], at: float) -> None:
         try:
             db = self.db()
-            if db is not None:
-                db.save(case_id, self.key(case_id), records, __version__, at)
-        except Exception as exc:  # a read-only home: verdicts stay in memory
+            if db is None:
+                return
+            recreated = db.recreated
+            db.save(case_id, self.key(case_id), records, __version__, at)
+            if db.recreated != recreated:     # the file was deleted: store what we hold
+                for cid, recs in self.records.items():
+                    if cid != case_id:
+                        db.save(cid, self.key(cid), recs, __version__,
+                                self.computed[cid]["computed_at"])
+        except Exception as exc:  # a disk error: verdicts stay in memory
             log.warning("cannot store verdicts in %s: %r", self.cache_dir, exc)
 
     def progress(self) -> str:
@@ -167,17 +181,37 @@ async def verify_case(pool: WorkerPool, case_id: str, deadline: float) -> list[d
     return await pool.run(jobs.verify_case, case_id, deadline=deadline)
 
 
+def cell_mark_of(rec: dict | None, waiting: bool) -> tuple[str, str | None, list[str], str]:
+    """(mark, mark_note, errata, verdict) of one case's cell record; without a record,
+    pending while the case is being checked, else not checkable (its check did not run)."""
+    if rec is None:
+        return ("pending", None, [], "pending") if waiting else \
+            ("not-checkable", "the check did not run on this server", [], "unchecked")
+    mark = rec.get("mark")
+    if mark is None:                  # a record stored before marks existed
+        from solvers.verify.levels import formula_mark
+
+        mark, note, errata = formula_mark(rec, None, {})
+    else:
+        note, errata = rec.get("mark_note"), list(rec.get("errata") or [])
+    return mark, note, errata, rec["verdict"]
+
+
 def summary(claim_ids: list[str], by_claim: dict[str, dict], row: str,
             case_ids: list[str], pending: set[str] | None = None) -> dict | None:
-    """Verdict of a table cell: the cell record (solvers.verify.levels) of each case it
-    spans, in column order; the overall mark is fails if any case's property fails, else
-    pending if a case is still being checked, verified if all are, evidence if all are
-    verified or evidence, else unchecked. `pending`: the cases being checked now (None:
-    every case without a record is); a case without a record that is not being checked
-    (its check failed) is unchecked."""
+    """Mark of a table cell: the cell record (solvers.verify.levels) of each case it spans,
+    in column order; the overall mark is the first of fails, evidence against,
+    inconclusive, pending (a case still being checked), evidence for, after correction,
+    under a convention, as printed, open, not checkable among them (levels.combine). The
+    coarse verdict is kept beside it. `pending`: the cases being checked now (None: every
+    case without a record is); a case without a record that is not being checked (its
+    check failed) is not checkable."""
     if not claim_ids:
         return None
     from catalogue.load import load_catalogue
+    from catalogue.numbering import cite
+    from solvers.verify import marks as vocab
+    from solvers.verify.levels import DECIDING, combine
 
     cat = load_catalogue()
     marks, notes = [], []
@@ -185,25 +219,31 @@ def summary(claim_ids: list[str], by_claim: dict[str, dict], row: str,
         rec = by_claim.get(f"{cid}/cell/{row}")
         case = cat.case(cid)
         waiting = pending is None or cid in pending
-        marks.append({"case": cid, "column": case.column,
-                      "mark": rec["verdict"] if rec else "pending" if waiting else "unchecked",
-                      "notes": list(rec.get("notes") or []) if rec else [],
-                      "message": rec.get("message", "") if rec else "",
+        mark, note, errata, verdict = cell_mark_of(rec, waiting)
+        marks.append({"case": cid, "column": case.column, "mark": mark,
+                      "mark_note": cite(note), "errata": errata, "verdict": verdict,
+                      # what the cell shows a reader: printed numbers, not labels
+                      "notes": [cite(n) for n in rec.get("notes") or []] if rec else [],
+                      "message": cite(rec.get("message", "")) if rec else "",
                       "rests_on": list(rec.get("rests_on") or []) if rec else []})
         for n in marks[-1]["notes"]:
             if n not in notes:
                 notes.append(n)
-    done = [m["mark"] for m in marks if m["mark"] != "pending"]
+    shown = [m["mark"] for m in marks]
+    decided = [m for m in shown if m in DECIDING]
+    mark = combine(decided) if decided else "pending" if "pending" in shown else combine(shown)
+    verdicts = [m["verdict"] for m in marks]
+    done = [v for v in verdicts if v != "pending"]
     counts = {v: done.count(v) for v in VERDICTS if v in done}
     if "fails" in counts:
-        mark = "fails"
-    elif len(done) < len(marks):      # a spanned case is being checked
-        mark = "pending"
+        verdict = "fails"
+    elif len(done) < len(verdicts):   # a spanned case is being checked
+        verdict = "pending"
     elif done and set(counts) == {"verified"}:
-        mark = "verified"
+        verdict = "verified"
     elif done and set(counts) <= {"verified", "evidence"}:
-        mark = "evidence"
+        verdict = "evidence"
     else:
-        mark = "unchecked"
-    return {"mark": mark, "counts": counts, "claims": claim_ids, "marks": marks,
-            "notes": notes}
+        verdict = "unchecked"
+    return {"mark": mark, "verdict": verdict, "mark_counts": vocab.counts(shown),
+            "counts": counts, "claims": claim_ids, "marks": marks, "notes": notes}

@@ -6,14 +6,15 @@ from __future__ import annotations
 
 import re
 from functools import cache
-from pathlib import Path
 
 from app.services.verdicts import VERDICTS, summary
 from catalogue.load import load_catalogue
 from catalogue.numbering import cite, cite_latex, printed
+from catalogue.plain_words import cite_names, phrases
 from catalogue.schema import Attribution, Case, Cell, Claim, Table
 from solvers.models.bodies import STATE_LABELS
 from solvers.models.cases import CaseSpec, registry
+from solvers.verify import marks as vocab
 
 UNCHECKED_MSG = "no verdict: the check has not run on this server (see /api/health, verification)"
 PENDING_MSG = ("being checked now: this server is computing the verdicts of the cases whose "
@@ -45,7 +46,7 @@ def table_of(case_id: str) -> Table:
 def cell(row_label: str, row: str, c: Cell, by_claim: dict[str, dict],
          cases: list[str] | None = None, pending: set[str] | None = None) -> dict:
     # labels stay as data; what a reader sees carries the printed numbers (catalogue/numbering)
-    return {"row": row, "row_label": row_label, "printed": cite_latex(c.printed),
+    return {"row": row, "row_label": row_label, "printed": cite_names(cite_latex(c.printed)),
             "plain": cite(c.plain), "shade": c.shade.value, "shade_note": cite(c.shade_note),
             "labels": list(c.labels), "numbers": [printed(x) or x for x in c.labels],
             "attribution": [attribution(a) for a in c.attribution],
@@ -79,19 +80,25 @@ def table(table_id: str, by_claim: dict[str, dict], pending: set[str] | None = N
                     d["subrow"], d["subrow_case"] = sub.model_dump(), cid
             cells.append(d)
         grid.append({"key": row.key.value, "cells": cells})
-    return {"id": t.id.value, "number": t.number, "caption_printed": t.caption_printed,
-            "caption_plain": t.caption_plain, "remark_printed": t.remark_printed,
-            "rows": [r.model_dump(mode="json") for r in t.rows],
-            "columns": [{"id": c.id, "column": c.column, "title": c.title,
-                         "href": case_href(c.id)} for c in t.cases],
-            "grid": grid}
+    out = {"id": t.id.value, "number": t.number, "caption_printed": t.caption_printed,
+           "caption_plain": t.caption_plain, "remark_printed": t.remark_printed,
+           "rows": [r.model_dump(mode="json") for r in t.rows],
+           "columns": [{"id": c.id, "column": c.column, "title": c.title,
+                        "href": case_href(c.id)} for c in t.cases],
+           "grid": grid}
+    out["mark_counts"] = table_cell_marks(out)
+    out["summary"] = vocab.sentence(out["mark_counts"], "cell", "cells")
+    return out
 
 
 def _verdict(claim: Claim, rec: dict | None, pending: bool = False) -> dict:
     if rec is None:
         return {"claim": claim.id, "verdict": "pending" if pending else "unchecked",
                 "residual": None, "message": PENDING_MSG if pending else UNCHECKED_MSG,
-                "check": claim.check.value}
+                "check": claim.check.value,
+                "mark": "pending" if pending else "not-checkable",
+                "mark_note": None if pending else "the check did not run on this server",
+                "errata": []}
     return record(rec)
 
 
@@ -112,12 +119,9 @@ _CORRECTION_OF = re.compile(r"\[project's correction of (\w+)\]\s*")
 @cache
 def corrected_forms() -> dict[str, str]:
     """fid -> the TeX of the project's corrected form (catalogue/corrected_forms.yaml)."""
-    import yaml
+    from catalogue.load import load_corrected_forms
 
-    import catalogue
-
-    path = Path(catalogue.__file__).with_name("corrected_forms.yaml")
-    return yaml.safe_load(path.read_text(encoding="utf-8"))
+    return {fid: cf.latex for fid, cf in load_corrected_forms().items()}
 
 
 def record(rec: dict) -> dict:
@@ -125,8 +129,13 @@ def record(rec: dict) -> dict:
             "evidence", "seconds", "printed", "computed_at", "version", "level", "qualifier",
             "convention", "inherits", "finding", "row", "rests_on", "notes", "exact")
     out = {k: rec.get(k) for k in keys if rec.get(k) is not None}
-    if "message" in out:
-        out["message"] = cite(out["message"])
+    # the texts a page shows (the mark's convention sentence, a finding, a cell's notes):
+    # printed numbers, not labels (the Chaplygin convention named eq2b-*1)
+    for k in ("message", "convention", "finding"):
+        if k in out:
+            out[k] = cite(out[k])
+    if "notes" in out:
+        out["notes"] = [cite(n) for n in out["notes"]]
     if "evidence" in out:
         out["evidence"] = _cite_all(out["evidence"])
     if "printed" in out:
@@ -139,17 +148,27 @@ def record(rec: dict) -> dict:
             out["printed"] = cite_latex(out["printed"])
     if out.get("verdict") not in VERDICTS:
         out["verdict"] = "unchecked"
+    if rec.get("mark") is None:       # a record stored before marks existed
+        from solvers.verify.levels import formula_mark
+
+        out["mark"], out["mark_note"], out["errata"] = formula_mark(
+            {**rec, "verdict": out["verdict"]}, None, {})
+    else:
+        out["mark"], out["mark_note"] = rec["mark"], rec.get("mark_note")
+        out["errata"] = list(rec.get("errata") or [])
+    out["mark_note"] = cite(out["mark_note"])
     return out
 
 
 def claim(c: Claim, by_claim: dict[str, dict], corrections: dict[str, list[dict]],
           pending: bool = False) -> dict:
-    return {"id": c.id, "kind": c.kind.value, "printed": cite_latex(c.printed),
+    return {"id": c.id, "kind": c.kind.value, "printed": cite_names(cite_latex(c.printed)),
             "plain": cite(c.plain), "label": c.label, "number": printed(c.label),
             "where": cite(c.where),
             "attribution": [attribution(a) for a in c.attribution],
             "conditions": {k: cite(str(v)) for k, v in c.conditions.model_dump(
                 mode="json", by_alias=True).items() if v is not None},
+            "conditions_text": phrases(c.conditions.model_dump(mode="json", by_alias=True)),
             "variables": c.variables.value, "check": c.check.value,
             "check_args": {k: cite(v) if isinstance(v, str) else v for k, v in
                            c.check_args.model_dump(mode="json", exclude_defaults=True).items()},
@@ -183,7 +202,8 @@ def _cited_model(case: Case) -> dict:
     m = case.model.model_dump(mode="json", by_alias=True)
     conds = m.get("conditions") or {}
     return {**m, "conditions": {k: cite(v) if isinstance(v, str) else v
-                                for k, v in conds.items()}}
+                                for k, v in conds.items()},
+            "conditions_text": phrases(conds)}
 
 
 def case_detail(case_id: str, by_claim: dict[str, dict], corrections: dict[str, list[dict]],
@@ -195,13 +215,62 @@ def case_detail(case_id: str, by_claim: dict[str, dict], corrections: dict[str, 
     checking = verification == "running"
     claims = [claim(c, by_claim, corrections, checking) for c in case.claims]
     verdicts = [c["verdict"]["verdict"] for c in claims]
+    cells = [cell(labels[r.key], r.key.value, case.cells[r.key], by_claim, [case_id],
+                  {case_id} if checking else set()) for r in t.rows]
+    claim_marks = vocab.counts(c["verdict"]["mark"] for c in claims)
+    cell_marks = vocab.counts(c["verdict"]["mark"] for c in cells if c["verdict"])
     return {**case_summary(case),
             "model": {**_cited_model(case),
                       "equation_numbers": [printed(x) or x for x in case.model.equations]},
             "remarks": [cite(r) for r in case.remarks],
-            "cells": [cell(labels[r.key], r.key.value, case.cells[r.key], by_claim, [case_id],
-                           {case_id} if checking else set()) for r in t.rows],
+            "cells": cells,
             "claims": claims,
             "runnable": runnable(registry()[case_id]),
             "verdicts": {v: verdicts.count(v) for v in SHOWN},
+            "marks": claim_marks, "cell_marks": cell_marks,
+            "summary": case_sentence(cell_marks, claim_marks),
             "verification": verification}
+
+
+def case_sentence(cell_marks: dict[str, int], claim_marks: dict[str, int]) -> str:
+    """'Of its 6 table cells, 4 hold as printed and 2 are open in the paper. Of its 11
+    claims, ...': the counts by mark, never a bare 'verified'."""
+    parts = []
+    for counts, unit, units, its in ((cell_marks, "cell", "cells", "table cell"),
+                                     (claim_marks, "claim", "claims", "claim")):
+        n = sum(counts.values())
+        if n:
+            parts.append(f"Of its {n} {its}{'' if n == 1 else 's'}: "
+                         f"{vocab.sentence(counts, unit, units)}.")
+    return " ".join(parts)
+
+
+def cells_sentence(counts: dict[str, int]) -> str:
+    """The home page's summary over the cells of both tables."""
+    n = sum(counts.values())
+    if not n:
+        return ""
+    return (f"Of the {n} table cells with a claim (one per body and row): "
+            f"{vocab.sentence(counts, 'cell', 'cells')}.")
+
+
+def marks_overview(by_claim: dict[str, dict], pending: set[str] | None = None) -> dict:
+    """GET /api/marks: the vocabulary, and the cells of both tables counted by mark."""
+    counts = tables_cell_marks(table(tid, by_claim, pending) for tid in ("plane", "sphere"))
+    return {"marks": [m.model_dump() for m in vocab.vocabulary()], "cells": counts,
+            "cells_total": sum(counts.values()), "summary": cells_sentence(counts)}
+
+
+def tables_cell_marks(tables) -> dict[str, int]:
+    """The cells of several laid-out tables counted by mark (vocabulary order)."""
+    counts: dict[str, int] = {}
+    for t in tables:
+        for k, n in t["mark_counts"].items():
+            counts[k] = counts.get(k, 0) + n
+    return {k: counts[k] for k in vocab.IDS if k in counts}
+
+
+def table_cell_marks(t: dict) -> dict[str, int]:
+    """The marks of a laid-out table's cells, one per body (merged cells count per body)."""
+    return vocab.counts(m["mark"] for row in t["grid"] for c in row["cells"]
+                        if c["verdict"] for m in c["verdict"]["marks"])

@@ -139,20 +139,30 @@ def _client(settings: DaskSettings):
     cluster = LocalCluster(n_workers=settings.workers,
                            threads_per_worker=settings.threads_per_worker,
                            processes=settings.processes, dashboard_address=None,
-                           silence_logs=40)
+                           silence_logs=50)   # a task's error is raised here, once
     return Client(cluster), cluster
 
 
 def validate(tasks: Sequence[MapTask]) -> None:
     """Check every task here, before anything is shipped (bad input: InputError)."""
-    from solvers.maps.poincare import MapSpec, map_model
+    import warnings
+
+    from solvers.maps.poincare import MapSpec, map_model, starts_for
+    from solvers.models.cases import check_derived
 
     if not tasks:
         raise InputError("the sweep has no task")
     for t in tasks:
-        map_model(t.case, t.params)
-        MapSpec(energy=t.energy, g0=t.g0, direction=t.direction, points=t.points,
-                rtol=t.rtol, atol=t.atol).validate()
+        model = map_model(t.case, t.params)
+        spec = MapSpec(energy=t.energy, g0=t.g0, direction=t.direction, points=t.points,
+                       rtol=t.rtol, atol=t.atol)
+        spec.validate()
+        # the starts as the task will draw them: a bad count, or a level so high that its
+        # starts overflow (energy = 1e308), is refused here and not as a worker's traceback
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)
+            for s in starts_for(model, spec, trajectories=t.trajectories, seed=t.seed):
+                check_derived(model, s, blame=f"energy = {t.energy!r}")
 
 
 def sweep(tasks: Sequence[MapTask], *, seed: int = 0, settings: DaskSettings | None = None,

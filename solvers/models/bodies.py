@@ -112,8 +112,8 @@ def fill_inertia(kind, symmetry, prm, p, allow_any_inertia):
             if I[i] > I[j] + I[k] * (1 + 1e-12):
                 raise InputError(
                     f"I{i + 1} = {I[i]!r} > I{j + 1} + I{k + 1} = {I[j] + I[k]!r}: principal "
-                    "moments of a body satisfy the triangle inequality (pass "
-                    "allow_any_inertia / --allow-any-inertia to study such tensors anyway)")
+                    "moments of a body satisfy the triangle inequality",
+                    option="allow_any_inertia")
 
 
 def tangent_fit(p, gamma):

@@ -2,17 +2,28 @@
 (the preset's `scene` declaration: case, parameters, state, t_end).
 
 One function per check kind of catalogue/scenes.py; each returns a CheckResult with the
-measured value, so a failing scene says by how much.
+measured value, so a failing scene says by how much, and the plot of exactly the data the
+verdict was taken from (`plot`): /scenes draws it (GET /api/scenes/{id}/checks/{k}), so
+what a class sees is what the test suite checked.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
 from solvers.models.cases import build
 from solvers.simulate import simulate
+
+# what a reader calls each integral (the plot's legend); the keys are
+# solvers/kernels/integrals.py NAMES
+PRETTY = {
+    "energy": "energy H", "area": "(M, γ)", "M2": "M²", "gamma2": "γ²",
+    "jellett": "Jellett (M, r)", "routh": "Routh integral",
+    "unbalanced_F": "M² − m r² (M, ω)", "borisov_fedorov": "Borisov–Fedorov (M, Aγ)",
+    "gyro_M2": "(M+S)²", "gyro_area": "(M+S, γ)",
+}
 
 
 @dataclass(frozen=True)
@@ -21,6 +32,16 @@ class CheckResult:
     passed: bool
     value: float
     detail: str
+    plot: dict | None = field(default=None, compare=False)
+
+    def to_json(self) -> dict:
+        return {k: (None if isinstance(v, float) and not np.isfinite(v) else v)
+                for k, v in asdict(self).items()}
+
+
+def _list(a) -> list:
+    """Plot data for JSON: non-finite values (an exact zero's logarithm) as null."""
+    return [float(v) if np.isfinite(v) else None for v in np.asarray(a, dtype=float)]
 
 
 def _run(preset, samples=2001):
@@ -29,26 +50,74 @@ def _run(preset, samples=2001):
                     rtol=1e-11, atol=1e-13)
 
 
+def _drift_series(v) -> np.ndarray:
+    """|F(t) - F(0)| / max(|F(0)|, 1) at every sample after the first: the series whose
+    maximum is SimResult.drift (the check's value)."""
+    v = np.asarray(v, dtype=float)
+    return np.abs(v[1:] - v[0]) / max(abs(v[0]), 1.0)
+
+
 def check_integrals(scene, check, res=None) -> CheckResult:
     res = res or _run(scene)
     missing = [n for n in check.names if n not in res.invariants]
     if missing:
         return CheckResult("integrals", False, float("nan"),
                            f"the case does not carry {missing} with these parameters")
-    worst = max(res.drift(n) for n in check.names)
+    drifts = {n: _drift_series(res.invariants[n]) for n in check.names}
+    worst = max(float(d.max()) for d in drifts.values())
     ok = res.ok and worst <= check.tol
+    t = res.t[1:]
+    # exact zeros have no logarithm: left out of the log plot, not clipped to a floor
+    traces = [{"name": PRETTY.get(n, n), "x": _list(t),
+               "y": _list(np.where(d > 0, d, np.nan)), "role": "claim", "quantity": n}
+              for n, d in drifts.items()]
+    if res.state.shape[1] == 6:
+        # a quantity the rolling does change, on the same scale, for contrast
+        g3 = res.state[:, 5]
+        traces.append({"name": "γ₃ (not conserved)", "x": _list(t),
+                       "y": _list(_drift_series(g3)), "role": "contrast", "quantity": "g3"})
+    traces.append({"name": f"bound of the check ({check.tol:g})", "x": [float(t[0]), float(t[-1])],
+                   "y": [check.tol, check.tol], "role": "limit"})
+    names = ", ".join(PRETTY.get(n, n) for n in check.names)
+    plot = {"title": f"Conserved: {names}", "x_title": "time t",
+            "y_title": "relative change", "log_y": True, "traces": traces,
+            "headline": f"largest relative change {worst:.1e}"}
     return CheckResult("integrals", ok, worst, f"largest relative drift of "
                        f"{', '.join(check.names)} over t <= {res.t[-1]:g}: {worst:.2e}"
-                       + ("" if res.ok else f" (run stopped: {res.message})"))
+                       + ("" if res.ok else f" (run stopped: {res.message})"), plot)
 
 
 def check_stays_up(scene, check, res=None) -> CheckResult:
     res = res or _run(scene)
-    tilt = np.hypot(res.state[:, 3], res.state[:, 4])
-    low = float(tilt.min())
+    s = np.hypot(res.state[:, 3], res.state[:, 4])   # sin(angle of the axis to the vertical)
+    low = float(s.min())
     ok = res.ok and low >= check.min_tilt
+    # the same numbers as a tilt a class reads: the disk's plane against the vertical,
+    # 90 deg - (axis to vertical) = arccos(sqrt(g1^2 + g2^2)); 90 deg is lying flat
+    tilt = np.degrees(np.arccos(np.clip(s, 0.0, 1.0)))
+    limit = float(np.degrees(np.arccos(check.min_tilt)))
+    t = res.t
+    plot = {"title": "Tilt of the disk from the vertical", "x_title": "time t",
+            "y_title": "tilt (degrees)", "log_y": False,
+            "y_range": [0, 90],
+            "traces": [{"name": "tilt", "x": _list(t), "y": _list(tilt), "role": "claim",
+                        "quantity": "tilt"},
+                       {"name": f"bound of the check ({limit:.1f}°)",
+                        "x": [float(t[0]), float(t[-1])], "y": [limit, limit],
+                        "role": "limit"}],
+            "headline": f"tilt {tilt.min():.1f}° … {tilt.max():.1f}°, bounded"}
     return CheckResult("stays_up", ok, low, f"min sqrt(g1^2 + g2^2) = {low:.4f} over "
-                       f"t <= {res.t[-1]:g} (needs >= {check.min_tilt})")
+                       f"t <= {res.t[-1]:g} (needs >= {check.min_tilt}): tilt at most "
+                       f"{tilt.max():.1f} deg", plot)
+
+
+def averaged(t, y, window: float) -> tuple[np.ndarray, np.ndarray]:
+    """y averaged over a sliding `window`, at the window centres (as spin_reversals
+    averages, solvers/models/observables.py)."""
+    t = np.asarray(t, dtype=float)
+    k = max(1, round(window / float(t[1] - t[0])))
+    avg = np.convolve(np.asarray(y, dtype=float), np.ones(k) / k, mode="valid")
+    return t[k // 2: k // 2 + len(avg)], avg
 
 
 def check_spin_reversal(scene, check, res=None) -> CheckResult:
@@ -56,23 +125,36 @@ def check_spin_reversal(scene, check, res=None) -> CheckResult:
 
     res = res or _run(scene)
     model = build(scene.scene.case, scene.scene.params)
-    times = spin_reversals(res.t, vertical_spin(model, res.state), check.window)
+    spin = vertical_spin(model, res.state)
+    times = spin_reversals(res.t, spin, check.window)
     first = times[0] if times else float("inf")
     ok = res.ok and first <= check.before
+    ta, avg = averaged(res.t, spin, check.window)
+    traces = [{"name": "spin", "x": _list(res.t), "y": _list(spin), "role": "raw",
+               "quantity": "vertical_spin"},
+              {"name": f"spin averaged over {check.window:g}", "x": _list(ta), "y": _list(avg),
+               "role": "claim", "quantity": "vertical_spin"}]
+    if times:
+        traces.append({"name": f"reversal at t = {first:.1f}", "x": [first], "y": [0.0],
+                       "role": "event"})
+    plot = {"title": "Spin about the vertical", "x_title": "time t",
+            "y_title": "spin −(ω, γ)", "log_y": False,
+            "traces": traces,
+            "vline": {"x": check.before, "name": f"check: before t = {check.before:g}"},
+            "headline": (f"reverses at t = {first:.1f}" if times else "no reversal")}
     return CheckResult("spin_reversal", ok, first, f"first reversal of the averaged "
                        f"vertical spin at t = {first:.4g} (needs <= {check.before:g}); "
-                       f"{len(times)} reversal(s) up to t = {res.t[-1]:g}")
+                       f"{len(times)} reversal(s) up to t = {res.t[-1]:g}", plot)
 
 
 def check_map(scene, check) -> CheckResult:
+    from solvers.kernels.integrals import ENERGY
+    from solvers.kernels.rk import model_integral
     from solvers.maps.andoyer import map_point
     from solvers.maps.map_analysis import correlation_dimension
     from solvers.maps.poincare import MapSpec, map_model, trace_checked
 
     model = map_model(scene.scene.case, scene.scene.params)
-    from solvers.kernels.integrals import ENERGY
-    from solvers.kernels.rk import model_integral
-
     y0 = np.asarray(scene.scene.state, dtype=float)
     E = float(model_integral(ENERGY, model.model, y0, model.p))
     spec = MapSpec(energy=E, g0=check.g0, points=check.points, rtol=1e-12, atol=1e-14)
@@ -84,17 +166,45 @@ def check_map(scene, check) -> CheckResult:
     if check.expect == "curve":
         d = correlation_dimension(P, 0.01, 0.1)
         ok = abs(d - 1.0) <= check.dim_tol
+        plot = {"title": f"{len(P)} returns to the section lie on a curve",
+                "x_title": "l (angle, rad)", "y_title": "L/G", "log_y": False,
+                "traces": [{"name": "returns (l, L/G)", "x": _list(P[:, 2]),
+                            "y": _list(P[:, 0]),
+                            "hg": _list(P[:, 1]), "role": "claim", "mode": "markers",
+                            "quantity": "returns"}],
+                "headline": f"correlation dimension {d:.2f} (1 = a curve)"}
         return CheckResult("map", ok, d, f"correlation dimension of {len(P)} returns: "
-                           f"{d:.3f} (a curve: 1 +- {check.dim_tol})")
+                           f"{d:.3f} (a curve: 1 +- {check.dim_tol})", plot)
     k = check.period
     d = P[k:] - P[:-k]
     d[:, 2] = (d[:, 2] + np.pi) % (2 * np.pi) - np.pi
     dist = np.linalg.norm(d, axis=1)
-    ratio = float(np.median(dist[:100]) / max(np.median(dist[-100:]), 1e-300))
+    first, last = float(np.median(dist[:100])), float(np.median(dist[-100:]))
+    ratio = first / max(last, 1e-300)
     ok = ratio >= check.factor and tr.check.get("missed", 0) == 0
+    n = np.arange(len(dist))
+    plot = {"title": f"Returns approach a {k}-cycle", "x_title": "return n",
+            "y_title": f"|x(n+{k}) − x(n)|", "log_y": True,
+            "traces": [{"name": f"|x(n+{k}) − x(n)|", "x": _list(n), "y": _list(
+                np.where(dist > 0, dist, np.nan)), "role": "claim", "mode": "markers",
+                "quantity": "cycle_distance"},
+                {"name": "median of the first and last 100", "x": [50.0, float(n[-50])],
+                 "y": [first, last], "role": "event"}],
+            "headline": f"fell by {ratio:.1e}"}
     return CheckResult("map", ok, ratio, f"|x(n+{k}) - x(n)| fell by {ratio:.3g} from the "
                        f"first to the last 100 of {len(P)} returns (needs >= "
-                       f"{check.factor:g}); map point of the start {map_point(y0).round(4)}")
+                       f"{check.factor:g}); map point of the start {map_point(y0).round(4)}",
+                       plot)
+
+
+_RUN_BASED = {"integrals": check_integrals, "stays_up": check_stays_up,
+              "spin_reversal": check_spin_reversal}
+
+
+def run_check(scene, check, res=None) -> CheckResult:
+    if check.kind == "map":
+        return check_map(scene, check)
+    return _RUN_BASED[check.kind](scene, check, res or _run(scene))
 
 
 def run_checks(scene) -> list[CheckResult]:
@@ -102,11 +212,24 @@ def run_checks(scene) -> list[CheckResult]:
     res = None
     out = []
     for c in scene.checks:
-        if c.kind == "map":
-            out.append(check_map(scene, c))
-            continue
-        res = res or _run(scene)
-        fn = {"integrals": check_integrals, "stays_up": check_stays_up,
-              "spin_reversal": check_spin_reversal}[c.kind]
-        out.append(fn(scene, c, res))
+        if c.kind != "map":
+            res = res or _run(scene)
+        out.append(run_check(scene, c, res))
     return out
+
+
+_runs: dict[str, object] = {}
+
+
+def check_json(scene_id: str, k: int) -> dict:
+    """Check k of scene `scene_id` with its plot, for GET /api/scenes/{id}/checks/{k}
+    (a worker process: the scene's run is kept for its other checks)."""
+    from catalogue.scenes import load_scenes
+
+    scene = load_scenes()[scene_id]
+    check = scene.checks[k]
+    res = None
+    if check.kind != "map":
+        res = _runs.get(scene_id) or _runs.setdefault(scene_id, _run(scene))
+    return {**run_check(scene, check, res).to_json(), "caption": check.caption,
+            "index": k, "count": len(scene.checks)}

@@ -26,6 +26,27 @@ Each formula record also gets a `qualifier` that says what kind of verdict it is
   formula-free        a project test of a cell's property that uses no printed formula
   None                nothing to qualify (verified as printed, evidence, unchecked)
 
+Every record, formula and cell, also gets a `mark` from the vocabulary of marks.yaml (issue
+17: one mark per meaning), with `mark_note` (one sentence: the convention, what an
+inconclusive check found, the misprint) and `errata` (the formula records whose correction
+holds, for "holds after correction"); `verdict` stays as it was for compatibility:
+
+  as-printed        verified as printed (no qualifier)
+  after-correction  misprint / inherited, or a project correction that holds
+  under-convention  qualifier convention
+  fails             refuted, refuted-conjecture, or a failing correction
+  evidence-for      verdict evidence, or a verified formula-free test
+  evidence-against  a failing formula-free test
+  inconclusive      unchecked although a check ran (its message says what it found)
+  open              check open_problem
+  not-checkable     nothing ran (no formula printed, not decidable, not implemented)
+
+A cell takes, over the claims it rests on, the first of: fails, evidence against,
+inconclusive; else (ignoring open / not checkable claims) evidence for, after correction,
+under a convention, as printed; else open, else not checkable. A cell of a table is judged
+by the formula the table prints: where the text's display of the same formula differs
+(a misprint in the text only), the cell lists the table's own claim.
+
 Pure functions of the records and the catalogue: cheap, and the same for `rolling verify`,
 its JSON and the API.
 """
@@ -33,14 +54,46 @@ its JSON and the API.
 from __future__ import annotations
 
 from catalogue.schema import Case, Catalogue
+from solvers.verify import plain_notes
 
 NEUTRAL_CHECKS = frozenset({"open_problem", "formula_not_printed", "not_checkable"})
 CELL_NOTE = {"corrected": "holds; printed formula corrected",
              "formula-free": "holds; shown by a formula-free test (printed formula fails)",
              "formula-free-test": "confirmed by a formula-free test",
-             "convention": "holds under the paper's own convention (see the formula record)"}
+             "convention": "holds under a stated convention (see the mark's note)",
+             "project": "holds with the project's derived formula (the paper prints none)"}
 QUALIFIERS = ("convention", "misprint", "inherited", "refuted-conjecture", "refuted",
               "formula-free")
+
+
+# How strong a record's check is (issue 18, item 5), strongest first: a proof (an exact
+# symbolic identity, an exact witness of a failure, the exact no-measure obstruction), an
+# exact certificate (Schwartz-Zippel at rational points), a pointwise check with exact
+# derivatives in floating point, evidence from trajectories. A cell's `rests_on` lists its
+# records in this order (stable: a record stays next to its correction on ties).
+PROOF_CHECKS = frozenset({"no_measure"})
+TRAJECTORY_CHECKS = frozenset({"linear_integrals", "linear_integrals_return",
+                               "negative_measure", "negative_integral", "permanent_rotations"})
+STRENGTH = ("proof", "exact certificate", "pointwise", "trajectory")
+
+
+def strength(rec: dict) -> int:
+    """Index into STRENGTH of the check a record rests on."""
+    ex = rec.get("exact") or {}
+    if rec.get("check") in PROOF_CHECKS or ex.get("proved") or \
+            (ex.get("negative") and ex.get("holds") is False and ex.get("witness")):
+        return 0
+    if ex.get("holds") is True and not ex.get("negative"):
+        return 1
+    return 3 if rec.get("check") in TRAJECTORY_CHECKS else 2
+
+
+def _rank(rid: str, by_claim: dict) -> int:
+    """strength of a record in a cell; a printed form that fails ranks with its correction,
+    so the two stay side by side (printed first, the sort being stable)."""
+    corr = by_claim.get(f"{rid}/corrected")
+    own = strength(by_claim[rid])
+    return min(own, strength(corr)) if corr is not None else own
 
 
 def cell_id(case_id: str, row: str) -> str:
@@ -88,7 +141,97 @@ def annotate(records: list[dict], cat: Catalogue) -> list[dict]:
             r["qualifier"], r["inherits"] = "inherited", cl.inherits
         elif r["verdict"] == "fails":
             r["qualifier"] = "misprint" if corr_ok else "refuted"
+    for r in records:
+        r["mark"], r["mark_note"], r["errata"] = formula_mark(r, claims.get(r["claim"]),
+                                                              by_claim)
     return records
+
+
+# --- marks -------------------------------------------------------------------------------
+
+def _what(cl, r: dict) -> str:
+    """The printed formula as a reader finds it: its label (printed number on the pages)."""
+    label = r.get("label") or (cl.label if cl is not None else None)
+    where = (cl.where or "") if cl is not None else ""
+    if where.startswith("Table "):
+        return f"the formula printed in {where.split(',')[0]}"
+    if label:
+        return f"the printed formula {label}"
+    return f"the printed formula ({where})" if where else "the printed formula"
+
+
+def _res(x) -> str:
+    return f" (residual {x:.1e})" if isinstance(x, float) else ""
+
+
+def formula_mark(r: dict, cl, by_claim: dict) -> tuple[str, str | None, list[str]]:
+    """(mark, mark_note, errata) of one formula record, after `annotate`'s qualifiers (also
+    of a record stored before marks existed, with cl None and by_claim empty)."""
+    v, q = r["verdict"], r.get("qualifier")
+    if r.get("origin") == "project-correction":
+        if v == "verified":
+            return ("after-correction", "the project's correction of a misprinted formula; "
+                    "it holds", [r["corrects"]] if r.get("corrects") else [])
+        return "fails", "the project's correction does not hold either", []
+    if r.get("origin") == "project":     # the paper prints no formula: the project's own
+        if v == "verified":
+            return ("project-formula", "the paper asserts this without printing a formula; "
+                    "the project's derived formula holds" + _res(r.get("residual")), [])
+        if v == "fails":
+            return "fails", "the project's derived formula does not hold" + \
+                _res(r.get("residual")), []
+    if v == "verified":
+        if q == "convention":
+            return "under-convention", r.get("convention"), []
+        if q == "formula-free":
+            return "evidence-for", "a formula-free test along trajectories: " + \
+                plain_notes.note(r, "evidence-for", _what(cl, r)), []
+        return "as-printed", None, []
+    if v == "fails":
+        if q == "misprint":
+            corr = by_claim.get(f"{r['claim']}/corrected") or {}
+            printed = _res(r.get("residual")).replace(")", " as printed)")
+            return ("after-correction", f"{_what(cl, r)} has a misprint{printed}; the "
+                    f"project's correction holds{_res(corr.get('residual'))}", [r["claim"]])
+        if q == "inherited":
+            src = by_claim.get(r["inherits"]) or {}
+            used = f"the printed formula {src['label']}" if src.get("label") else \
+                "another printed formula"
+            return ("after-correction", f"fails as printed only because it uses {used}, "
+                    "which is misprinted; with that correction it holds",
+                    [r["claim"], r["inherits"]])
+        if q == "formula-free":
+            return "evidence-against", "a formula-free test along trajectories: " + \
+                plain_notes.note(r, "evidence-against", _what(cl, r)), []
+        if q == "refuted-conjecture":
+            return "fails", f"the paper doubts it exists; found: {r['finding']}", []
+        return "fails", (f"{_what(cl, r)} does not hold{_res(r.get('residual'))} and the "
+                         "project found no correction that does"), []
+    if v == "evidence":     # the reader's note in plain words; the message stays as it is
+        return "evidence-for", plain_notes.note(r, "evidence-for", _what(cl, r)), []
+    # unchecked: did anything run?
+    check, msg = r.get("check"), r.get("message") or ""
+    if check == "open_problem":
+        return "open", msg or None, []
+    if check in NEUTRAL_CHECKS or msg.startswith("not implemented"):
+        return "not-checkable", msg or None, []
+    # what the check found, in plain words, without repeating the mark's own word
+    return "inconclusive", plain_notes.note(r, "inconclusive", _what(cl, r)), []
+
+
+# a cell's mark over its claims' marks: the first present of DECIDING, else of HOLDING
+# (open / not checkable claims aside), else of NEUTRAL
+DECIDING = ("fails", "evidence-against", "inconclusive")
+HOLDING = ("evidence-for", "project-formula", "after-correction", "under-convention",
+           "as-printed")
+NEUTRAL = ("open", "not-checkable")
+
+
+def combine(marks: list[str]) -> str:
+    for m in (*DECIDING, *HOLDING, *NEUTRAL):
+        if m in marks:
+            return m
+    return "not-checkable"
 
 
 # --- cell records ------------------------------------------------------------------------
@@ -103,7 +246,8 @@ def _judge(cid: str, by_claim: dict, establishers: dict) -> tuple[str, str | Non
     r = by_claim[cid]
     if r["verdict"] != "fails":
         basis = "convention" if r.get("qualifier") == "convention" else (
-            "formula-free-test" if r.get("qualifier") == "formula-free" else "printed")
+            "formula-free-test" if r.get("qualifier") == "formula-free" else
+            "project" if r.get("origin") == "project" else "printed")
         return r["verdict"], basis, [cid]
     corr = by_claim.get(f"{cid}/corrected")
     if corr is not None and corr["verdict"] == "verified":
@@ -113,6 +257,20 @@ def _judge(cid: str, by_claim: dict, establishers: dict) -> tuple[str, str | Non
     if free:
         return "verified", "formula-free", [cid, *free]
     return "fails", None, [cid]
+
+
+def _claim_mark(r: dict, basis: str | None, on: list[str], by_claim: dict):
+    """(mark, note, errata) of one claim as the cell uses it (see _judge)."""
+    if basis == "corrected":
+        note = r.get("mark_note") if r.get("mark") == "after-correction" else None
+        return ("after-correction", note or "the printed formula has a misprint; the "
+                "project's correction holds", r.get("errata") or [r["claim"]])
+    if basis == "formula-free":
+        tests = "; ".join(plain_notes.note(by_claim[x], "evidence-for", "the property")
+                          for x in on[1:])
+        return ("evidence-for", "the printed formula fails and no correction was found; a "
+                f"formula-free test along trajectories shows the property: {tests}", [])
+    return r["mark"], r.get("mark_note"), list(r.get("errata") or [])
 
 
 def _aggregate(judged: list[tuple[str, dict]]) -> str:
@@ -134,9 +292,11 @@ def cell_records(records: list[dict], cat: Catalogue, case_ids=None) -> list[dic
     if None) whose claims have records."""
     by_claim = {r["claim"]: r for r in records}
     establishers: dict[str, list[str]] = {}
+    establishes: dict[str, list[str]] = {}
     for cl in cat.claims():
         for target in cl.establishes:
             establishers.setdefault(target, []).append(cl.id)
+            establishes.setdefault(cl.id, []).append(target)
     out = []
     for table in cat.tables():
         rows = {r.key: r.plain for r in table.rows}
@@ -147,7 +307,7 @@ def cell_records(records: list[dict], cat: Catalogue, case_ids=None) -> list[dic
                 ids = [c for c in _cell_claims(case, cell) if c in by_claim]
                 if not ids:
                     continue
-                judged, rests, bases, notes = [], [], {}, []
+                judged, rests, bases, notes, marked = [], [], {}, [], []
                 for c in ids:
                     v, basis, on = _judge(c, by_claim, establishers)
                     judged.append((v, by_claim[c]))
@@ -156,7 +316,17 @@ def cell_records(records: list[dict], cat: Catalogue, case_ids=None) -> list[dic
                         bases[c] = basis
                     if basis in CELL_NOTE and CELL_NOTE[basis] not in notes:
                         notes.append(CELL_NOTE[basis])
+                    marked.append(_claim_mark(by_claim[c], basis, on, by_claim))
+                rests.sort(key=lambda x: _rank(x, by_claim))
                 verdict = _aggregate(judged)
+                # a formula-free test of another claim of this cell is support for that
+                # claim's property (already in its judgement), not one more condition: it
+                # counts here only when it goes against (fails, evidence against, undecided)
+                support = {c for c in ids if any(t in ids for t in establishes.get(c, ()))}
+                mark = combine([m for (m, _, _), c in zip(marked, ids, strict=True)
+                                if c not in support or m in DECIDING])
+                mark_notes = [n for m, n, _ in marked if m == mark and n]
+                errata = [e for _, _, es in marked for e in es]
                 failing = [c for (v, _), c in zip(judged, ids, strict=True) if v == "fails"]
                 if verdict == "fails":
                     msg = "the property fails: " + ", ".join(failing)
@@ -173,7 +343,9 @@ def cell_records(records: list[dict], cat: Catalogue, case_ids=None) -> list[dic
                     "message": msg, "origin": "paper", "corrects": None,
                     "evidence": {"basis": bases} if bases else None, "seconds": 0.0,
                     "level": "cell", "row": row.value, "row_label": rows[row],
-                    "rests_on": rests, "notes": notes, "qualifier": None,
+                    "rests_on": rests, "notes": notes, "qualifier": None, "mark": mark,
+                    "mark_note": "; ".join(dict.fromkeys(mark_notes)) or None,
+                    "errata": list(dict.fromkeys(errata)),
                     "convention": None, "inherits": None, "finding": None,
                     # a cell's exact certificates are those of the records it rests on
                     "exact": None})

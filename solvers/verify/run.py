@@ -27,7 +27,7 @@ class Record:
     label: str | None
     check: str
     message: str
-    origin: str = "paper"              # paper | project-correction
+    origin: str = "paper"              # paper | project | project-correction
     corrects: str | None = None        # for a correction: the claim it corrects
     evidence: dict | None = None
     seconds: float = 0.0
@@ -51,8 +51,8 @@ def _run_claim(catalogue, case, claim) -> list[Record]:
     except LookupError as e:      # a formula or check not implemented: say so, honestly
         out = Outcome("unchecked", None, f"not implemented: {e}")
     rec = Record(case.id, claim.id, claim.kind.value, out.verdict, out.residual, claim.printed,
-                 claim.label, claim.check.value, out.message, evidence=out.evidence or None,
-                 seconds=time.perf_counter() - t0)
+                 claim.label, claim.check.value, out.message, origin=claim.origin.value,
+                 evidence=out.evidence or None, seconds=time.perf_counter() - t0)
     rec.exact = exact_for(catalogue, case, claim)
     records = [rec]
     args = claim.check_args          # the corrected object: the first with a correction

@@ -45,6 +45,12 @@ def to_vars(name: str, P, y):
         return np.array([(1.0 - y[5]) / 2.0, P.omega(M, y[3:6])[2]])
     if name == "(u, K1, K2)":
         return flat_reduced(P.p, y)
+    if name == "(u, K1, K2, K3)":
+        # K3 = r1 M2 - r2 M1, the axial-rotation momentum conjugate to u in the project's
+        # bracket (solvers/verify/formulas/hamiltonian_sphere.py); polynomial, so the exact
+        # certificates can evaluate it
+        x = flat_reduced(P.p, y)
+        return np.array([x[0], x[1], x[2], y[3] * M[1] - y[4] * M[0]])
     if name == "(gamma)":
         return y[3:6]
     if name == "(gamma3)":

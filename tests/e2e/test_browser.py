@@ -65,7 +65,7 @@ def test_case_page_verify_simulate_and_plot(page, server, artifacts):
     expect(first.locator("p.checked")).to_contain_text("We checked")
     page.click("#reverify")
     expect(page.locator("#reverify-msg")).to_contain_text("Done", timeout=120_000)
-    expect(page.locator("#claimlist .badge.verified").first).to_be_visible()
+    expect(page.locator("#claimlist .badge.as-printed").first).to_be_visible()   # issue 17
     page.evaluate("window.scrollTo(0, 0)")
     page.screenshot(path=str(artifacts / "case-top.png"))
     show(page, "#claims")

@@ -1,6 +1,8 @@
-"""The explorer as a reference (issue 11, part A) in chromium: printed equation numbers on
-case pages, no internal label in any page's visible text (after the scripts ran), search
-finding both Chaplygin balls, a glossary tooltip that opens on click/tap."""
+"""The explorer as a reference (issue 11, part A; issue 17, items 3 and 7) in chromium:
+printed equation numbers on case pages, no internal label and no "(n.m)" that names no
+display in any page's visible text (after the scripts ran) nor in any glossary pop-up, no
+developer words on any page, search finding both Chaplygin balls, a glossary tooltip that
+opens on click/tap."""
 
 import re
 from html import unescape
@@ -8,9 +10,53 @@ from html import unescape
 import httpx
 from playwright.sync_api import expect
 
+from catalogue.numbering import printed
 from tests.e2e.site import internal_label_re, project_pages
+from tests.test_reader_numbers import reader_problems
 
 INTERNAL = internal_label_re()     # every label of the seed and of the catalogue's data
+
+# Developer words a page must not show (issue 17, item 7): the pages speak of the physics;
+# the CLI keeps its flags, the API and the catalogue their field names.
+DEVELOPER_WORDS = {
+    # a program's name (mean_logdet, allow_any_inertia, flat_F), not a subscript (b_i, x_n)
+    "snake_case identifier": r"\b[a-z]{2,}[a-z0-9]*_[A-Za-z][A-Za-z0-9]*(?:_[A-Za-z0-9]+)*\b",
+    "file path": r"\b[\w.-]+/[\w./-]*\.(?:ya?ml|py|js|json|md|html|css|txt)\b"
+                 r"|\b(?:catalogue|solvers|app|tests|bench|scripts|docs)/[\w-]",
+    "command-line flag": r"(?<![\w-])--[a-z][a-z0-9]+(?:-[a-z0-9]+)*",
+    "complex literal": r"\b\d+(?:\.\d+)?(?:e[-+]?\d+)?[-+]\d+(?:\.\d+)?(?:e[-+]?\d+)?j\b",
+    "programmer's not-equal": r"!=",
+    "citation key": r"\[[a-z][a-z0-9]*(?:[-_][a-z0-9*]+)+\]|\[[a-z]+\d+\]",
+    "data key: value": r"\b(?:potential|S|I|a|k|lambda_?|z): (?:any|zero|none|nonzero|brun)\b",
+    "record id": r"\b(?:plane|sphere)/[a-z0-9-]+/[a-z0-9*-]+",
+    # a statistic's program name (the section map's thickness "median s3/s1")
+    "statistic name": r"\bs\d/s\d\b",
+}
+DEV_RE = {k: re.compile(v) for k, v in DEVELOPER_WORDS.items()}
+
+
+def developer_words(text: str) -> dict[str, list[str]]:
+    out = {}
+    for kind, pat in DEV_RE.items():
+        found = [m.group(0) for m in pat.finditer(text)]
+        if found:
+            out[kind] = sorted(set(found))
+    return out
+
+
+# what a reader sees: the text on screen, without the typeset formulas' hidden TeX source
+# (KaTeX's MathML annotation), without the "Details" toggles that hold, on purpose and
+# labelled as such, the developer's view of a claim (check name, claim id, raw message), and
+# without the command lines offered to copy ("Reproduce: rolling verify --claim ...")
+READER_TEXT = """() => {
+  const hide = [...document.querySelectorAll(
+    '.katex-mathml, annotation, details.dev, .repro code')];
+  const was = hide.map((e) => e.style.display);
+  hide.forEach((e) => { e.style.display = 'none'; });
+  const text = document.body.innerText;
+  hide.forEach((e, i) => { e.style.display = was[i]; });
+  return text;
+}"""
 
 
 def ready(page):
@@ -37,6 +83,60 @@ def test_the_label_pattern_finds_the_issues_examples():
     assert not INTERNAL.findall("(2.25), (2.17) and Fig. 3; eq2.171 is no label; 1e-3")
 
 
+def test_the_developer_word_patterns_find_the_issues_examples():
+    text = ("conditions: potential: any, S: zero, I: I1!=I2!=I3!=I1; mean_logdet; "
+            "0.833967+0.521929j; (catalogue/scenes.yaml); pass allow_any_inertia / "
+            "--allow-any-inertia; [bm-new]; plane/chaplygin-ball/integral/M2; "
+            "max median s3/s1 = 0.00")
+    assert set(developer_words(text)) == set(DEVELOPER_WORDS)
+    assert not developer_words("I1 ≠ I2 ≠ I3 ≠ I1, no gyrostat (S = 0), any potential U(γ); "
+                               "(2.24); Fig. 3; 1.2e-15; e.g. a − b; the Chaplygin ball "
+                               "(Borisov, Mamaev 2001); [0, 1]; /case/plane/chaplygin-ball; "
+                               "b_i, x_n; 0.833967 + 0.521929i")
+
+
+def test_no_developer_words_on_any_page(page, server):
+    """Every page of the derived list, as a reader sees it after the scripts ran."""
+    problems = {}
+    for path in project_pages(server):
+        page.goto(server + path)
+        if path == "/" or path.startswith("/case/"):
+            ready(page)
+        else:
+            page.wait_for_load_state("networkidle")
+        found = developer_words(page.evaluate(READER_TEXT))
+        if found:
+            problems[path] = found
+    assert not problems, problems
+
+
+def test_claim_numbers_and_glossary_popups_name_the_right_display(page, server):
+    """A claim's number on its case page is its label's printed number, and every "?"
+    pop-up on the page shows printed numbers only (no label, no number of no display)."""
+    for case in ("plane/chaplygin-ball", "plane/unbalanced-ball", "sphere/flat-base",
+                 "sphere/chaplygin-ball"):
+        page.goto(f"{server}/case/{case}")
+        ready(page)
+        data = httpx.get(f"{server}/api/cases/{case}", timeout=60).json()
+        for c in data["claims"]:
+            assert c["number"] == printed(c["label"]), c["id"]
+        # the page shows those numbers, claim by claim, in order
+        labels = page.locator("#claimlist .claim header .label").all_inner_texts()
+        expected = [c["number"] for c in data["claims"] if c["number"]]
+        assert labels == expected, case
+        tips = page.locator("button.tip[data-glossary]")
+        assert tips.count() > 0
+        for i in range(tips.count()):
+            btn = tips.nth(i)
+            sym = btn.get_attribute("data-glossary")
+            btn.click()
+            box = page.locator(f'[id="tip-{sym}"]')
+            expect(box).to_be_visible()
+            text = box.inner_text()
+            assert not reader_problems(text), (case, sym, text)
+            btn.click()
+
+
 def test_no_internal_label_visible_on_any_page(page, server):
     paths = project_pages(server)      # derived from the app's routes (tests/e2e/site.py)
     for path in paths:
@@ -55,6 +155,9 @@ def test_no_internal_label_visible_on_any_page(page, server):
         text = page.locator("body").inner_text()
         found = INTERNAL.findall(text)
         assert not found, f"{path}: {sorted(set(found))}"
+        # and every "(n.m)" on the page is a number the paper prints (issue 17, item 3)
+        wrong = [p for p in reader_problems(page.evaluate(READER_TEXT)) if "label" not in p]
+        assert not wrong, f"{path}: {wrong}"
 
 
 def test_search_finds_both_chaplygin_balls(page, server):

@@ -1,6 +1,7 @@
 """GET /api/cases and GET /api/cases/{id}: the sixteen cases of Tables 1 and 2."""
 
 from fastapi import APIRouter, HTTPException
+from fastapi.responses import RedirectResponse
 
 from app.api.deps import VerdictsDep
 from app.schemas.cases import CasePublic, CaseSummary
@@ -18,9 +19,12 @@ async def list_cases() -> list[dict]:
 
 
 @router.get("/cases/{case_id:path}", response_model=CasePublic, responses=NOT_FOUND)
-async def get_case(case_id: str, verdicts: VerdictsDep) -> dict:
+async def get_case(case_id: str, verdicts: VerdictsDep) -> dict | RedirectResponse:
     """One case: its cells in the table, every claim with its source and its verdict, and
     what POST /api/simulate accepts for it. Ids contain a slash: /api/cases/plane/routh-ball."""
+    if not case_id or case_id.endswith("/"):   # a trailing slash: the same, redirected
+        return RedirectResponse(f"/api/cases/{case_id.rstrip('/')}".rstrip("/"),
+                                status_code=308)
     try:
         load_catalogue().case(case_id)
     except KeyError:

@@ -3,9 +3,12 @@ corrections, the printed forms that hold under another convention, and what the 
 found that the paper does not have (solvers.verify.errata, from the verdicts computed so
 far: cases not yet verified contribute nothing, see /api/health)."""
 
+import json
+from pathlib import Path
+
 from fastapi import APIRouter
 
-from app.api.deps import VerdictsDep
+from app.api.deps import SettingsDep, VerdictsDep
 from app.schemas.errata import ConventionPublic, ErratumPublic, FindingPublic
 from catalogue.load import load_catalogue
 
@@ -36,9 +39,30 @@ async def get_conventions(store: VerdictsDep) -> list[dict]:
 
 
 @router.get("/findings", response_model=list[FindingPublic])
-async def get_findings(store: VerdictsDep) -> list[dict]:
+async def get_findings(store: VerdictsDep, settings: SettingsDep) -> list[dict]:
     """What the project found that the paper does not have: hedged claims answered and
-    printed statements refuted, with their evidence."""
+    printed statements refuted, with their evidence; checks that could not decide while
+    what they found leans against the paper (inconclusive); and the paper's figures whose
+    caption the recomputed figure does not confirm."""
     from solvers.verify import errata
 
-    return errata.findings(_records(store), load_catalogue())
+    cat = load_catalogue()
+    return errata.findings(_records(store), cat) + _figure_findings(
+        settings.static_dir / "data" / "paper_figures.json")
+
+
+def _figure_findings(path: Path) -> list[dict]:
+    """From the figure data bench/paper_figures.py writes (about a megabyte of points:
+    parsed again only when the file changes)."""
+    from solvers.verify import errata
+
+    if not path.is_file():
+        return []
+    key = (str(path), path.stat().st_mtime_ns)
+    if _FIGURES.get("key") != key:
+        figs = json.loads(path.read_text(encoding="utf-8"))
+        _FIGURES.update(key=key, out=errata.figure_findings(figs, load_catalogue()))
+    return [dict(f) for f in _FIGURES["out"]]
+
+
+_FIGURES: dict = {}

@@ -22,4 +22,17 @@ async def health(pool: PoolDep, verdicts: VerdictsDep, settings: SettingsDep) ->
             "verification": {"state": verdicts.state, "message": verdicts.message,
                              "cases_done": len(verdicts.records),
                              "cases_total": len(verdicts.case_ids),
-                             "updated": verdicts.updated}}
+                             "updated": verdicts.updated},
+            "connections": _connections()}
+
+
+def _connections() -> dict | None:
+    from app.core import server
+
+    if server.ACTIVE is None:
+        return None
+    st = server.STATS
+    return {"open": st["connections"], "peak": st["peak_connections"],
+            "max_connections": server.ACTIVE.max_connections,
+            **{k: st[k] for k in ("evicted", "refused", "header_timeouts", "body_timeouts",
+                                  "header_too_large", "lingered")}}

@@ -2,12 +2,14 @@
 /poincare that draws it and the paper's Figs ris-*1..ris-*4 (app/static/data/paper_figures.json,
 written by bench/paper_figures.py).
 
-The starts are resolved (validated, sampled with the seed) in a thread; then they are cut
-into slices of consecutive trajectories, each slice one job of the worker pool (one
-compiled ensemble, app/services/poincare_jobs.py), `workers` jobs at a time. With
-?stream=true the answer is NDJSON: {"event": "progress", "done": k, "total": n} after
-each round of jobs, then {"event": "result", "result": {...}} (or {"event": "error",
-"detail": ...}); without it, one JSON object {"trajectories": [...], ...} when all are done.
+The starts are resolved (validated, sampled with the seed) in a thread; then each
+trajectory is one job of the worker pool (app/services/poincare_jobs.py), `workers` jobs
+at a time. With
+?stream=true the answer is NDJSON: {"event": "estimate", "seconds": s, ...} from a pilot
+of the first start, {"event": "progress", "done": k, "total": n, "remaining": s} after
+every trajectory that returns, then {"event": "result", "result": {...}} (or {"event":
+"error", "detail": ...}); without it, one JSON object {"trajectories": [...], ...} when all
+are done.
 
 One deadline (Settings.deadline_s) holds for the whole request: every job gets the
 time that is left, and when none is left the answer is 504 (in a stream: an error event
@@ -71,34 +73,61 @@ def resolve(req: PoincareRequest, max_steps: int) -> tuple[dict, dict, list[list
     return header, job, [s.tolist() for s in starts]
 
 
-_HINT = "ask for fewer trajectories or points, or loosen rtol"
+_HINT = "ask for fewer trajectories or points, or loosen rtol (such as 1e-8)"
+PILOT_POINTS = 20
 
 
-def _slices(n: int, width: int) -> list[tuple[int, int]]:
-    """The starts cut into jobs of consecutive trajectories: about four rounds of `width`
-    jobs (progress after each round), each job one compiled ensemble."""
-    per_job = max(1, math.ceil(n / (4 * width)))
-    return [(lo, min(n, lo + per_job)) for lo in range(0, n, per_job)]
+async def _one(pool, settings, job, starts, lo, hi, end, results):
+    """Trajectories lo..hi-1 as one job, with the time left until `end` (anyio clock)."""
+    left = end - anyio.current_time()
+    if left <= 0:
+        raise DeadlineExceeded(settings.deadline_s, _HINT)
+    try:
+        results[lo:hi] = await pool.run(poincare_jobs.trajectories, job, starts[lo:hi],
+                                        deadline=left)
+    except DeadlineExceeded:
+        raise DeadlineExceeded(settings.deadline_s, _HINT) from None
 
 
-async def _batch(pool, settings, job, starts, results, jobs, end):
-    """The jobs (lo, hi) at once, each with the time left until `end` (anyio clock)."""
-    async def one(lo, hi):
-        left = end - anyio.current_time()
-        if left <= 0:
-            raise DeadlineExceeded(settings.deadline_s, _HINT)
-        try:
-            results[lo:hi] = await pool.run(poincare_jobs.trajectories, job, starts[lo:hi],
-                                            deadline=left)
-        except DeadlineExceeded:
-            raise DeadlineExceeded(settings.deadline_s, _HINT) from None
+async def _run_all(pool, settings, job, starts, results, end, send=None):
+    """Every trajectory, one job each, `workers` jobs at a time; `send` gets the number of
+    trajectories finished after every job that returns (the page's progress is tied to the
+    work done, not to rounds), or the first failure."""
+    limit = anyio.Semaphore(max(1, settings.workers))
+    done = 0
+
+    async def one(lo):
+        nonlocal done
+        async with limit:
+            await _one(pool, settings, job, starts, lo, lo + 1, end, results)
+        done += 1
+        if send is not None:
+            await send.send(("progress", done))
 
     try:
         async with anyio.create_task_group() as tg:
-            for lo, hi in jobs:
-                tg.start_soon(one, lo, hi)
+            for lo in range(len(starts)):
+                tg.start_soon(one, lo)
     except BaseExceptionGroup as group:   # the first failure, as the pool raised it
         raise group.exceptions[0] from None
+
+
+async def _pilot(pool, settings, starts, job, points, end) -> float:
+    """Seconds the whole map should take: PILOT_POINTS crossings of the first start timed
+    in a worker (a real run of this case on this server), times the crossings asked for,
+    times the rounds of `workers` trajectories."""
+    left = end - anyio.current_time()
+    if left <= 0:
+        raise DeadlineExceeded(settings.deadline_s, _HINT)
+    try:
+        # the deadline covers the wait for a worker too, not only the run
+        with anyio.fail_after(left):
+            per_point = await pool.run(poincare_jobs.seconds_per_point, job, starts[0],
+                                       min(points, PILOT_POINTS), deadline=left)
+    except (DeadlineExceeded, TimeoutError):
+        raise DeadlineExceeded(settings.deadline_s, _HINT) from None
+    rounds = math.ceil(len(starts) / max(1, settings.workers))
+    return per_point * points * rounds
 
 
 @router.post("/poincare", response_model=PoincarePublic,
@@ -106,7 +135,8 @@ async def _batch(pool, settings, job, starts, results, jobs, end):
                         **DEADLINE_RESPONSES,
                         200: {"content": {"application/x-ndjson": {}},
                               "description": "the map (JSON), or with stream=true NDJSON "
-                              "progress events and the result"}})
+                              "events: an estimate, progress after every trajectory and "
+                              "the result"}})
 async def poincare(req: PoincareRequest, request: Request, pool: PoolDep,
                    settings: SettingsDep,
                    stream: bool = Query(False, description="NDJSON progress events")):
@@ -116,32 +146,53 @@ async def poincare(req: PoincareRequest, request: Request, pool: PoolDep,
                                                          limiter=_threads)
     n = len(starts)
     end = anyio.current_time() + settings.deadline_s
-    width = max(1, settings.workers)
-    jobs = _slices(n, width)
-    rounds = [jobs[k:k + width] for k in range(0, len(jobs), width)]
     results: list[dict | None] = [None] * n
 
     if not stream:
-        async def work():
-            for group in rounds:
-                await _batch(pool, settings, job, starts, results, group, end)
-
-        await cancel_on_disconnect(request, work)
+        await cancel_on_disconnect(request, lambda: _run_all(pool, settings, job, starts,
+                                                             results, end))
         return Response(dumps({**header, "trajectories": results}),
                         media_type="application/json")
 
+    def problem(exc) -> str:
+        status = (504 if isinstance(exc, DeadlineExceeded) else
+                  422 if isinstance(exc, InputError) else 503)
+        return json.dumps({"event": "error", "status": status, "detail": str(exc)}) + "\n"
+
     async def events():
+        t0 = anyio.current_time()
+        try:
+            estimate = await _pilot(pool, settings, starts, job, req.points, end)
+        except Exception as exc:
+            yield problem(exc)
+            return
+        yield json.dumps({"event": "estimate", "seconds": round(estimate, 3),
+                          "total": n, "deadline": settings.deadline_s}) + "\n"
         yield json.dumps({"event": "progress", "done": 0, "total": n}) + "\n"
-        for group in rounds:
+        send, recv = anyio.create_memory_object_stream(math.inf)
+        failure: list[BaseException] = []
+
+        async def work():
             try:
-                await _batch(pool, settings, job, starts, results, group, end)
-            except Exception as exc:   # a Problem for the page, then stop
-                status = (504 if isinstance(exc, DeadlineExceeded) else
-                          422 if isinstance(exc, InputError) else 503)
-                yield json.dumps({"event": "error", "status": status,
-                                  "detail": str(exc)}) + "\n"
-                return
-            yield json.dumps({"event": "progress", "done": group[-1][1], "total": n}) + "\n"
+                await _run_all(pool, settings, job, starts, results, end, send)
+            except Exception as exc:
+                failure.append(exc)
+            finally:
+                send.close()
+
+        t1 = anyio.current_time()
+        async with anyio.create_task_group() as tg:
+            tg.start_soon(work)
+            async with recv:
+                async for _, done in recv:
+                    elapsed = anyio.current_time() - t1
+                    yield json.dumps({"event": "progress", "done": done, "total": n,
+                                      "elapsed": round(anyio.current_time() - t0, 3),
+                                      "remaining": round(elapsed / done * (n - done), 3)}
+                                     ) + "\n"
+        if failure:
+            yield problem(failure[0])
+            return
         yield (b'{"event":"result","result":' + dumps({**header, "trajectories": results})
                + b"}\n").decode()
 

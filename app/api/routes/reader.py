@@ -4,6 +4,7 @@ and their data under /api: printed numbers, glossary, references, search, the ch
 from __future__ import annotations
 
 from html import escape
+from typing import Annotated
 
 from fastapi import APIRouter, Query
 from fastapi.responses import HTMLResponse
@@ -13,10 +14,12 @@ from app.services import howcheck, reader_pages
 from app.services.search import facets, search
 from catalogue.glossary import load_glossary
 from catalogue.load import load_catalogue
-from catalogue.numbering import printed, printed_numbers
+from catalogue.numbering import cite, printed, printed_numbers
+from solvers.verify import marks as vocab
 
 router = APIRouter(tags=["reader"])
 pages = APIRouter(include_in_schema=False)
+MAX_FILTER = 60       # the longest facet value is 29 characters
 
 
 @router.get("/printed-numbers")
@@ -30,31 +33,49 @@ async def glossary_api() -> dict:
     """Every parameter and state variable: meaning, range, where in the paper (numbers)."""
     g = load_glossary()
     return {"units": g.units,
-            "entries": [{**e.model_dump(), "paper_numbers": [printed(x) for x in e.paper]}
+            # the meaning is the reader's text of the "?" pop-up: printed numbers, no labels
+            "entries": [{**e.model_dump(), "meaning": cite(e.meaning),
+                         "paper_numbers": [printed(x) for x in e.paper]}
                         for e in g.entries]}
 
 
 @router.get("/references")
 async def references_api() -> list[dict]:
-    """The bibliography: every reference key of the catalogue with its entry."""
-    return [r.model_dump(mode="json") for r in load_catalogue().references]
+    """The bibliography: every reference key of the catalogue with its entry; `status`
+    complete (authors, title, journal, year) or unresolved, `missing` says what is not in
+    the seed."""
+    return [{**r.model_dump(mode="json"), "missing": r.missing}
+            for r in load_catalogue().references]
+
+
+@router.get("/cite")
+async def cite_api() -> dict:
+    """The BibTeX fields of the paper (with its DOI) and of this explorer (author, version);
+    a page's Cite box adds its own URL, the year and the access date."""
+    return reader_pages.cite_data()
 
 
 @router.get("/how-we-check")
 async def how_we_check_api() -> dict:
     """Each kind of check and the constants the checking code uses."""
     kinds = [{**k, "checks": [str(n) for n in k["checks"]]} for k in howcheck.kinds()]
-    return {"constants": howcheck.constants(), "kinds": kinds,
+    return {"constants": howcheck.constants(), "kinds": kinds, "marks": howcheck.marks(),
             "verdicts": [{"verdict": v, "mark": m, "meaning": t}
                          for v, m, t in howcheck.VERDICTS]}
 
 
+# a filter names one of the facets (GET /api/search lists them): a few words at most
+Filter = Annotated[str, Query(max_length=MAX_FILTER)]
+
+
 @router.get("/search")
 async def search_api(verdicts: VerdictsDep, q: str = Query("", max_length=200),
-                     body: str = "", surface: str = "", kind: str = "",
-                     verdict: str = "") -> dict:
-    """Cases and claims matching every word of q, filtered by body, surface, kind, verdict."""
-    return search(q, body, surface, kind, verdict, verdicts.by_claim(), verdicts.pending())
+                     body: Filter = "", surface: Filter = "", kind: Filter = "",
+                     verdict: Filter = "", mark: Filter = "") -> dict:
+    """Cases and claims matching every word of q, filtered by body, surface, kind, verdict
+    and mark (solvers/verify/marks.yaml: the mark each claim shows on its case page)."""
+    return search(q, body, surface, kind, verdict, verdicts.by_claim(), verdicts.pending(),
+                  mark)
 
 
 @pages.get("/how-we-check", response_class=HTMLResponse)
@@ -79,17 +100,34 @@ def _select(name: str, options: list[str], value: str) -> str:
             f"{opts}</select></label>")
 
 
+def _mark_html(m) -> str:
+    """A claim's mark as its case page draws it (marks.js badgeHtml): shape and word, told
+    apart without colour; the full name for a screen reader and on hover."""
+    return (f'<span class="badge {escape(m.id)}" title="{escape(m.name)}" '
+            f'data-mark="{escape(m.id)}">{escape(m.shape)} {escape(m.word)}</span>')
+
+
 @pages.get("/search", response_class=HTMLResponse)
 async def search_page(verdicts: VerdictsDep, q: str = Query("", max_length=200),
-                      body: str = "", surface: str = "", kind: str = "",
-                      verdict: str = "") -> str:
-    r = search(q, body, surface, kind, verdict, verdicts.by_claim(), verdicts.pending())
+                      body: Filter = "", surface: Filter = "", kind: Filter = "",
+                      verdict: Filter = "", mark: Filter = "") -> str:
+    r = search(q, body, surface, kind, verdict, verdicts.by_claim(), verdicts.pending(), mark)
     f = facets()
+    marks = vocab.by_id()
+    # the marks by their names (the value is the API's `mark` id); a verdict in the query
+    # (an old link) still filters, kept as a hidden field so the form does not drop it
+    mark_opts = "".join(f'<option value="{escape(i)}"{" selected" * (i == mark)}>'
+                        f'{escape(marks[i].shape)} {escape(marks[i].name)}</option>'
+                        for i in f["mark"])
+    old_verdict = (f'<input type="hidden" name="verdict" value="{escape(verdict)}">'
+                   if verdict else "")
     form = (f'<form class="searchform" role="search" action="/search" method="get">'
             f'<label><span>text</span><input type="search" name="q" value="{escape(q)}" '
             'placeholder="e.g. Chaplygin"></label>'
             + "".join(_select(n, f[n], v) for n, v in (("body", body), ("surface", surface),
-                                                       ("kind", kind), ("verdict", verdict)))
+                                                       ("kind", kind)))
+            + f'<label><span>mark</span><select name="mark"><option value="">any</option>'
+            f'{mark_opts}</select></label>{old_verdict}'
             + '<button type="submit">Search</button></form>')
     cases = "".join(f'<li><a href="{escape(c["href"])}">{escape(c["title"])}</a> '
                     f'<span class="hint">Table {c["table"]}, {escape(c["surface"])}, '
@@ -97,7 +135,7 @@ async def search_page(verdicts: VerdictsDep, q: str = Query("", max_length=200),
     claims = "".join(
         f'<li><a href="{escape(c["href"])}">{escape(c["case_title"])}</a>: '
         f'{escape(c["number"] + " " if c["number"] else "")}{escape(c["plain"] or "")} '
-        f'<span class="mark {c["verdict"]}">{escape(c["verdict"])}</span></li>'
+        f'{_mark_html(marks[c["mark"]])}</li>'
         for c in r["claims"][:200])
     more = (f"<p>First 200 of {len(r['claims'])} claims.</p>" if len(r["claims"]) > 200 else "")
     body_html = (form + f'<h2 id="cases">Cases ({len(r["cases"])})</h2>'

@@ -7,11 +7,13 @@ from __future__ import annotations
 
 from typing import Any
 
-from fastapi import APIRouter, HTTPException
-from fastapi.responses import HTMLResponse
+from fastapi import APIRouter, HTTPException, Request
+from fastapi.responses import HTMLResponse, Response
 from pydantic import BaseModel, Field
 
-from app.api.deps import SettingsDep
+from app.api.deps import PoolDep, SettingsDep
+from app.core.disconnect import cancel_on_disconnect
+from app.schemas.common import BUSY_RESPONSES, DEADLINE_RESPONSES
 from app.services.reader_pages import static_page
 
 router = APIRouter(tags=["scenes"])
@@ -61,6 +63,49 @@ async def scene_preset(scene_id: str) -> dict:
         raise HTTPException(404, f"unknown scene {scene_id!r}; known scenes: "
                             + ", ".join(load_scenes()))
     return _public(s)
+
+
+class SceneCheck(BaseModel):
+    kind: str
+    passed: bool
+    value: float | None
+    detail: str
+    caption: str = Field(description="plain words: what to look for in the plot")
+    index: int
+    count: int = Field(description="how many checks the scene has")
+    plot: dict[str, Any] | None = Field(description="the data the verdict was taken from: "
+                                        "title, x_title, y_title, log_y, traces [{name, x, y, "
+                                        "role: claim | contrast | limit | raw | event}], "
+                                        "headline")
+
+
+# the presets are fixed: a check's answer is computed once per server process
+_checks: dict[tuple[str, int], bytes] = {}
+
+
+@router.get("/scenes/{scene_id}/checks/{k}", response_model=SceneCheck,
+            responses={404: {"description": "no such scene or check"}, **BUSY_RESPONSES,
+                       **DEADLINE_RESPONSES})
+async def scene_check(scene_id: str, k: int, request: Request, pool: PoolDep,
+                      settings: SettingsDep) -> Response:
+    """Check k of the scene on the scene's own run (solvers/scenes/scene_checks.py), with the
+    plot of exactly the data its verdict was taken from: what /scenes draws."""
+    from app.services.jobs import dumps
+    from catalogue.scenes import load_scenes
+    from solvers.scenes.scene_checks import check_json
+
+    s = load_scenes().get(scene_id)
+    if s is None:
+        raise HTTPException(404, f"unknown scene {scene_id!r}; known scenes: "
+                            + ", ".join(load_scenes()))
+    if not 0 <= k < len(s.checks):
+        raise HTTPException(404, f"scene {scene_id!r} has checks 0 … {len(s.checks) - 1}")
+    body = _checks.get((scene_id, k))
+    if body is None:
+        d = await cancel_on_disconnect(request, lambda: pool.run(
+            check_json, scene_id, k, deadline=settings.deadline_s))
+        body = _checks.setdefault((scene_id, k), dumps(d))
+    return Response(body, media_type="application/json")
 
 
 @pages.get("/scenes")

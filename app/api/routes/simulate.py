@@ -31,6 +31,7 @@ from app.schemas.simulate import (
     ValidatePublic,
 )
 from app.services import jobs, payloads
+from catalogue.plain_words import invariant_name
 from solvers.errors import InputError
 
 router = APIRouter(tags=["simulate"])
@@ -147,16 +148,17 @@ _RUN_DESCRIPTION = (
                         200: {"content": _RUN_CONTENT, "description": _RUN_DESCRIPTION}})
 async def simulate(req: SimulateRequest, request: Request, pool: PoolDep,
                    settings: SettingsDep,
-                   format: Literal["json", "csv"] | None = Query(
+                   format: Literal["json", "csv", "arrow"] | None = Query(
                        None, description="csv: one row per sample (t, state, invariants), "
-                       "whatever the Accept header says; json: the JSON object; none: "
-                       "the type the Accept header prefers")) -> Response:
+                       "whatever the Accept header says; json: the JSON object; arrow: the "
+                       "Arrow IPC stream (as Accept: application/vnd.apache.arrow.stream); "
+                       "none: the type the Accept header prefers")) -> Response:
     """Integrate one case from an initial state over [0, t_end]: the state and every
     invariant the case carries at `samples` times, and the cost of the run."""
     if format is None:
         media = payloads.negotiate(request.headers.get("accept"))
     else:
-        media = payloads.CSV if format == "csv" else payloads.JSON
+        media = {"csv": payloads.CSV, "arrow": payloads.ARROW}.get(format, payloads.JSON)
     resolved = await _resolved(req, settings)
     job = _job(resolved)
     await _prepare(pool, resolved, job)
@@ -179,7 +181,8 @@ async def validate(req: SimulateRequest, settings: SettingsDep) -> dict:
     resolved = await _resolved(req, settings)
     model = resolved["_model"]
     return {"ok": True, "params": model.params, "state_labels": list(model.state_labels),
-            "invariants": list(model.integral_names)}
+            "invariants": list(model.integral_names),
+            "invariants_text": [invariant_name(n) for n in model.integral_names]}
 
 
 @router.post("/scene", response_model=ScenePublic,

@@ -13,7 +13,7 @@ from app.schemas.common import (
     NOT_FOUND,
     Problem,
 )
-from app.schemas.verify import VerdictPublic, VerifyPublic
+from app.schemas.verify import MarksPublic, VerdictPublic, VerifyPublic
 from app.services import verdicts as service
 from app.services import views
 from catalogue.load import load_catalogue
@@ -41,6 +41,13 @@ async def verify_case(case_id: str, request: Request, pool: PoolDep, settings: S
     store.put(case_id, records)
     return {"case": case_id, "records": [views.record(r) for r in records],
             "seconds": time.perf_counter() - t0}
+
+
+@router.get("/marks", response_model=MarksPublic)
+async def marks(store: VerdictsDep) -> dict:
+    """The vocabulary of marks (one per meaning: what a check showed) that every cell and
+    claim record carries in `mark`, and how many table cells carry each so far."""
+    return views.marks_overview(store.by_claim(), store.pending())
 
 
 @router.get("/verdicts", response_model=list[VerdictPublic])

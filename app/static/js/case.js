@@ -2,15 +2,16 @@
 // printed formula, source and verdict, and a simulate panel with plots and a 3D scene.
 "use strict";
 
-import { api, ApiError, download, escapeHtml, fmt, VERDICT_ICON, VERDICT_TEXT } from "./api.js";
+import { api, ApiError, download, escapeHtml, fmt } from "./api.js";
 import { mathHtml, printedHtml, textHtml } from "./latex.js";
-import { badgeHtml, markHtml, qualifierHtml } from "./marks.js";
+import { badgeHtml, erratumLinks, markHtml, markInfo, markNoteHtml, tallyHtml } from "./marks.js";
 import { plotDrift, plotGamma, plotState } from "./plots.js";
 import { applyRunQuery, runQuery, setQuery } from "./permalink.js";
 import { csvOf } from "./run_csv.js";
 import { estimate } from "./estimate.js";
 import { Scene } from "./scene.js";
 import { glossary, tipHtml } from "./glossary.js";
+import { caseCiteHtml, checkedHtml, citeData, decorateClaims } from "./cite.js";
 
 const caseId = decodeURIComponent(location.pathname.replace(/^\/case\//, "").replace(/\/$/, ""));
 const $ = (id) => document.getElementById(id);
@@ -37,12 +38,20 @@ function katexReady() {
 
 function attributionText(list) {
   return list.map((a) => {
-    const who = a.authors || a.reference_authors.join(", ") || a.ref;
+    const who = a.authors || a.reference_authors.join(", ") || "the reference";
     const year = a.year ? ` (${a.year})` : "";
     const title = a.reference_title ? `, <cite>${escapeHtml(a.reference_title)}</cite>` : "";
     const note = a.note ? ` — ${escapeHtml(a.note)}` : "";
-    return `${escapeHtml(who)}${year}${title} <span class="cid">[${escapeHtml(a.ref)}]</span>${note}`;
+    // the reference's key ([bm-new]) is data: the reader gets a link to its entry instead
+    const ref = a.ref ? ` <a href="/bibliography#ref-${encodeURIComponent(a.ref)}">reference</a>` : "";
+    return `${escapeHtml(who)}${year}${title}${ref}${note}`;
   }).join("; ");
+}
+
+// "(M, gamma)" -> "(M, γ)": the data spells Greek letters out, the page does not
+function greekWords(text) {
+  return String(text).replace(/\b(gamma|omega|lambda|mu|rho|tau)\b/g,
+    (w) => ({ gamma: "γ", omega: "ω", lambda: "λ", mu: "μ", rho: "ρ", tau: "τ" })[w]);
 }
 
 function showHead() {
@@ -51,27 +60,26 @@ function showHead() {
   $("crumb-table").innerHTML = `<a href="/#table-${C.surface}">Table ${C.table}</a>`;
   $("crumb-case").textContent = `column ${C.column}`;
   const m = C.model;
-  const cond = Object.entries(m.conditions || {}).filter(([, v]) => v !== null && v !== undefined)
-    .map(([k, v]) => `${k}: ${v}`).join(", ");
+  // the conditions in words (conditions_text), not the data's key: value pairs
+  const cond = (m.conditions_text || []).map(escapeHtml).join("; ");
   $("facts").innerHTML = [
     `Table ${C.table}, column ${C.column}`,
     `support: ${C.surface}`,
-    `body: ${m.body}`,
-    `state ${m.state}`,
+    `body: ${escapeHtml(String(m.body).replaceAll("-", " "))}`,
+    `state ${escapeHtml(greekWords(m.state))}`,
     `equations ${(m.equation_numbers || []).join(", ")}`,
     cond ? `conditions: ${cond}` : "",
-    `id <code>${escapeHtml(C.id)}</code>`,
   ].filter(Boolean).map((f) => `<span class="chip">${f}</span>`).join("");
   showTally();
 }
 
+// the case's counts by mark, in words (views.case_sentence) and as shape + count + word
 function showTally() {
-  const v = C.verdicts;
-  const parts = ["verified", "fails", "evidence", "unchecked", "pending"].filter((k) => v[k])
-    .map((k) => `<span class="badge ${k}">${VERDICT_ICON[k]} ${v[k]} ${VERDICT_TEXT[k]}</span>`);
   const state = C.verification === "running"
     ? " · being checked now on this server; the page updates when the check finishes" : "";
-  $("tally").innerHTML = `${C.claims.length} claims: ${parts.join(" ")}<span class="hint">${state}</span>`;
+  $("tally").innerHTML = `<p class="mark-summary" id="mark-summary">${escapeHtml(C.summary || "")}</p>` +
+    `<span>cells: ${tallyHtml(C.cell_marks || {})}</span> <span>claims: ${tallyHtml(C.marks || {})}</span>` +
+    `<span class="hint">${state}</span>`;
   $("nclaims").textContent = `(${C.claims.length})`;
 }
 
@@ -85,23 +93,46 @@ function claimLink(id) {
     const text = cl ? `${cl.kind}${cl.number ? ` ${cl.number}` : ""}` : parts.slice(2).join(" ");
     return `<a href="#${anchor(id)}">${escapeHtml(text)}</a>`;
   }
-  return `<a href="/case/${owner}#${anchor(id)}">${escapeHtml(`${parts[2] || "claim"} on the ${owner} page`)}</a>`;
+  // another case's claim: named by its kind and the case in words, not by its record id
+  const where = `${parts[1].replaceAll("-", " ")} on a ${parts[0]}`;
+  return `<a href="/case/${owner}#${anchor(id)}">${escapeHtml(`${parts[2] || "claim"} of the ${where}`)}</a>`;
+}
+
+// the claims of a cell: several claims with the same kind and number ("gyrostat (2.38)")
+// are one entry with numbered links, not the same words repeated
+function claimLinks(ids) {
+  const own = ids.filter((id) => C.claims.some((x) => x.id === id));
+  const groups = new Map();
+  for (const id of own) {
+    const cl = C.claims.find((x) => x.id === id);
+    const text = `${cl.kind}${cl.number ? ` ${cl.number}` : ""}`;
+    if (!groups.has(text)) groups.set(text, []);
+    groups.get(text).push(id);
+  }
+  const parts = [...groups].map(([text, list]) => list.length === 1
+    ? `<a href="#${anchor(list[0])}">${escapeHtml(text)}</a>`
+    : `${escapeHtml(text)} (${list.length} claims: ${list.map((id, i) =>
+      `<a href="#${anchor(id)}" aria-label="${escapeHtml(text)}, claim ${i + 1}">${i + 1}</a>`).join(", ")})`);
+  return [...parts, ...ids.filter((id) => !own.includes(id)).map(claimLink)].join(", ");
 }
 
 function showCells() {
   const rows = C.cells.map((c) => {
     const own = c.verdict ? c.verdict.claims.find((id) => id.startsWith(C.id + "/")) : null;
-    const mark = c.verdict ? markHtml(c.verdict, own ? `#${anchor(own)}` : `#row-${c.row}`) : "";
+    // the note that goes with the mark is written out in the row: no "why?" under it here
+    const mark = c.verdict ? markHtml(c.verdict, own ? `#${anchor(own)}` : `#row-${c.row}`, { why: false }) : "";
     const att = c.attribution.length ? `<div class="claimrefs">credited: ${attributionText(c.attribution)}</div>` : "";
     const refs = c.claims.length
-      ? `<div class="claimrefs">claims: ${c.claims.map(claimLink).join(", ")}</div>` : "";
+      ? `<div class="claimrefs">claims: ${claimLinks(c.claims)}</div>` : "";
     const merged = c.merged.length > 1 ? `<div class="claimrefs">merged cell: spans ${c.merged.length} columns</div>` : "";
     const sub = c.subrow ? `<div>${textHtml(c.subrow.printed)}</div>` : "";
     const cm = c.verdict && c.verdict.marks && c.verdict.marks.length ? c.verdict.marks[0] : null;
     // the verdict in words; the checking code's message (developer text) behind a toggle
+    const info = cm ? markInfo(cm.mark) : null;
+    const links = cm && cm.mark === "after-correction" ? erratumLinks(cm.errata) : "";
     const prop = cm && cm.mark !== "pending"
-      ? `<div class="claimrefs cellverdict">the cell's property: <strong>${escapeHtml(VERDICT_TEXT[cm.mark] === "verified" ? "holds" : VERDICT_TEXT[cm.mark])}</strong>` +
-        `${cm.notes.length ? ` (${escapeHtml(cm.notes.join("; "))})` : ""}` +
+      ? `<div class="claimrefs cellverdict">the cell's property: <strong>${info.shape} ${escapeHtml(info.name)}</strong>` +
+        `${cm.mark_note ? `: ${escapeHtml(cm.mark_note)}` : ""}${links ? ` (${links})` : ""}` +
         `${cm.rests_on.length ? `; rests on ${cm.rests_on.map(claimLink).join(", ")}` : ""}` +
         `${cm.message ? `<details class="dev"><summary>Details</summary>${escapeHtml(cm.message)}</details>` : ""}</div>`
       : (cm ? `<div class="claimrefs cellverdict">the cell's property: checking…</div>` : "");
@@ -120,7 +151,7 @@ function stamp(v) {
 
 function verdictLine(v) {
   const res = v.residual !== null && v.residual !== undefined ? ` · residual <code>${fmt(v.residual, 2)}</code>` : "";
-  return `<div class="verdict-line">${badgeHtml(v.verdict)}${res}${stamp(v)}</div>`;
+  return `<div class="verdict-line">${badgeHtml(v.mark)}${res}${stamp(v)}</div>`;
 }
 
 // one plain sentence: what was checked (the kind of check, see /how-we-check) and what came out
@@ -147,16 +178,22 @@ const CHECKED = {
   formula_not_printed: "The paper asserts this without printing a formula, so it cannot be computed",
   not_checkable: "This statement cannot be decided by a pointwise computation",
 };
+// what came out, by mark (solvers/verify/marks.yaml defines each on /how-we-check)
 const OUTCOME = {
-  verified: "it holds to round-off.",
+  "as-printed": "it holds as printed, to round-off.",
+  "after-correction": "as printed it does not hold; the project's corrected form does.",
+  "under-convention": "it holds under the convention stated below, not read with the project's conventions.",
+  "project-formula": "the paper prints no formula; the project's derived formula holds, to round-off.",
   fails: "it does not hold: the residual is far above the tolerance.",
-  evidence: "the evidence found is listed in the details.",
-  unchecked: "no verdict: the check could not run on this server (see the details).",
+  "evidence-for": "numerical evidence supports it (not a proof); the numbers are in the details.",
+  "evidence-against": "numerical evidence goes against it (not a proof); the numbers are in the details.",
+  inconclusive: "the check ran and could not decide; what it found is stated below.",
+  "not-checkable": "nothing was run (see the details).",
   pending: "being checked now; this page updates when the check finishes.",
 };
 
 function sentence(c) {
-  const v = c.verdict.verdict;
+  const v = c.verdict.mark;
   const what = CHECKED[c.check] || "Checked";
   const out = c.check === "open_problem" || c.check === "formula_not_printed" || c.check === "not_checkable"
     ? "." : `: ${OUTCOME[v] || v}`;
@@ -167,7 +204,7 @@ function claimHtml(c) {
   const v = c.verdict;
   const source = [c.number ? `<strong>${escapeHtml(c.number)}</strong>` : "", c.where ? escapeHtml(c.where) : ""]
     .filter(Boolean).join(" — ");
-  const cond = Object.entries(c.conditions).map(([k, x]) => `${escapeHtml(k)}: ${escapeHtml(x)}`).join("; ");
+  const cond = (c.conditions_text || []).map(escapeHtml).join("; ");
   const args = Object.entries(c.check_args).map(([k, x]) => `${escapeHtml(k)} ${escapeHtml(Array.isArray(x) ? x.join(", ") : String(x))}`).join("; ");
   const dl = [
     source ? ["in the paper", source] : null,
@@ -189,16 +226,32 @@ function claimHtml(c) {
   const corr = c.corrections.map((r) => `<div class="correction"><strong>The project's corrected form</strong>` +
     `${r.printed_tex ? `<div class="printed">${mathHtml(r.printed_tex, true)}</div>` : ""}` +
     `${r.printed ? `<p class="plain">${r.printed_tex ? escapeHtml(r.printed) : printedHtml(r.printed)}</p>` : ""}${verdictLine(r)}</div>`).join("");
-  return `<article class="claim ${v.verdict}" id="${anchor(c.id)}">` +
+  return `<article class="claim ${v.verdict} ${escapeHtml(v.mark)}" id="${anchor(c.id)}">` +
     `<header><span class="kind">${escapeHtml(c.kind)}</span>${c.number ? `<span class="label">${escapeHtml(c.number)}</span>` : ""}` +
-    `${badgeHtml(v.verdict)}</header>` +
+    `${badgeHtml(v.mark)}</header>` +
     `<div class="printed">${printedHtml(c.printed)}</div>` +
-    `<p class="plain">${escapeHtml(c.plain)}</p>${sentence(c)}<dl>${dl}</dl>${verdictLine(v)}${qualifierHtml(v)}` +
+    `<p class="plain">${escapeHtml(c.plain)}</p>${sentence(c)}<dl>${dl}</dl>${verdictLine(v)}${markNoteHtml(v)}` +
     `<details class="dev"><summary>Details</summary><dl>${dev}</dl>${notes}</details>${corr}</article>`;
 }
 
 function showClaims() {
   $("claimlist").innerHTML = C.claims.map(claimHtml).join("");
+  showCite();
+}
+
+// the Cite box, the claims' permalinks and Cite boxes, what was checked (cite.js)
+let CITE = null;
+let HOW = null;
+async function showCite() {
+  try {
+    [CITE, HOW] = await Promise.all([CITE || citeData(), HOW || api("/api/how-we-check")]);
+  } catch {
+    return;   // the claims stand without their Cite boxes
+  }
+  decorateClaims(CITE, C, anchor);
+  $("citebox").innerHTML = caseCiteHtml(CITE, C);
+  $("checkedbox").innerHTML = checkedHtml(C, HOW, anchor);
+  document.body.dataset.cite = "1";
 }
 
 // A fresh server recomputes the verdicts of changed cases in the background: while this
@@ -391,7 +444,7 @@ function onEdit() {
     validateCtl = new AbortController();
     try {
       const v = await api("/api/validate", { method: "POST", body: req, signal: validateCtl.signal });
-      showFormMessage(`✓ valid — reports ${v.invariants.join(", ")}`, "good", null);
+      showFormMessage(`✓ valid — reports ${(v.invariants_text || v.invariants).join(", ")}`, "good", null);
       // the pilot is not aborted by a later edit (a short run; aborting counts as a
       // cancellation on the server): a late answer about an older form is dropped instead
       const mine = ++pilotGeneration;

@@ -1,9 +1,12 @@
-// /errata: misprints with their corrections, conventions, and the project's findings, from
-// GET /api/errata, /api/conventions and /api/findings.
+// /errata as a reference table (issue 17, item 4): one row per misprint with its own address
+// (#e-<claim>), the display that is corrected, what changes, both residuals; the row opens
+// (<details>) on the printed and the corrected form typeset, the exact check and the command
+// that reproduces it. An index by section; conventions and findings in tables of their own.
+// Data: GET /api/errata, /api/conventions, /api/findings (solvers/verify/errata.py).
 "use strict";
 
-import { api, escapeHtml, fmt } from "./api.js";
-import { printedHtml } from "./latex.js";
+import { api, escapeHtml } from "./api.js";
+import { mathHtml, printedHtml } from "./latex.js";
 
 function katexReady() {
   return new Promise((resolve) => {
@@ -12,87 +15,220 @@ function katexReady() {
   });
 }
 
-const anchor = (id) => "claim-" + id.replace(/[^A-Za-z0-9_-]+/g, "_");
-const caseLink = (e) => `<a href="/case/${e.case}#${anchor(e.claim)}">${escapeHtml(e.case)}</a>`;
-const where = (e) => escapeHtml([e.number, e.where, e.section].filter(Boolean).join(" · "));
-const res = (x) => (x === null || x === undefined ? "n/a" : fmt(x, 2));
+const claimAnchor = (id) => "claim-" + id.replace(/[^A-Za-z0-9_-]+/g, "_");
+const caseHref = (e) => (e.href ? e.href : `/case/${e.case}#${claimAnchor(e.claim)}`);
+const sectionOf = (e) => (e.section || "").replace(/^section /, "") || "other";
+// a residual as a reader compares it: two digits, round-off in exponent form
+export function res(x) {
+  if (x === null || x === undefined) return "n/a";
+  if (x === 0) return "0";
+  return Math.abs(x) >= 1e-3 ? x.toPrecision(2) : x.toExponential(1);
+}
+const rowLink = (anchor) => `<a class="permalink" href="#${escapeHtml(anchor)}" title="Link to this row" aria-label="Link to this row">¶</a>`;
+
+let CASES = {};       // case id -> title
+
+// a row names its claim as the case pages do: the case's title, the claim's kind and printed
+// number (claim_name, solvers/verify/errata.py); the record id only in the link and data-claim
+const caseTitle = (e) => e.case_title || CASES[e.case] || "the case";
+function caseLink(e) {
+  const title = caseTitle(e);
+  const tip = e.claim_name ? `${e.claim_name}, ${title}` : title;
+  return `<a href="${escapeHtml(caseHref(e))}" title="${escapeHtml(tip)}" data-claim="${escapeHtml(e.claim)}">${escapeHtml(title)}</a>`;
+}
+// the claim itself, linked: "integral (2.24) of the Chaplygin ball"
+function claimLink(e) {
+  const text = e.claim_name ? `${e.claim_name} of ${caseTitle(e)}` : caseTitle(e);
+  return `<a class="claimname" href="${escapeHtml(caseHref(e))}" data-claim="${escapeHtml(e.claim)}">${escapeHtml(text)}</a>`;
+}
 
 function exactHtml(ex, what) {
   if (!ex) return "";
   // the witness (a rational point and residual) can run to thousands of digits: behind a toggle
   const w = ex.witness !== undefined && ex.witness !== null
     ? `<details><summary>rational witness point and its exact residual</summary>` +
-      `<code tabindex="0">${escapeHtml(JSON.stringify(ex.witness))}</code></details>` : "";
+      `<code class="witness" tabindex="0">${escapeHtml(JSON.stringify(ex.witness))}</code></details>` : "";
   const bound = ex.holds && ex.bound ? ` ${escapeHtml(ex.bound)}.` : "";
-  return `<div class="exact"><p>Exact check of the ${what}: ` +
-    `${ex.holds ? "holds" : "does not hold"} at ${ex.points} rational point${ex.points === 1 ? "" : "s"}.${bound}</p>` +
-    `<details><summary>method</summary><p>${escapeHtml(ex.method || "")}</p></details>${w}</div>`;
+  return `<p class="exact">Exact check of the ${what}: ` +
+    `${ex.holds ? "holds" : "does not hold"} at ${ex.points} rational point${ex.points === 1 ? "" : "s"}.${bound}</p>${w}`;
+}
+
+function reproHtml(cmd) {
+  return `<p class="repro">Reproduce: <code>${escapeHtml(cmd)}</code></p>`;
+}
+
+// ---- misprints
+
+function kindBadge(e) {
+  return e.kind === "inherited"
+    ? `<span class="ek inherited" title="fails only through a misprinted formula it uses">↳ inherited</span>`
+    : `<span class="ek misprint">✗ misprint</span>`;
 }
 
 function erratumHtml(e) {
-  const kind = e.kind === "inherited"
-    ? `inherited failure: it uses <a href="#e-${escapeHtml(e.inherits)}">${escapeHtml(e.inherits)}</a>, which is misprinted`
-    : "misprint";
-  return `<article class="erratum" id="e-${escapeHtml(e.claim)}">` +
-    `<header><span class="badge fails">✗ ${kind.startsWith("misprint") ? "misprint" : "inherited"}</span> ` +
-    `<strong>${where(e)}</strong> — ${caseLink(e)} <span class="cid">${escapeHtml(e.claim)}</span></header>` +
-    `<p class="kindline">${kind}</p>` +
-    `<div class="pair"><div><h3>Printed</h3><div class="printed" tabindex="0">${printedHtml(e.printed)}</div>` +
-    `<p>residual ${res(e.residual_printed)}</p></div>` +
-    `<div><h3>Corrected (the project)</h3><p class="corrected">${escapeHtml(e.corrected)}</p>` +
-    `<p>residual ${res(e.residual_corrected)} <span class="badge ${e.corrected_verdict === "verified" ? "verified" : "fails"}">` +
-    `${e.corrected_verdict === "verified" ? "✓ holds" : "✗ fails"}</span></p></div></div>` +
+  const claimAt = e.place === e.corrected_display ? "" : `<span class="at">claim at ${escapeHtml(e.place)}</span> `;
+  const inherits = e.kind === "inherited" && e.inherits
+    ? `<p>Inherited: this formula uses <a href="#e-${escapeHtml(e.inherits)}">a misprinted one</a> and fails only through it.</p>` : "";
+  const corrected = e.corrected_tex
+    ? `<div class="printed corrected" tabindex="0">${mathHtml(e.corrected_tex, true)}</div>` : "";
+  return `<details class="erow" id="${escapeHtml(e.anchor)}" data-section="${escapeHtml(sectionOf(e))}">` +
+    `<summary><span class="disp">${kindBadge(e)} <strong>${escapeHtml(e.corrected_display || e.place)}</strong></span>` +
+    `<span class="case">${claimAt}${caseLink(e)}</span>` +
+    `<span class="change">${escapeHtml(e.change || "")}</span>` +
+    `<span class="res"><span title="residual of the printed form">${res(e.residual_printed)}</span> → ` +
+    `<span title="residual of the corrected form">${res(e.residual_corrected)}</span></span></summary>` +
+    `<div class="ebody">${rowLink(e.anchor)} ` +
+    `<p class="where">Corrected display: <strong>${escapeHtml(e.corrected_display || "")}</strong>` +
+    `${e.corrected_where && e.corrected_number ? "" : e.corrected_where ? ` (${escapeHtml(e.corrected_where)})` : ""}` +
+    `${e.section_title ? `, section ${escapeHtml(sectionOf(e))}, “${escapeHtml(e.section_title)}”` : ""}. ` +
+    `The claim that fails as printed stands at ${escapeHtml(e.number || e.where || e.place)}: ${claimLink(e)}.</p>` +
+    `<div class="pair"><div><h4>Printed ${escapeHtml(e.corrected_display || "")}</h4>` +
+    `<div class="printed" tabindex="0">${printedHtml(e.corrected_printed || e.printed)}</div>` +
+    `<p>residual of the claim as printed ${res(e.residual_printed)} (fails)</p></div>` +
+    `<div><h4>Corrected (the project)</h4>${corrected}` +
+    `<p>residual ${res(e.residual_corrected)} (${e.corrected_verdict === "verified" ? "holds" : escapeHtml(e.corrected_verdict || "")})</p></div></div>` +
+    (e.corrected_printed && e.corrected_printed !== e.printed
+      ? `<details class="claimform"><summary>the claim as printed at ${escapeHtml(e.place)}</summary>` +
+        `<div class="printed" tabindex="0">${printedHtml(e.printed)}</div></details>` : "") +
+    `<p class="note"><strong>What changes:</strong> ${escapeHtml(e.change || "")}</p>` +
+    `<details class="claimform"><summary>the note registered with the correction</summary><p>${escapeHtml(e.corrected)}</p></details>${inherits}` +
     exactHtml(e.exact, "printed form") + exactHtml(e.corrected_exact, "corrected form") +
-    `<p class="repro">Reproduce: <code>${escapeHtml(e.reproduce)}</code></p></article>`;
+    reproHtml(e.reproduce) + `</div></details>`;
 }
 
+// ---- conventions: the printed form holds when read with the convention the text supports
+
 function conventionHtml(e) {
-  return `<article class="erratum convention" id="c-${escapeHtml(e.claim)}">` +
-    `<header><span class="badge verified">✓ holds under a convention</span> <strong>${where(e)}</strong> — ` +
-    `${caseLink(e)} <span class="cid">${escapeHtml(e.claim)}</span></header>` +
+  return `<details class="erow convention" id="${escapeHtml(e.anchor)}" data-section="${escapeHtml(sectionOf(e))}">` +
+    `<summary><span class="disp"><span class="ek convention">◇ convention</span> <strong>${escapeHtml(e.place)}</strong></span>` +
+    `<span class="case">${caseLink(e)}</span>` +
+    `<span class="change">${escapeHtml(e.convention || "")}</span>` +
+    `<span class="res"><span title="residual under the convention">${res(e.residual_under_convention)}</span> · ` +
+    `<span title="residual read with the project's convention">${res(e.residual_printed)}</span></span></summary>` +
+    `<div class="ebody">${rowLink(e.anchor)} <p class="where">The claim: ${claimLink(e)}.</p>` +
     `<div class="printed" tabindex="0">${printedHtml(e.printed)}</div>` +
     `<p><strong>Convention:</strong> ${escapeHtml(e.convention || "")}</p>` +
-    `<p>residual under it ${res(e.residual_under_convention)}; read with the project's convention ${res(e.residual_printed)}</p>` +
-    `<p class="repro">Reproduce: <code>${escapeHtml(e.reproduce)}</code></p></article>`;
+    `<p>Under this convention the printed form holds: residual ${res(e.residual_under_convention)}. ` +
+    `Read with the project's convention instead, it fails: residual ${res(e.residual_printed)}.</p>` +
+    exactHtml(e.exact, "printed form under the convention") + reproHtml(e.reproduce) + `</div></details>`;
+}
+
+// ---- findings: refuted statements and conjectures, and checks that could not decide
+
+const FINDING_KIND = {
+  "refuted-conjecture": ["✗", "refuted conjecture"],
+  refuted: ["✗", "refuted"],
+  inconclusive: ["◌", "inconclusive"],
+};
+
+function evidenceHtml(ev) {
+  const rows = Object.entries(ev || {}).map(([k, v]) => {
+    const val = typeof v === "number" ? res(v) : Array.isArray(v) ? `${v.length} values` : String(v);
+    return `<tr><th scope="row">${escapeHtml(k)}</th><td>${escapeHtml(val)}</td></tr>`;
+  }).join("");
+  return rows ? `<details><summary>the numbers</summary><table class="evidence"><tbody>${rows}</tbody></table></details>` : "";
 }
 
 function findingHtml(e) {
-  const ev = Object.entries(e.evidence || {}).map(([k, v]) =>
-    `<li>${escapeHtml(k)}: ${escapeHtml(typeof v === "number" ? fmt(v, 2) : String(v))}</li>`).join("");
-  const kind = e.kind === "refuted-conjecture" ? "refuted conjecture" : "refuted statement";
-  return `<article class="finding" id="f-${escapeHtml(e.claim)}">` +
-    `<header><span class="badge evidence">${kind}</span> <strong>${escapeHtml(e.title)}</strong></header>` +
-    `<p>Where: ${where(e)} — ${caseLink(e)} <span class="cid">${escapeHtml(e.claim)}</span></p>` +
-    `<div class="printed" tabindex="0">${printedHtml(e.printed)}</div>` +
-    `<p><strong>Found:</strong> ${escapeHtml(e.finding)}</p>` +
-    `<details><summary>Evidence</summary><ul>${ev}</ul></details>` +
-    exactHtml(e.exact, "claim") +
-    `<p class="repro">Reproduce: <code>${escapeHtml(e.reproduce)}</code></p></article>`;
+  const [icon, word] = FINDING_KIND[e.kind] || ["•", e.kind];
+  const leans = e.leans ? `, leans ${escapeHtml(e.leans)}` : "";
+  const stmt = e.claim.startsWith("figure/")
+    ? `<blockquote class="caption">${escapeHtml(e.printed)}</blockquote>`
+    : `<div class="printed" tabindex="0">${printedHtml(e.printed)}</div>`;
+  const inconclusive = e.kind === "inconclusive"
+    ? "<p>A check ran and could not decide: this is numerical evidence, not a proof; it weighs against the printed statement without refuting it.</p>" : "";
+  return `<details class="erow fnd" id="${escapeHtml(e.anchor)}" data-section="${escapeHtml(sectionOf(e))}">` +
+    `<summary><span class="disp"><span class="ek ${escapeHtml(e.kind)}">${icon} ${escapeHtml(word)}</span> <strong>${escapeHtml(e.place || "")}</strong></span>` +
+    `<span class="case">${caseLink(e)}</span>` +
+    `<span class="change">${escapeHtml(e.title)}</span>` +
+    `<span class="res">${escapeHtml(word)}${leans}</span></summary>` +
+    `<div class="ebody">${rowLink(e.anchor)} <p class="where">The paper (${escapeHtml(e.where || e.place || "")}), ${claimLink(e)}:</p>${stmt}` +
+    `<p><strong>Found:</strong> ${escapeHtml(e.finding)}</p>${inconclusive}${evidenceHtml(e.evidence)}` +
+    exactHtml(e.exact, "claim") + reproHtml(e.reproduce) + `</div></details>`;
 }
 
-async function show(id, path, render, empty) {
-  const el = document.getElementById(id);
+// ---- the index by section: every row's display, linked to its anchor
+
+function indexHtml(errata, conventions, findings) {
+  const secs = new Map();
+  const add = (e, what, label) => {
+    const tip = `${caseTitle(e)}${e.claim_name ? `, ${e.claim_name}` : ""}${e.place && e.place !== label && !(e.claim_name || "").endsWith(e.place) ? `, claim at ${e.place}` : ""}`;
+    const s = sectionOf(e);
+    if (!secs.has(s)) secs.set(s, { title: e.section_title || "", errata: [], conventions: [], findings: [] });
+    const rec = secs.get(s);
+    if (e.section_title) rec.title = e.section_title;
+    rec[what].push(`<a href="#${escapeHtml(e.anchor)}" title="${escapeHtml(tip)}">${escapeHtml(label)}</a>`);
+  };
+  errata.forEach((e) => add(e, "errata", e.corrected_display || e.place));
+  conventions.forEach((e) => add(e, "conventions", e.place));
+  findings.forEach((e) => add(e, "findings", e.place || e.title));
+  const TITLES = { 1: "Equations of motion", 2: "Body on a plane", 3: "Body on a sphere" };
+  const rows = [...secs.entries()].sort(([a], [b]) => a.localeCompare(b)).map(([s, r]) =>
+    `<tr id="index-${escapeHtml(s)}"><th scope="row">Section ${escapeHtml(s)}. ${escapeHtml(r.title || TITLES[s] || "")}</th>` +
+    `<td>${r.errata.join(" ") || "—"}</td><td>${r.conventions.join(" ") || "—"}</td><td>${r.findings.join(" ") || "—"}</td></tr>`);
+  return `<div class="table-wrap"><table class="eindex"><thead><tr><th scope="col">section</th>` +
+    `<th scope="col">misprints (${errata.length}): the corrected displays</th><th scope="col">conventions (${conventions.length})</th>` +
+    `<th scope="col">findings (${findings.length})</th></tr></thead><tbody>${rows.join("")}</tbody></table></div>`;
+}
+
+function grouped(list, render) {
+  const out = [];
+  let last = null;
+  for (const e of list) {
+    const s = sectionOf(e);
+    if (s !== last) {
+      out.push(`<h3 class="esec">Section ${escapeHtml(s)}${e.section_title ? `. ${escapeHtml(e.section_title)}` : ""}</h3>`);
+      last = s;
+    }
+    out.push(render(e));
+  }
+  return out.join("");
+}
+
+async function load(path) {
   try {
-    const list = await api(path);
-    el.innerHTML = list.length ? list.map(render).join("") : `<p>${empty}</p>`;
-    return list.length;
+    return await api(path);
   } catch (err) {
-    el.innerHTML = `<p class="error" role="alert">Could not load: ${escapeHtml(err.message)}</p>`;
-    return 0;
+    return err;
+  }
+}
+
+function show(id, list, html, empty) {
+  const el = document.getElementById(id);
+  if (list instanceof Error) {
+    el.innerHTML = `<p class="error" role="alert">Could not load: ${escapeHtml(list.message)}</p>`;
+    return [];
+  }
+  el.innerHTML = list.length ? html(list) : `<p>${empty}</p>`;
+  document.getElementById(`n-${id.replace("-list", "")}`).textContent = `(${list.length})`;
+  return list;
+}
+
+// a row's address opens it: on load and when the reader follows an index link
+function openTarget() {
+  const id = decodeURIComponent(location.hash.slice(1));
+  const el = id ? document.getElementById(id) : null;
+  if (el && el.tagName === "DETAILS") {
+    el.open = true;
+    el.scrollIntoView();
   }
 }
 
 await katexReady();
-const [nf, ne, nc] = await Promise.all([
-  show("findings-list", "/api/findings", findingHtml, "None found yet."),
-  show("errata-list", "/api/errata", erratumHtml, "No misprint found yet."),
-  show("conventions-list", "/api/conventions", conventionHtml, "None yet."),
-]);
+const [cases, ers, cvs, fds] = await Promise.all(
+  [load("/api/cases"), load("/api/errata"), load("/api/conventions"), load("/api/findings")]);
+if (Array.isArray(cases)) CASES = Object.fromEntries(cases.map((c) => [c.id, c.title]));
+const e = show("errata-list", ers, (l) => grouped(l, erratumHtml), "No misprint found yet.");
+const c = show("conventions-list", cvs, (l) => l.map(conventionHtml).join(""), "None yet.");
+const f = show("findings-list", fds, (l) => l.map(findingHtml).join(""), "None found yet.");
+document.getElementById("index-table").innerHTML = indexHtml(e, c, f);
 try {
   const h = await api("/api/health");
   const v = h.verification;
   document.getElementById("errata-status").textContent =
-    `${ne} misprinted formulas, ${nc} conventions, ${nf} findings` +
+    `${e.length} misprinted formulas, ${c.length} conventions, ${f.length} findings` +
     (v.state === "done" ? "." : ` — verification ${v.state}: ${v.cases_done} of ${v.cases_total} cases so far.`);
-} catch { /* the lists stand on their own */ }
+} catch { /* the tables stand on their own */ }
+window.addEventListener("hashchange", openTarget);
+openTarget();
 document.body.dataset.ready = "1";

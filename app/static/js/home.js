@@ -5,7 +5,7 @@
 
 import { api, escapeHtml } from "./api.js";
 import { textHtml } from "./latex.js";
-import { markHtml } from "./marks.js";
+import { markHtml, overview } from "./marks.js";
 
 function katexReady() {
   return new Promise((resolve) => {
@@ -87,27 +87,34 @@ async function showTable(id) {
 
 let lastDone = null;
 
+// the cells of both tables counted by mark, in words (GET /api/marks; the same sentence the
+// server wrote into the page)
+async function showSummary() {
+  const o = await overview();
+  if (o.summary) document.getElementById("mark-summary").textContent = o.summary;
+}
+
 async function showStatus() {
   const el = document.getElementById("verify-status");
   try {
     const h = await api("/api/health");
     const v = h.verification;
-    const done = `${v.cases_done} of ${v.cases_total} cases verified`;
+    const done = `checks have run for ${v.cases_done} of ${v.cases_total} cases`;
     if (lastDone !== null && v.cases_done !== lastDone) {
-      await Promise.all([showTable("plane"), showTable("sphere")]);   // new verdicts
+      await Promise.all([showTable("plane"), showTable("sphere"), showSummary()]);   // new marks
     }
     lastDone = v.cases_done;
     if (v.state === "running") setTimeout(showStatus, 4000);
     el.textContent = v.state === "running"
-      ? `Computing verdicts: ${v.cases_done} of ${v.cases_total} cases; the marks fill in as they come.`
-      : v.state === "done" ? `Verdicts: ${done}.`
-        : v.state === "unavailable" ? "Verification unavailable on this server: every claim shows as unchecked."
-          : `Verification ${v.state}: ${done}.`;
+      ? `Computing verdicts: ${v.cases_done} of ${v.cases_total} cases so far; the marks fill in as they come.`
+      : v.state === "done" ? ""
+        : v.state === "unavailable" ? "Checking is unavailable on this server: every cell shows as not checkable."
+          : `Checking ${v.state}: ${done}.`;
   } catch {
     el.textContent = "";
   }
 }
 
 await katexReady();
-await Promise.all([showTable("plane"), showTable("sphere"), showStatus()]);
+await Promise.all([showTable("plane"), showTable("sphere"), showStatus(), showSummary()]);
 document.body.dataset.ready = "1";

@@ -16,10 +16,34 @@ export function runQuery(req) {
   return q.toString();
 }
 
-/** Fill the case page's simulate form from a run query; true when the query asks for a run. */
+/** Once the page has drawn what a permalink asked for (document.body.dataset[flag] set,
+ * as case.js sets `run` and poincare.js sets `map`), scroll to it: a link to a run opens at
+ * its result, not at the top of the page 1,800 px above (issue 20). */
+export function scrollToResultWhenDone(flag, id) {
+  const go = () => {
+    const el = document.getElementById(id);
+    if (!el) return;
+    // below the site's sticky header, not under it
+    const head = document.querySelector("header.site");
+    const pos = head ? getComputedStyle(head).position : "";
+    const cover = pos === "sticky" || pos === "fixed" ? head.getBoundingClientRect().height : 0;
+    window.scrollTo({ top: el.getBoundingClientRect().top + window.scrollY - cover - 8 });
+  };
+  if (document.body.dataset[flag]) { go(); return; }
+  const seen = new MutationObserver(() => {
+    if (!document.body.dataset[flag]) return;
+    seen.disconnect();
+    go();
+  });
+  seen.observe(document.body, { attributes: true, attributeFilter: [`data-${flag}`] });
+}
+
+/** Fill the case page's simulate form from a run query; true when the query asks for a
+ * run (the page then scrolls to the results once the run is drawn). */
 export function applyRunQuery(search, $) {
   const q = new URLSearchParams(search);
   if (q.get("run") !== "1") return false;
+  scrollToResultWhenDone("run", "results");
   for (const el of document.querySelectorAll('input[data-group="p"]')) {
     const v = q.get(`p.${el.dataset.name}`);
     el.value = v === null ? "" : v;       // a parameter left out of the link takes its default
@@ -45,13 +69,15 @@ export function formQuery(form, extra = {}) {
   return q.toString();
 }
 
-export function applyFormQuery(form, search) {
+export function applyFormQuery(form, search, { flag, result } = {}) {
   const q = new URLSearchParams(search);
   for (const [k, v] of q.entries()) {
     const el = form.elements.namedItem(k);
     if (el && "value" in el) el.value = v;
   }
-  return q.get("run") === "1";
+  const run = q.get("run") === "1";
+  if (run && flag && result) scrollToResultWhenDone(flag, result);
+  return run;
 }
 
 export function setQuery(query) {

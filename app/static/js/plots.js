@@ -4,6 +4,13 @@
 "use strict";
 
 const CONFIG = { responsive: true, displaylogo: false, toImageButtonOptions: { scale: 2 } };
+// Where the parts of a plot go so that none covers another (tests/e2e/
+// test_plot_layout_browser.py): the title top left, the toolbar standing upright at the
+// right edge (lying flat it ran over the title on a phone), the legend at the very
+// bottom of the figure, under the x-axis title, pushing the bottom margin as it wraps.
+const LEGEND_BELOW = { orientation: "h", x: 0, xanchor: "left", yref: "container", y: 0,
+  yanchor: "bottom" };
+const MODEBAR = { orientation: "v" };
 const FONT = { family: "system-ui, -apple-system, Segoe UI, Roboto, sans-serif", size: 13, color: "#1b1f24" };
 const COLORS = ["#1f5f99", "#c2571a", "#2a8a3e", "#8e3ea8", "#b8860b", "#0f7f8a", "#c21c2c"];
 const PRETTY = { g1: "γ₁", g2: "γ₂", g3: "γ₃", M1: "M₁", M2: "M₂", M3: "M₃", r1: "r₁", r2: "r₂" };
@@ -20,7 +27,8 @@ function base(title, extra = {}) {
     margin: { l: 64, r: 18, t: 44, b: 48 },
     paper_bgcolor: "#fff",
     plot_bgcolor: "#fff",
-    legend: { orientation: "h", y: -0.18 },
+    legend: LEGEND_BELOW,
+    modebar: MODEBAR,
     ...extra,
   };
 }
@@ -121,8 +129,49 @@ export function plotGamma(el, run) {
   return window.Plotly.react(el, traces, layout, CONFIG);
 }
 
+// A teaching scene's check as it was measured (GET /api/scenes/{id}/checks/{k},
+// solvers/scenes/scene_checks.py): the traces are the very data of the verdict. The
+// title is the HTML heading above the plot and the legend sits on top of the plot area,
+// so no axis title, legend or toolbar is drawn over another (tests/e2e layout test).
+const ROLE = {
+  claim: (j) => ({ mode: "lines", line: { width: 2.4, color: COLORS[j % COLORS.length] } }),
+  contrast: () => ({ mode: "lines", line: { width: 1.6, color: "#8c959f", dash: "dash" } }),
+  limit: () => ({ mode: "lines", line: { width: 1.5, color: "#c21c2c", dash: "dot" }, hoverinfo: "skip" }),
+  raw: () => ({ mode: "lines", line: { width: 1, color: "#9fb7cf" } }),
+  event: () => ({ mode: "markers", marker: { size: 11, color: "#c21c2c", symbol: "diamond",
+    line: { width: 1, color: "#fff" } } }),
+};
+
+export function plotClaim(el, plot) {
+  let j = 0;
+  const traces = plot.traces.map((tr) => {
+    const style = (ROLE[tr.role] || ROLE.claim)(tr.role === "claim" ? j++ : 0);
+    const t = { type: "scatter", x: tr.x, y: tr.y, name: tr.name, ...style };
+    if (tr.mode === "markers") {
+      Object.assign(t, { mode: "markers", marker: { size: 4, color: style.line ? style.line.color : undefined } });
+      delete t.line;
+    }
+    return t;
+  });
+  const shapes = plot.vline ? [{ type: "line", xref: "x", yref: "paper", x0: plot.vline.x, x1: plot.vline.x,
+    y0: 0, y1: 1, line: { color: "#c21c2c", dash: "dot", width: 1.5 } }] : [];
+  const layout = {
+    font: FONT, paper_bgcolor: "#fff", plot_bgcolor: "#fff",
+    margin: { l: 72, r: 14, t: 8, b: 46 },
+    xaxis: { title: { text: plot.x_title, standoff: 6 }, zeroline: false, automargin: true },
+    yaxis: { title: { text: plot.y_title, standoff: 6 }, automargin: true,
+      ...(plot.log_y ? { type: "log", exponentformat: "power" } : { zeroline: true }),
+      ...(plot.y_range ? { range: plot.y_range } : {}) },
+    showlegend: true,
+    legend: { orientation: "h", x: 0, xanchor: "left", y: 1.02, yanchor: "bottom", font: { size: 12 } },
+    shapes,
+  };
+  // teaching plots: no toolbar over the legend (a class reads them, zooming is not the point)
+  return window.Plotly.react(el, traces, layout, { ...CONFIG, displayModeBar: false });
+}
+
 export function purge(el) {
   if (window.Plotly && el) window.Plotly.purge(el);
 }
 
-export { CONFIG, FONT, base };
+export { CONFIG, FONT, LEGEND_BELOW, MODEBAR, base };

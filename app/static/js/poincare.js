@@ -5,6 +5,7 @@
 
 import { api, download, escapeHtml, fmt } from "./api.js";
 import { applyFormQuery, csvText, formQuery, setQuery } from "./permalink.js";
+import { LEGEND_BELOW, MODEBAR } from "./plots.js";
 
 let lastMap = null;    // {request, result} of the last map computed here
 
@@ -14,8 +15,10 @@ const PALETTE = ["#1f5f99", "#c2571a", "#2a8a3e", "#8e3ea8", "#b8860b", "#0f7f8a
 const FIG_ORDER = ["ris-1", "ris-2", "ris-3", "ris-4"];
 // the paper's printed numbers (GET /api/printed-numbers): "ris-*1" -> "Fig. 3"
 let NUMBERS = {};
+// "(eq-d*2)" -> "(2.29)", not "((2.29))" (as catalogue/numbering.py cite())
 const cite = (text) => Object.keys(NUMBERS).sort((a, b) => b.length - a.length)
-  .reduce((t, lab) => t.split(`Fig ${lab}`).join(NUMBERS[lab]).split(lab).join(NUMBERS[lab]), String(text));
+  .reduce((t, lab) => t.split(`Fig ${lab}`).join(NUMBERS[lab]).split(`(${lab})`).join(NUMBERS[lab])
+    .split(lab).join(NUMBERS[lab]), String(text));
 
 function layout3d(title) {
   return {
@@ -23,11 +26,14 @@ function layout3d(title) {
     autosize: true,
     margin: { l: 0, r: 0, t: 36, b: 0 },
     showlegend: true,
-    legend: { font: { size: 11 } },
+    // the markers are tiny dots on the plot; in the legend they keep a visible size
+    legend: { font: { size: 11 }, itemsizing: "constant", ...LEGEND_BELOW },
+    modebar: MODEBAR,
     scene: {
-      xaxis: { title: { text: "L/G" }, range: [-1, 1] },
-      yaxis: { title: { text: "H/G" }, range: [-1, 1] },
-      zaxis: { title: { text: "l" }, range: [0, 2 * Math.PI] },
+      // five ticks an axis: the -1 of L/G and H/G no longer run into each other at the corner
+      xaxis: { title: { text: "L/G" }, range: [-1, 1], nticks: 5 },
+      yaxis: { title: { text: "H/G" }, range: [-1, 1], nticks: 5 },
+      zaxis: { title: { text: "l" }, range: [0, 2 * Math.PI], nticks: 5 },
       aspectmode: "cube",
     },
   };
@@ -126,6 +132,7 @@ async function compute(ev) {
       case: form.get("case"), energy: Number(form.get("energy")),
       section: `g=${Number(form.get("g0"))}`, direction: Number(form.get("direction")),
       trajectories: Number(form.get("trajectories")), points: Number(form.get("points")),
+      rtol: Number(form.get("rtol") || 1e-10),
       seed: Number(form.get("seed")), params, example: Object.keys(params).length === 0,
     };
   } catch (e) {
@@ -136,7 +143,9 @@ async function compute(ev) {
   button.disabled = true;
   bar.hidden = false;
   bar.value = 0;
-  status.textContent = "Starting…";
+  status.textContent = "Timing a pilot of the first trajectory…";
+  let estimate = null;
+  const started = performance.now();
   try {
     const res = await fetch("/api/poincare?stream=true", {
       method: "POST", headers: { "Content-Type": "application/json" }, body: JSON.stringify(body),
@@ -158,10 +167,19 @@ async function compute(ev) {
         buf = buf.slice(nl + 1);
         if (!line.trim()) continue;
         const ev = JSON.parse(line);
-        if (ev.event === "progress") {
+        if (ev.event === "estimate") {
+          // from a real pilot of this case on this server (routes/poincare.py _pilot)
+          estimate = ev.seconds;
+          status.textContent = `0 of ${ev.total} trajectories; about ${secs(ev.seconds)} in all` +
+            (ev.seconds > ev.deadline ? ` — more than the ${ev.deadline} s a request may take: ` +
+              "lower Trajectories or Points, or loosen rtol" : "");
+        } else if (ev.event === "progress") {
           bar.max = ev.total;
           bar.value = ev.done;
-          status.textContent = `${ev.done} of ${ev.total} trajectories`;
+          if (ev.done > 0) {
+            status.textContent = `${ev.done} of ${ev.total} trajectories` +
+              (ev.done < ev.total ? `; about ${secs(ev.remaining)} left` : "");
+          }
         } else if (ev.event === "error") {
           throw new Error(ev.detail);
         } else if (ev.event === "result") {
@@ -171,7 +189,9 @@ async function compute(ev) {
       if (done) break;
     }
     if (!result) throw new Error("the answer ended before the result");
-    status.textContent = `${result.trajectories.length} trajectories, ${result.points} points each`;
+    const took = (performance.now() - started) / 1000;
+    status.textContent = `${result.trajectories.length} trajectories, ${result.points} points each` +
+      ` in ${secs(took)}` + (estimate !== null ? ` (estimated ${secs(estimate)})` : "");
     await window.Plotly.react(document.getElementById("map-plot"), traces(result.trajectories, 2),
       layout3d(`${result.case}, E₀ = ${result.energy}, g = ${result.section.g0}`), CONFIG);
     table(result);
@@ -185,6 +205,10 @@ async function compute(ev) {
   } finally {
     button.disabled = false;
   }
+}
+
+function secs(s) {
+  return s < 1 ? `${Math.max(0.1, s).toFixed(1)} s` : `${Math.round(s)} s`;
 }
 
 function mapRows(result) {
@@ -207,7 +231,7 @@ const form = document.getElementById("map-form");
 form.addEventListener("submit", compute);
 cases().then(() => {
   // a permalink (?case=...&energy=...&run=1): fill the form and compute that map
-  if (applyFormQuery(form, location.search)) form.requestSubmit();
+  if (applyFormQuery(form, location.search, { flag: "map", result: "map-plot" })) form.requestSubmit();
 }).catch((e) => {
   const s = document.getElementById("map-status");
   s.textContent = `Could not load the cases: ${e.message}`;

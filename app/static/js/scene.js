@@ -138,7 +138,7 @@ export class Scene {
     const ax = (i, t) => ({ range: [lo[i], hi[i]], title: { text: t }, backgroundcolor: "#fff",
       gridcolor: "#eef0f2", zeroline: false });
     const layout = {
-      font: FONT, height: 600, margin: { l: 0, r: 0, t: 0, b: 0 }, showlegend: true,
+      font: FONT, margin: { l: 0, r: 0, t: 0, b: 0 }, showlegend: true,
       legend: { orientation: "h", y: 0.02 }, paper_bgcolor: "#fff",
       scene: { xaxis: ax(0, "x"), yaxis: ax(1, "y"), zaxis: ax(2, "z"), aspectmode: "manual",
         aspectratio: { x: span[0] / m, y: span[1] / m, z: span[2] / m },

@@ -1,9 +1,11 @@
 // The teaching scenes (GET /api/scenes, catalogue/scenes.yaml): a card per scene; Play
-// computes the animation (POST /api/scene) and plays it with the explorer's Scene class.
+// draws what the scene claims, as its checks measured it, then computes the animation
+// (POST /api/scene) and plays it with the explorer's Scene class.
 // /scenes#ID opens scene ID and plays it at once (the home page links there).
 "use strict";
 
 import { api, escapeHtml } from "./api.js";
+import { plotClaim, purge } from "./plots.js";
 import { Scene } from "./scene.js";
 
 let current = null;
@@ -22,26 +24,78 @@ function card(s) {
   return el;
 }
 
+let playToken = 0;
+
+// The claim first, from the data its check measured (GET /api/scenes/{id}/checks/{k}),
+// one plot per check as each arrives; the 3D animation after the first plot, so the
+// first plot never waits for the 3D (issue 20).
 async function play(id) {
   const s = presets.find((p) => p.id === id);
   if (!s) return;
+  const token = ++playToken;
+  const live = () => token === playToken;
   $("player").hidden = false;
   $("h-player").textContent = s.title;
+  $("scene-claim").textContent = s.claim;
   $("scene-text").innerHTML = `<p>${escapeHtml(s.explanation)}</p>
-    <p><strong>Shows:</strong> ${escapeHtml(s.claim)}</p>
-    <p class="status">Parameters: ${escapeHtml(Object.entries(s.scene.params).map(([k, v]) => `${k} = ${v}`).join(", "))}</p>`;
-  $("scene-status").classList.remove("error");
-  $("scene-status").textContent = "Computing the scene…";
+    <p class="status">Parameters: ${escapeHtml(Object.entries(s.scene.params).map(([k, v]) => `${k} = ${v}`).join(", "))}
+    · ${escapeHtml(s.scene.case)} · t = 0 … ${s.scene.t_end} · ${escapeHtml((s.paper_numbers || []).join(", "))}</p>`;
+  setStatus("");
   if (current) current.destroy();
   current = null;
-  $("player").scrollIntoView({ behavior: "smooth" });
+  delete document.body.dataset.playing;
+  delete document.body.dataset.claimed;
+  const box = $("scene-checks");
+  box.querySelectorAll(".claim-plot").forEach((el) => purge(el));
+  box.innerHTML = "";
+  $("player").scrollIntoView({ block: "start" });
+  const n = s.checks.length;
+  let anim = null;
+  for (let k = 0; k < n; k++) {
+    $("claim-progress").textContent = `Checking the claim on the scene's run: check ${k + 1} of ${n}…`;
+    let d;
+    try {
+      d = await api(`/api/scenes/${encodeURIComponent(s.id)}/checks/${k}`);
+    } catch (e) {
+      if (!live()) return;
+      $("claim-progress").textContent = `Check ${k + 1} of ${n} failed: ${e.message}`;
+      $("claim-progress").classList.add("error");
+      break;
+    }
+    if (!live()) return;
+    const fig = document.createElement("figure");
+    fig.className = "claim";
+    fig.dataset.kind = d.kind;
+    fig.innerHTML = `<figcaption><strong>${escapeHtml(d.plot ? d.plot.title : d.kind)}</strong>
+      <span class="verdict ${d.passed ? "pass" : "fail"}">${d.passed ? "✓" : "✗"} ${escapeHtml(d.plot ? d.plot.headline : "")}</span></figcaption>
+      <div class="claim-plot" data-testid="claim-plot" data-kind="${escapeHtml(d.kind)}"></div>
+      <p class="caption">${escapeHtml(d.caption)}</p>
+      <details><summary>What the check measured</summary><p class="status">${escapeHtml(d.detail)}</p></details>`;
+    box.appendChild(fig);
+    if (d.plot) await plotClaim(fig.querySelector(".claim-plot"), d.plot);
+    if (k === 0) {
+      document.body.dataset.claimed = s.id;
+      anim = animate(s, live);      // the 3D starts once the first plot is drawn
+    }
+  }
+  if (live()) $("claim-progress").textContent = "";
+  if (anim) await anim;
+}
+
+function setStatus(text, error = false) {
+  $("scene-status").textContent = text;
+  $("scene-status").classList.toggle("error", error);
+}
+
+async function animate(s, live) {
+  setStatus("Computing the 3D animation…");
   try {
     const sc = s.scene;
     const d = await api("/api/scene", { method: "POST", body: {
       case: sc.case, params: sc.params, state: sc.state, t_end: sc.t_end, frames: sc.samples,
     } });
-    $("scene-status").textContent = (d.status !== "ok" ? `${d.status}: ${d.message}. ` : "") +
-      `${d.t.length} frames.`;
+    if (!live()) return;
+    setStatus((d.status !== "ok" ? `${d.status}: ${d.message}. ` : "") + `${d.t.length} frames.`);
     current = new Scene($("scene-plot"), d, {
       onFrame: (f, t) => {
         $("scrub").value = String(f);
@@ -49,54 +103,13 @@ async function play(id) {
       },
     });
     await current.render();
-    await plotSeries(s, d);
     $("scrub").max = String(d.t.length - 1);
     current.play();
     $("play").textContent = "Pause";
     document.body.dataset.playing = s.id;
   } catch (e) {
-    $("scene-status").textContent = `The scene failed: ${e.message}`;
-    $("scene-status").classList.add("error");
+    if (live()) setStatus(`The 3D animation failed: ${e.message}`, true);
   }
-}
-
-// What the scene's text promises, against time, beside the 3D view (scenes.yaml `plot`)
-const SERIES = {
-  vertical_spin: { title: "Spin about the vertical against time",
-    y: "spin −(ω, γ) (1 / time unit; > 0 counterclockwise from above)" },
-  tilt: { title: "Tilt of the disk against time",
-    y: "sin θ = √(γ₁² + γ₂²), θ axis to vertical" },
-};
-
-async function plotSeries(s, d) {
-  const el = $("scene-series");
-  const ys = s.plot ? (d.series || {})[s.plot] : null;
-  el.hidden = !ys;
-  if (!ys) { window.Plotly.purge(el); return; }
-  const meta = SERIES[s.plot];
-  const range = s.plot === "tilt" ? { range: [0, 1.05] } : {};
-  const t = d.t.slice(0, ys.length);
-  const traces = [{ x: t, y: ys, mode: "lines", name: "per frame", line: { color: "#1f5f99", width: 1.5 } }];
-  const rev = (s.checks || []).find((c) => c.kind === "spin_reversal");
-  if (s.plot === "vertical_spin" && rev && t.length > 2) {
-    // averaged over the check's window, as the spin_reversal check does: the rocking
-    // oscillation hides the slow spin that reverses
-    const k = Math.max(1, Math.round(rev.window / (t[1] - t[0])));
-    const avg = [], ta = [];
-    for (let i = 0; i + k <= ys.length; i++) {
-      avg.push(ys.slice(i, i + k).reduce((a, b) => a + b, 0) / k);
-      ta.push(t[i + Math.floor(k / 2)]);
-    }
-    traces.push({ x: ta, y: avg, mode: "lines", name: `averaged over ${rev.window} time units`,
-      line: { color: "#c2571a", width: 3 } });
-  }
-  await window.Plotly.react(el, traces, {
-    title: { text: meta.title, font: { size: 14 }, x: 0.02 },
-    xaxis: { title: { text: "time t (scene's time units)" } },
-    yaxis: { title: { text: meta.y }, zeroline: true, ...range },
-    margin: { l: 64, r: 12, t: 40, b: 48 }, showlegend: traces.length > 1,
-    legend: { orientation: "h", y: -0.3 },
-  }, { responsive: true, displaylogo: false });
 }
 
 function route() {

@@ -6,6 +6,7 @@
 
 import { api, download, escapeHtml } from "./api.js";
 import { csvText } from "./permalink.js";
+import { LEGEND_BELOW, MODEBAR } from "./plots.js";
 
 const $ = (id) => document.getElementById(id);
 const OURS = ["dop853", "vern9", "dop853+proj", "vern9+proj", "gauss8"];
@@ -87,9 +88,13 @@ async function main() {
     const logAxis = (title) => ({ type: "log", title: { text: title }, exponentformat: "power",
       showexponent: "all", dtick: 1 });
     window.Plotly.newPlot(`plot-${slug}`, traces(runs), {
-      xaxis: logAxis("error: max relative deviation from the reference (dimensionless)"),
+      // a phone gets the short form of the x-axis title: the long one is wider than the plot
+      xaxis: logAxis(window.innerWidth < 600 ? "error (max relative deviation)"
+        : "error: max relative deviation from the reference (dimensionless)"),
       yaxis: { ...logAxis("wall time (ms)"), dtick: undefined },
-      margin: { t: 10, r: 10 }, legend: { orientation: "h" },
+      // the legend under the x-axis title, the toolbar upright at the right edge: the
+      // legend no longer covers the x-axis title (tests/e2e/test_plot_layout_browser.py)
+      margin: { t: 10, r: 34 }, legend: LEGEND_BELOW, modebar: MODEBAR,
     }, { responsive: true, displaylogo: false });
   }
   showDownloads(data);

@@ -3,6 +3,7 @@
 from solvers.verify.checks import (  # noqa: F401
     formula_free,
     negative,
+    nonexistence,
     ode,
     pointwise,
     recorded,

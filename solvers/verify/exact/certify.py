@@ -1,14 +1,25 @@
 """Exact certifiers of the pointwise checks (solvers/verify/checks/pointwise.py).
 
-Each certifier evaluates the same residual as its complex-step check, but exactly: at k
-random rational points (points.py) the residual, derivatives included (forward-mode jets
-over Q, jet.py), is zero or not. A nonzero value is a proof that the formula fails, with the
-point as witness; zero at all k points certifies it up to the Schwartz-Zippel bound
+Each certifier evaluates the same residual as its complex-step check, but exactly.
 
-    P(a nonzero residual vanishes at all k points) <= (deg / N)^k,
+1. A proof where the algebra allows it (`prove`, symbolic.py): the residual computed as a
+   rational function of the free coordinates; if its numerator is the zero polynomial the
+   identity holds, with certainty.
+2. Otherwise, at k = {K} random rational points (points.py) the residual, derivatives
+   included (forward-mode jets over Q, jet.py), is zero or not. A nonzero value is a proof
+   that the formula fails, with the point as witness; zero at all k points certifies it up
+   to the Schwartz-Zippel bound
 
-deg an upper bound of the total degree of the residual's numerator in the drawn free
-coordinates (tracked through the arithmetic, jet.py) and N = 2^40 grid values per coordinate.
+       P(a nonzero residual vanishes at all k points) <= (deg / N)^k,
+
+   deg an upper bound of the total degree of the residual's numerator in the drawn free
+   coordinates (tracked through the arithmetic, jet.py) and N = 2^{BITS} exact grid
+   rationals per coordinate (points.GridRng; parameters included). A record whose degree is
+   not known (a value zero at the point used as the zero function, jet.lose_degree) states
+   no probability and is not counted as certified.
+
+The points are seeded by the claim id: every certificate is reproducible, but the points
+are not random against someone who chooses a formula after seeing them.
 """
 
 import zlib
@@ -16,12 +27,20 @@ import zlib
 import numpy as np
 
 from solvers.kernels import layout as L
-from solvers.verify.exact.jet import Jet, NotRational, q_str
+from solvers.verify.exact.jet import Jet, NotRational, _Lost, q_str
 from solvers.verify.exact.linalg import exact_linalg
-from solvers.verify.exact.points import BITS, GridRng, rational_state
-from solvers.verify.exact.radical import Radical
+from solvers.verify.exact.points import BITS, N_GRID, GridRng, rational_state
+from solvers.verify.exact.radical import Radical, Strict
 
 K_POINTS = 3          # points per certificate: the bound below is stated for this k
+PROOF_SECONDS = 4.0   # symbolic budget per record (symbolic.py; then the k-point certificate)
+SEEDED = ("The points are seeded by the claim id: reproducible, but not random against "
+          "someone who picks a formula after seeing them.")
+PROOF_METHOD = ("symbolic: the same computation with every free coordinate (grid draws of "
+                "the parameters, gamma's Pythagorean angle parameters, M, ...) a symbol; "
+                "values and derivatives are rational functions N/D, N and D in Z[z] "
+                "(python-flint fmpz_mpoly, reduced by their gcd), radicals in Q(z)(sqrt R)")
+__doc__ = __doc__.replace("{K}", str(K_POINTS)).replace("{BITS}", str(BITS))
 METHOD = ("exact rational arithmetic (python-flint fmpq) with forward-mode derivatives "
           "(first-order jets over Q) at random rational points; gamma rational on |gamma| = 1 "
           "(Pythagorean angles), the ellipsoid's and the disk's square roots made rational "
@@ -79,50 +98,144 @@ def residual_vector(res):
 def _draw_point(Pf_draw, rng, tries=50):
     """Parameters and a state; a draw the model rejects (triangle inequality, fit) is
     redrawn, as solvers.verify.params does."""
+    from solvers.verify.exact.symbolic import mark, release
     for _ in range(tries):
+        n0 = mark()
         try:
-            return rational_state(Pf_draw(rng), rng)
+            with rng.drawing():
+                Pf = Pf_draw(rng)
+            return rational_state(Pf, rng)
         except (RuntimeError, NotRational):
+            release(n0)          # the rejected draw's symbols are not coordinates
             continue
     raise Unsupported("no valid rational point in 50 draws")
 
 
-def run_points(seed_key, Pf_draw, residual_fn, k=K_POINTS):
-    """Evaluate residual_fn(P, y) -> list of Jets at k points. Returns the `exact` dict."""
-    rng = GridRng(zlib.crc32(seed_key.encode()))
-    deg = 0
-    for _ in range(k):
-        P, y = _draw_point(Pf_draw, rng)
+def _parts(r):
+    return r.parts() if isinstance(r, Radical) else (Jet.const(r),)
+
+
+def _evaluate(residual_fn, P, y):
+    """The residual at one point, strictly first (radical.Strict: no sqrt(r) coefficient
+    dropped unless it is the zero function); if that leaves Q(sqrt r), again with drops
+    allowed. Returns (residual list, reasons the degree bound was lost)."""
+    for strict in (True, False):
+        _Lost.reasons = []
+        Strict.on = strict
         try:
             with exact_linalg():
-                res = residual_fn(P, y)
+                return residual_fn(P, y), list(_Lost.reasons)
+        except NotRational:
+            if not strict:
+                raise
         except ZeroDivisionError as e:
             raise Unsupported(f"singular at a rational point: {e}") from e
+        finally:
+            Strict.on = False
+    raise AssertionError("unreachable")
+
+
+def prove(seed_key, Pf_draw, residual_fn, seconds=PROOF_SECONDS):
+    """The symbolic proof (symbolic.py): the same draw with every free coordinate a symbol,
+    the same residual as rational functions. Returns (status, info): status "proved" (every
+    part of the residual is the zero function), "nonzero" (a part is a nonzero rational
+    function: info = (its numerator's total degree, the tracked bound)), or "no" (info: why
+    no proof was attempted to the end)."""
+    from solvers.verify.exact.symbolic import TooBig, symbolic
+    rng = GridRng(zlib.crc32(seed_key.encode()))
+    try:
+        with symbolic(seconds) as _:
+            P, y = _draw_point(Pf_draw, rng)
+            with exact_linalg():
+                res = residual_fn(P, y)
+            parts = [c for r in res for c in _parts(r)]
+            for c in parts:
+                c._known()
+            nvars = len(_symbols())
+            if all(_rf(c.v).is_zero() for c in parts):
+                return "proved", nvars
+            true = max(_rf(c.v).degree() for c in parts)
+            return "nonzero", (true, max(c.n for c in parts))
+    except TooBig as e:
+        return "no", f"too large to expand within the budget ({e})"
+    except Unsupported as e:
+        return "no", str(e)
+    except NotRational as e:
+        return "no", f"not a rational function after the substitutions: {e}"
+    except ZeroDivisionError as e:
+        return "no", f"a denominator is the zero function: {e}"
+    except (TypeError, ValueError, AttributeError, LookupError, ArithmeticError) as e:
+        return "no", f"not symbolically evaluable: {type(e).__name__}: {e}"
+
+
+def _symbols():
+    from solvers.verify.exact.symbolic import S
+    return S.values
+
+
+def _rf(v):
+    from solvers.verify.exact.symbolic import RF
+    return v if isinstance(v, RF) else RF.of(v)
+
+
+def bound_text(deg, k=K_POINTS):
+    p = (deg / N_GRID) ** k
+    return (f"Schwartz-Zippel: residual numerator of total degree <= {deg} in the free "
+            f"coordinates, each uniform over N = 2^{BITS} exact grid rationals; "
+            f"P(a nonzero residual vanishes at all k = {k} points) <= "
+            f"({deg}/2^{BITS})^{k} = {p:.1e}. {SEEDED}")
+
+
+def proof_dict(nvars):
+    return {"holds": True, "kind": "proof", "points": 1, "method": PROOF_METHOD,
+            "bound": (f"proved: the residual's numerator, expanded over Q in {nvars} free "
+                      "coordinates, is the zero polynomial (certain, no probability; on the "
+                      "region of parameter space where the signs taken at the drawn point "
+                      "hold)"),
+            "witness": None}
+
+
+def run_points(seed_key, Pf_draw, residual_fn, k=K_POINTS, proof=None, try_proof=False):
+    """The `exact` dict of one record: its symbolic proof (`proof`: the stored one,
+    proofs.py; or computed now if try_proof), else residual_fn(P, y) -> list of Jets at k
+    points with the Schwartz-Zippel bound."""
+    if proof is not None and proof["proved"]:
+        return proof_dict(proof["variables"])
+    why_no_proof = proof["reason"] if proof is not None else \
+        "no current stored symbolic proof (solvers/verify/exact/proofs.json)"
+    if try_proof:
+        status, info = prove(seed_key, Pf_draw, residual_fn)
+        if status == "proved":
+            return proof_dict(info)
+        why_no_proof = (f"the residual is a nonzero rational function (numerator of degree "
+                        f"{info[0]})" if status == "nonzero" else info)
+    rng = GridRng(zlib.crc32(seed_key.encode()))
+    deg, lost = 0, []
+    for _ in range(k):
+        P, y = _draw_point(Pf_draw, rng)
+        res, why = _evaluate(residual_fn, P, y)
+        lost += why
         for r in res:
-            parts = r.parts() if isinstance(r, Radical) else (r,)
+            parts = _parts(r)
             for c in parts:
                 c._known()
                 deg = max(deg, c.n)
             if any(c.v != 0 for c in parts):
                 text = q_str(r.a) + " + " + q_str(r.c) + f" * sqrt({q_str(r.r)})" \
                     if isinstance(r, Radical) else q_str(r)
-                return {"holds": False, "points": 1, "method": METHOD,
+                return {"holds": False, "kind": "witness", "points": 1, "method": METHOD,
                         "bound": "exact: a nonzero residual disproves the identity",
-                        "witness": {"point": point_json(P, y), "residual": text}}
-    if deg == 0:
-        # every residual is a function of the seeded state, so a tracked bound of 0 means
-        # the degree was lost on the way (a rational constant re-entered as a fresh jet);
-        # the exact zeros stand, but no probability is claimed for them
-        return {"holds": True, "points": k, "method": METHOD, "bounded": False,
-                "bound": (f"exact zeros at {k} points; the degree of the residual was not "
-                          "tracked through this computation, so no Schwartz-Zippel "
-                          "probability is stated and the record does not count as certified"),
-                "witness": None}
-    N = 2 ** BITS
-    p = (deg / N) ** k
-    return {"holds": True, "points": k, "method": METHOD,
-            "bound": (f"Schwartz-Zippel: residual numerator of total degree <= {deg} in the "
-                      f"free coordinates, each uniform over N = 2^{BITS} grid values; "
-                      f"P(a nonzero residual vanishes at all {k} points) <= "
-                      f"({deg}/2^{BITS})^{k} = {p:.1e}"),
-            "witness": None}
+                        "witness": {"point": point_json(P, y), "residual": text},
+                        "no_proof": why_no_proof}
+    if deg == 0 or lost:
+        why = lost[0] if lost else ("the tracked bound is 0 although the residual is a "
+                                    "function of the drawn point")
+        return {"holds": True, "kind": "zeros", "points": k, "method": METHOD,
+                "bounded": False,
+                "bound": (f"exact zeros at {k} points; the degree of the residual is not "
+                          f"known ({why}), so no Schwartz-Zippel probability is stated and "
+                          "the record does not count as certified"),
+                "witness": None, "no_proof": why_no_proof}
+    return {"holds": True, "kind": "certificate", "points": k, "method": METHOD,
+            "bound": bound_text(deg, k), "degree": deg, "witness": None,
+            "no_proof": why_no_proof}

@@ -19,6 +19,7 @@ constant, which may be added to but never multiplied: the checks only use d ln r
 
 from fractions import Fraction
 from numbers import Rational
+from typing import ClassVar
 
 import numpy as np
 from flint import fmpq, fmpz
@@ -37,7 +38,7 @@ def q_of(x) -> fmpq:
     """A Python/NumPy number as an exact rational. A float is read as the simplest fraction
     with denominator <= 10^6 that rounds to it (1/3 written as 1.0/3 in a formula is meant
     as 1/3), else as the exact binary fraction it is."""
-    if isinstance(x, fmpq):
+    if isinstance(x, fmpq) or type(x).__name__ == "RF":
         return x
     if isinstance(x, (int, fmpz)):
         return fmpq(x)
@@ -53,10 +54,17 @@ def q_of(x) -> fmpq:
 
 
 def _is_square(v: fmpq) -> bool:
+    if type(v).__name__ == "RF":        # symbolic.py: a square as a function
+        return v.sqrt_or_none() is not None
     return v >= 0 and fmpz(v.p).sqrtrem()[1] == 0 and fmpz(v.q).sqrtrem()[1] == 0
 
 
 def _sqrt_q(v: fmpq) -> fmpq:
+    if type(v).__name__ == "RF":
+        s = v.sqrt_or_none()
+        if s is None:
+            raise NotRational("square root of a rational function that is not a square")
+        return s
     if v < 0:
         raise NotRational(f"square root of a negative rational {v}")
     try:
@@ -69,7 +77,7 @@ class Jet:
     __slots__ = ("d", "g", "n", "unknown", "v")
 
     def __init__(self, v, g=None, n=0, d=0, unknown=False):
-        self.v = v if isinstance(v, fmpq) else q_of(v)
+        self.v = v if isinstance(v, fmpq) or type(v).__name__ == "RF" else q_of(v)
         self.g = g              # tuple of fmpq (partials) or None (all zero)
         self.n, self.d = n, d
         self.unknown = unknown
@@ -132,6 +140,11 @@ class Jet:
             return o
         if _is_zero_const(o) or _is_zero_const(self):
             return Jet(ZERO)          # 0 * theta: a formula's broadcast, not a use of theta
+        if (self.unknown and _is_zero_value(o)) or (o.unknown and _is_zero_value(self)):
+            # a zero at the point that is not the zero constant, times an unknown value:
+            # the product is zero here, but its degree as a function is not tracked
+            lose_degree("a value zero at the point multiplied an unknown constant")
+            return Jet(ZERO)
         self._known()
         o._known()
         g = _comb(self.g, o.v, o.g, self.v)
@@ -271,6 +284,12 @@ class Jet:
         self._known()
         return float(Fraction(int(self.v.p), int(self.v.q)))
 
+    def structural_zero(self) -> bool:
+        """The zero function, not only zero at the point: value and partials zero with
+        numerator degree 0 (a constant), or an RF that is the zero function."""
+        return not self.unknown and _is_zero_value(self) and (
+            self.n == 0 or type(self.v).__name__ == "RF")
+
     def __bool__(self):
         return self.v != 0
 
@@ -290,7 +309,24 @@ def _lift(o):
 
 
 def _is_zero_const(x):
-    return not x.unknown and x.v == 0 and x.g is None
+    """The constant 0 (degree 0, no partials): 0 * anything is 0 as a function too."""
+    return not x.unknown and x.g is None and x.v == 0 and (
+        x.n == 0 or type(x.v).__name__ == "RF")
+
+
+def _is_zero_value(x):
+    return x.v == 0 and (x.g is None or all(y == 0 for y in x.g))
+
+
+class _Lost:
+    """Reasons the degree bound stopped describing the computed function (a zero at the
+    point used as if it were the zero function). certify.run_points reads and resets it:
+    such a record states no probability."""
+    reasons: ClassVar[list[str]] = []
+
+
+def lose_degree(why: str):
+    _Lost.reasons.append(why)
 
 
 def _comb(ga, ca, gb, cb):

@@ -17,11 +17,19 @@ positive reals); anything else (a sum over two independent roots, a root of a ro
 the field and raises NotRational.
 """
 
-from solvers.verify.exact.jet import Jet, NotRational, _is_square, _lift
+from solvers.verify.exact.jet import Jet, NotRational, _is_square, _lift, lose_degree
 
 
 def _zero(j: Jet) -> bool:
     return j.v == 0 and (j.g is None or all(x == 0 for x in j.g))
+
+
+class Strict:
+    """In strict mode a sqrt(r) coefficient that vanishes at the point without being the
+    zero function is kept (the number stays in Q(sqrt r), both parts with their degree
+    bounds); certify.run_points evaluates strictly first and only falls back to dropping it
+    (and to stating no probability) when the strict computation leaves the field."""
+    on = False
 
 
 class Radical:
@@ -193,5 +201,18 @@ class Radical:
 
 
 def _norm(x: Radical):
-    """Back to a rational jet when the root has cancelled."""
-    return x.a if _zero(x.c) else x
+    """Back to a rational jet when the root has cancelled.
+
+    Only the zero function may be dropped without losing the degree bound: a coefficient c
+    that is zero at the point (value and partials) but not identically is what a checked
+    identity c1 - c2 looks like, and dropping it would state the degree of the rational part
+    alone (issue 18: 16 stated where the true degree is 8,693). Such a drop is recorded, so
+    the record states no probability (or the strict mode keeps the radical)."""
+    if not _zero(x.c):
+        return x
+    if x.c.structural_zero():
+        return x.a
+    if Strict.on:
+        return x
+    lose_degree("a sqrt(r) coefficient vanished at the point without being the zero function")
+    return x.a

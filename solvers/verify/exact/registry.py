@@ -52,7 +52,8 @@ def _found_density(catalogue, case, claim, key):
     from solvers.verify.checks.negative import case_params
     res = X.found_density(catalogue, claim, False, case.id)
     try:
-        out = run_points(key, lambda rng: case_params(case, claim, rng), res)
+        out = run_points(key, lambda rng: case_params(case, claim, rng), res,
+                         proof=_stored_proof(catalogue, case, claim, False))
     except (Unsupported, NotRational) as e:
         _REASONS[key] = f"not algebraic at our rational points: {e}"
         return None
@@ -79,31 +80,66 @@ def why_not(claim_id: str) -> str | None:
     return _REASONS.get(claim_id)
 
 
-def exact_for(catalogue, case, claim, corrected=False):
-    """The `exact` field of the record of `claim` (of its project correction if
-    `corrected`): None where no exact test applies (reason: why_not(claim.id))."""
-    from solvers.verify.params import draw
-    key = claim.id + ("/corrected" if corrected else "")
+def _builder(catalogue, case, claim):
+    """(residual builder, negative?) of a claim, or (None, reason)."""
     name = claim.check.value
     args = claim.check_args
     if name == "reduced_agrees" and args.transform is not None \
             and args.against == "chaplygin_system":     # as checks/pointwise.check_reduced
-        build, negative = X.transform, False
-    elif name == "reduced_agrees" and _second_order(catalogue, claim):
+        return X.transform, False
+    if name == "reduced_agrees" and _second_order(catalogue, claim):
         from solvers.verify.exact.taylor import second_order  # eq2.9, eq2.21, eq3.4
-        build, negative = second_order, False
-    elif name == "identity" and args.formula in _rate_formulas():
-        build, negative = X.rate_identity, False
-    elif name in CERTIFIERS:
-        build, negative = CERTIFIERS[name]
-    elif name == "negative_measure" and case.id in _candidates():
-        return _found_density(catalogue, case, claim, key)
-    else:
-        _REASONS[key] = NUMERIC.get(name, f"no exact certifier for check {name}")
+        return second_order, False
+    if name == "identity" and args.formula in _rate_formulas():
+        return X.rate_identity, False
+    if name in CERTIFIERS:
+        return CERTIFIERS[name]
+    return None, NUMERIC.get(name, f"no exact certifier for check {name}")
+
+
+def residual_job(catalogue, case, claim, corrected=False):
+    """(seed key, parameter draw, residual) of the record, as exact_for runs it; None where
+    no exact test applies. proofs.generate proves these."""
+    from solvers.verify.params import draw
+    key = claim.id + ("/corrected" if corrected else "")
+    if claim.check.value == "negative_measure" and case.id in _candidates():
+        from solvers.verify.checks.negative import case_params
+        res = X.found_density(catalogue, claim, False, case.id)
+        return key, (lambda rng: case_params(case, claim, rng)), res
+    build, _ = _builder(catalogue, case, claim)
+    if build is None:
         return None
     try:
         res = build(catalogue, claim, corrected)
-        out = run_points(key, lambda rng: draw(case, claim, rng), res)
+    except (Unsupported, NotRational, TypeError, ValueError, AttributeError, LookupError):
+        return None
+    return key, (lambda rng: draw(case, claim, rng)), res
+
+
+def _stored_proof(catalogue, case, claim, corrected):
+    from solvers.verify.exact import proofs
+    return proofs.lookup(claim.id + ("/corrected" if corrected else ""),
+                         proofs.fingerprint(catalogue, case, claim, corrected))
+
+
+def exact_for(catalogue, case, claim, corrected=False):
+    """The `exact` field of the record of `claim` (of its project correction if
+    `corrected`): None where no exact test applies (reason: why_not(claim.id)). A record
+    with a current stored symbolic proof (proofs.py) carries it."""
+    from solvers.verify.params import draw
+    key = claim.id + ("/corrected" if corrected else "")
+    name = claim.check.value
+    args = claim.check_args
+    if name == "negative_measure" and case.id in _candidates():
+        return _found_density(catalogue, case, claim, key)
+    build, negative = _builder(catalogue, case, claim)
+    if build is None:
+        _REASONS[key] = negative
+        return None
+    proof = _stored_proof(catalogue, case, claim, corrected)
+    try:
+        res = build(catalogue, claim, corrected)
+        out = run_points(key, lambda rng: draw(case, claim, rng), res, proof=proof)
         if not out["holds"] and name == "measure" and not corrected:
             alt = X.ALTERNATE.get(catalogue.formula(args.formula).variables.value)
             if alt is not None:      # as the complex-step check: the other natural reading

@@ -102,12 +102,18 @@ class T2:
         raise NotRational("float() of an exact value")
 
 
+def _directed(y, vj):
+    n = max(y.n + vj.d, vj.n + y.d)
+    return Jet(y.v, (vj.v,), n, y.d + vj.d)
+
+
 def flow_series(P, y, field):
     """y(t) to second order as T2s: y + t v + t^2 (Dv v)/2, all exact."""
     n = len(y)
     v = field(P, np.array([Jet.const(c).value() for c in y], dtype=object))
-    yd = np.array([Jet(Jet.const(y[j]).v, (v[j].v,), Jet.const(y[j]).n, Jet.const(y[j]).d)
-                   for j in range(n)], dtype=object)
+    # y_j seeded in the direction v: value y_j, partial v_j, over the common denominator of
+    # both (the partial's degree is v_j's, not y_j's)
+    yd = np.array([_directed(Jet.const(y[j]), v[j]) for j in range(n)], dtype=object)
     vd = field(P, yd)
     return np.array([T2(Jet.const(y[j]).value(), v[j].value(), vd[j].partial(0) / 2)
                      for j in range(n)], dtype=object)

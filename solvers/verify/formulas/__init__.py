@@ -7,6 +7,7 @@ from solvers.verify.formulas import (  # noqa: F401
     chaplygin,
     flat_base,
     general,
+    hamiltonian_sphere,
     plane_bodies,
     reduced_flat,
     reduced_plane,

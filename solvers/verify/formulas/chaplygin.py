@@ -83,10 +83,14 @@ def chaplygin_bracket(P, x):
     return np.block([[top, mg], [mg, zero]])
 
 
+# The Chaplygin-ball paragraph states no orientation of its bracket; the paper writes
+# dx/dtau = {x, H} only for the body of revolution (the theorem on eq2-*3). Under that
+# orientation the printed sign gives the time-reversed field; under dx/dtau = {H, x} (the
+# catalogue's holds_under) the printed bracket itself holds.
 SIGN_NOTE = ("the opposite overall sign, {M_i, M_j} = -eps_ijk ... (equivalently the printed "
-             "bracket read with dx/d tau = {H, x}): with the paper's own convention "
-             "dx/d tau = {x, H} (theorem on eq2-*3) the printed sign gives the time-reversed "
-             "field, -v/rho")
+             "bracket read with dx/d tau = {H, x}): read with dx/d tau = {x, H}, the "
+             "orientation the paper writes for the body of revolution (theorem on eq2-*3), "
+             "the printed sign gives the time-reversed field, -v/rho")
 
 
 @corrected("chaplygin_bracket", SIGN_NOTE)

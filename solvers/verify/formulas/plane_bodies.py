@@ -99,6 +99,14 @@ def yaroschuk_density(P, x):
     return (_mu(P) + r @ r) ** 1.5
 
 
+@formula("yaroschuk_density_table")
+def yaroschuk_density_table(P, x):
+    """Table 1's measure cell of the spherical-inertia body as printed: rho = (mu + m r^2)^(3/2)
+    in (omega, gamma); the table keeps the m that the text's eq2.19 drops."""
+    r = P.r(x[3:6])
+    return (_mu(P) + P.m * (r @ r)) ** 1.5
+
+
 @corrected("yaroschuk_density", "(mu + m r^2)^(3/2): the mass is missing in eq2.19 (Table 1 "
            "prints it); = rho_M det I_Q / mu with rho_M = (mu + m r^2)^(-1/2) of eq2.30")
 def yaroschuk_density_corrected(P, x):

@@ -1,0 +1,307 @@
+"""The HTTP server of the explorer: uvicorn with a connection protocol that bounds what a
+client can hold (issue 21). `rolling serve` and app.testing.live_server start it through
+`run()`; `python -m app.core.server --port 8000` does the same.
+
+uvicorn's default parser (httptools) accepts headers of any size and keeps a connection
+that sent half a header or half a body open forever (measured: four 50 MB headers answered
+200 with the server 265 MB larger; 500 half-bodies and 200 half-heads still open after
+30 s). Its h11 parser has a size limit (`h11_max_incomplete_event_size`) and the rest is
+added here, on h11's protocol class:
+
+- the request line and headers: at most `max_header_bytes` (431 and close), at most
+  `max_headers` fields (431, app.core.guards.HeaderLimit), within `header_timeout_s` of
+  the connection or of the first byte of the request (408 and close);
+- a body: a gap of `body_timeout_s` without a byte closes the connection;
+- at most `max_connections` open connections: at the cap a new connection evicts the
+  oldest one that holds no request, first among those that never completed one (half a
+  head, nothing sent), then among idle keep-alive ones, so a flood of stalled sockets
+  cannot lock out /api/health; with none to evict it is closed at once;
+- closing while the client is still sending (a 413, a 431, a timeout): reading stops,
+  the answer is flushed, the write side is shut (the client sees the end of the answer),
+  and the socket is closed `linger_s` later. The unread bytes stay in the kernel's
+  buffers and never reach the event loop; closing at once would reset the connection
+  and could destroy the answer before the client read it.
+- uvicorn's own error answers (400 on a malformed request, 431, 408) carry the security
+  headers of every other answer (app.core.guards.HEADERS).
+
+The figures that chose h11 with these guards over httptools are in bench/results/load.txt.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import logging
+import resource
+import time
+from dataclasses import dataclass
+
+import h11
+from uvicorn.protocols.http.h11_impl import H11Protocol
+
+from app.core.guards import HEADERS
+
+log = logging.getLogger("rolling.server")
+
+
+@dataclass(frozen=True)
+class Limits:
+    max_connections: int = 1000
+    max_header_bytes: int = 64 * 1024
+    header_timeout_s: float = 10.0
+    body_timeout_s: float = 10.0
+    keep_alive_s: float = 5.0
+    linger_s: float = 1.0
+
+    @classmethod
+    def from_settings(cls, s) -> Limits:
+        return cls(max_connections=s.max_connections, max_header_bytes=s.max_header_bytes,
+                   header_timeout_s=s.header_timeout_s, body_timeout_s=s.body_timeout_s,
+                   keep_alive_s=s.keep_alive_s, linger_s=s.linger_s)
+
+
+# what the guards did, for /api/health and bench/load.py (one process, one event loop)
+STATS = {"connections": 0, "peak_connections": 0, "evicted": 0, "refused": 0,
+         "header_timeouts": 0, "body_timeouts": 0, "header_too_large": 0, "lingered": 0}
+
+
+# the limits of the server running in this process (set by config())
+ACTIVE: Limits | None = None
+
+
+def fd_bound(wanted: int) -> int:
+    """The connection cap, at most half the process's file limit (the other half: worker
+    pipes, the verdict store, static files)."""
+    soft, _ = resource.getrlimit(resource.RLIMIT_NOFILE)
+    if soft == resource.RLIM_INFINITY:
+        return wanted
+    return max(8, min(wanted, soft // 2))
+
+
+def _raw_answer(status: int, reason: bytes, text: str) -> bytes:
+    body = text.encode()
+    head = [b"HTTP/1.1 %d %s" % (status, reason),
+            b"content-type: text/plain; charset=utf-8",
+            b"content-length: %d" % len(body), b"connection: close",
+            *(k + b": " + v for k, v in HEADERS)]
+    return b"\r\n".join(head) + b"\r\n\r\n" + body
+
+
+class _LingeringTransport:
+    """The connection's transport, whose close() does not reset a connection that still
+    has a request body coming (see the module docstring)."""
+
+    def __init__(self, transport: asyncio.Transport, protocol: GuardedH11Protocol):
+        self._t = transport
+        self._p = protocol
+        self._closing = False
+
+    def __getattr__(self, name):
+        return getattr(self._t, name)
+
+    def is_closing(self) -> bool:
+        return self._closing or self._t.is_closing()
+
+    def close(self) -> None:
+        if self._closing or self._t.is_closing():
+            return
+        self._closing = True
+        if not self._p.unread_input() or self._p.limits.linger_s <= 0:
+            self._t.close()
+            return
+        STATS["lingered"] += 1
+        self._t.pause_reading()
+        try:
+            if self._t.can_write_eof():
+                self._t.write_eof()
+        except (OSError, RuntimeError):
+            pass
+        self._p.loop.call_later(self._p.limits.linger_s, self._t.close)
+
+    def abort(self) -> None:
+        self._closing = True
+        self._t.abort()
+
+
+class GuardedH11Protocol(H11Protocol):
+    limits = Limits()
+
+    def __init__(self, config, server_state, app_state, _loop=None):
+        super().__init__(config, server_state, app_state, _loop)
+        if config.h11_max_incomplete_event_size != self.limits.max_header_bytes:
+            self.conn = h11.Connection(h11.SERVER, self.limits.max_header_bytes)
+        self._timer: asyncio.TimerHandle | None = None
+        self._timer_kind = ""
+        self._since = time.monotonic()
+        self._refused = False
+        self._served = 0
+
+    def unread_input(self) -> bool:
+        """The client may still be sending: a body not read to its end, a head cut short
+        by a timeout or refused as too large or malformed."""
+        state = self.conn.their_state
+        return (state is h11.SEND_BODY or state is h11.ERROR
+                or (state is h11.IDLE and bool(self.conn.trailing_data[0])))
+
+    # --- the cap -----------------------------------------------------------------------
+
+    def _holds_no_request(self) -> bool:
+        return (self.conn.their_state is h11.IDLE
+                and (self.cycle is None or self.cycle.response_complete))
+
+    def _evict_one(self) -> bool:
+        idle = [p for p in self.connections
+                if isinstance(p, GuardedH11Protocol) and p._holds_no_request()
+                and not p.transport.is_closing()]
+        if not idle:
+            return False
+        # a connection that never finished a request (a stalled or empty head) goes before
+        # an idle keep-alive one (a prober or a browser between two requests)
+        oldest = min(idle, key=lambda p: (p._served > 0, p._since))
+        STATS["evicted"] += 1
+        oldest._cancel_timer()
+        oldest.transport.abort()
+        oldest.connections.discard(oldest)
+        return True
+
+    def connection_made(self, transport) -> None:  # type: ignore[override]
+        if len(self.connections) >= self.limits.max_connections and not self._evict_one():
+            self._refused = True
+            STATS["refused"] += 1
+            transport.abort()
+            return
+        super().connection_made(_LingeringTransport(transport, self))
+        STATS["connections"] = len(self.connections)
+        STATS["peak_connections"] = max(STATS["peak_connections"], len(self.connections))
+        self._arm("header", self.limits.header_timeout_s)
+
+    def connection_lost(self, exc) -> None:
+        if self._refused:
+            return
+        self._cancel_timer()
+        super().connection_lost(exc)
+        STATS["connections"] = len(self.connections)
+
+    # --- the read timeouts ---------------------------------------------------------------
+
+    def _arm(self, kind: str, delay: float) -> None:
+        self._cancel_timer()
+        self._timer_kind = kind
+        self._timer = self.loop.call_later(delay, self._expired)
+
+    def _cancel_timer(self) -> None:
+        if self._timer is not None:
+            self._timer.cancel()
+            self._timer = None
+            self._timer_kind = ""
+
+    def data_received(self, data: bytes) -> None:
+        # h11's own limit holds only while a head is incomplete: a 100 KB head that
+        # arrives in one piece would pass it
+        if self.conn.their_state is h11.IDLE and not self.transport.is_closing():
+            buf = self.conn.trailing_data[0]
+            cap = self.limits.max_header_bytes
+            if len(buf) + len(data) > cap and (buf + data).find(b"\r\n\r\n", 0, cap + 4) < 0:
+                self._unset_keepalive_if_required()
+                self.conn.receive_data(data)
+                self.send_400_response("")
+                return
+        super().data_received(data)
+
+    def handle_events(self) -> None:
+        super().handle_events()
+        if self.transport is None or self.transport.is_closing():
+            self._cancel_timer()
+            return
+        state = self.conn.their_state
+        if state is h11.IDLE and (self.cycle is None or self.cycle.response_complete):
+            # waiting for a head: the deadline runs from its first byte (or from the
+            # connection) and is not extended by a slow trickle
+            if self._timer_kind != "header" and self.conn.trailing_data[0]:
+                self._arm("header", self.limits.header_timeout_s)
+        elif state is h11.SEND_BODY:
+            if not self.flow.read_paused:      # paused by us: the app is not reading
+                self._arm("body", self.limits.body_timeout_s)
+            else:
+                self._cancel_timer()
+        else:
+            self._cancel_timer()
+
+    def on_response_complete(self) -> None:
+        self._served += 1
+        super().on_response_complete()
+        # an idle keep-alive connection is uvicorn's keep-alive timer's (unless the next
+        # request has begun to arrive: handle_events armed the header deadline)
+        if self._timer_kind == "header" and not self.conn.trailing_data[0]:
+            self._cancel_timer()
+
+    def _expired(self) -> None:
+        kind, self._timer, self._timer_kind = self._timer_kind, None, ""
+        if self.transport.is_closing():
+            return
+        if kind == "header":
+            STATS["header_timeouts"] += 1
+            if self.conn.trailing_data[0]:     # a head began: say why it ends
+                self.transport.write(_raw_answer(
+                    408, b"Request Timeout", "the request head did not arrive within "
+                    f"{self.limits.header_timeout_s:g} s"))
+        else:
+            STATS["body_timeouts"] += 1
+        self.transport.close()
+
+    # --- uvicorn's own answers -----------------------------------------------------------
+
+    def send_400_response(self, msg: str) -> None:
+        if len(self.conn.trailing_data[0]) > self.limits.max_header_bytes:
+            STATS["header_too_large"] += 1
+            answer = _raw_answer(431, b"Request Header Fields Too Large",
+                                 "the request line and headers are larger than "
+                                 f"{self.limits.max_header_bytes} bytes")
+        else:
+            answer = _raw_answer(400, b"Bad Request", msg)
+        self._cancel_timer()
+        self.transport.write(answer)
+        self.transport.close()
+
+
+def protocol_for(limits: Limits) -> type[GuardedH11Protocol]:
+    return type("GuardedH11Protocol", (GuardedH11Protocol,), {"limits": limits})
+
+
+def config(host: str, port: int, settings=None, **kw):
+    """The uvicorn Config of the explorer with the guarded protocol."""
+    import uvicorn
+
+    from app.core.config import get_settings
+
+    s = settings or get_settings()
+    limits = Limits.from_settings(s)
+    limits = Limits(**{**limits.__dict__, "max_connections": fd_bound(limits.max_connections)})
+    global ACTIVE
+    ACTIVE = limits
+    return uvicorn.Config("app.main:app", host=host, port=port, http=protocol_for(limits),
+                          h11_max_incomplete_event_size=limits.max_header_bytes,
+                          timeout_keep_alive=limits.keep_alive_s, **kw)
+
+
+def run(host: str, port: int, log_level: str = "info") -> None:
+    import uvicorn
+
+    uvicorn.Server(config(host, port, log_level=log_level)).run()
+
+
+def main(argv=None) -> None:
+    import argparse
+
+    ap = argparse.ArgumentParser(description="the explorer's HTTP server")
+    ap.add_argument("--host", default="127.0.0.1")
+    ap.add_argument("--port", type=int, default=8000)
+    ap.add_argument("--log-level", default="info")
+    a = ap.parse_args(argv)
+    run(a.host, a.port, a.log_level)
+
+
+if __name__ == "__main__":
+    # run the module's importable twin, so that /api/health reads the same STATS
+    from app.core.server import main as _main
+
+    _main()

@@ -1,0 +1,94 @@
+"""Cite and link (issue 17, item 5): every reference complete or marked unresolved, the
+BibTeX of the paper (with its DOI) and of the explorer (author, year, version, URL, access
+date), search results that link to the claim's anchor."""
+
+import re
+
+import pytest
+from fastapi.testclient import TestClient
+
+from app import __version__
+from app.main import create_app
+from app.services import reader_pages
+from app.testing import settings_for_tests
+from catalogue.load import load_catalogue
+from catalogue.schema import Reference
+
+pytestmark = pytest.mark.filterwarnings("ignore::DeprecationWarning")
+
+
+@pytest.fixture(scope="module")
+def client():
+    with TestClient(create_app(settings_for_tests(warm_workers=False))) as c:
+        yield c
+
+
+def test_every_reference_is_complete_or_marked_unresolved(client):
+    refs = client.get("/api/references").json()
+    assert len(refs) == len(load_catalogue().references) > 30
+    for r in refs:
+        assert r["status"] in ("complete", "unresolved"), r["id"]
+        full = r["authors"] and r["title"] and r["journal"] and r["years"]
+        assert (r["status"] == "complete") == bool(full), r["id"]
+        assert (r["missing"] == []) == (r["status"] == "complete"), r["id"]
+    paper = next(r for r in refs if r["id"] == "this-paper")
+    assert paper["status"] == "complete" and paper["doi"] == reader_pages.PAPER_DOI
+    assert paper["journal"] == "Regular and Chaotic Dynamics" and paper["volume"] == "7"
+    # the seed has no reference list: nothing else can be complete, and nothing is guessed
+    assert [r["id"] for r in refs if r["status"] == "complete"] == ["this-paper"]
+    assert not any("suggests" in (r["remarks"] or "") for r in refs)
+
+
+def test_a_status_that_does_not_match_the_entry_is_refused():
+    base = {"id": "x1", "cite_key": "x1", "authors": ["A. Author"], "authors_source": "text",
+            "years": [1900], "cited_for": ["a test"]}
+    with pytest.raises(ValueError, match="missing"):
+        Reference.model_validate({**base, "status": "complete"})     # no title, no journal
+    with pytest.raises(ValueError, match="missing nothing"):
+        Reference.model_validate({**base, "title": "T", "journal": "J",
+                                  "status": "unresolved"})
+    assert Reference.model_validate({**base, "status": "unresolved"}).missing == [
+        "title", "journal"]
+
+
+def test_bibliography_page_says_complete_or_unresolved(client):
+    page = client.get("/bibliography").text
+    for r in load_catalogue().references:
+        m = re.search(rf'<li id="ref-{re.escape(r.id)}" data-status="(\w+)">(.*?)</li>', page,
+                      re.S)
+        assert m and m[1] == r.status, r.id
+        if r.status == "unresolved":
+            assert "unresolved" in m[2] and "not in the seed: " + ", ".join(r.missing) in m[2]
+    assert "Key suggests" not in page
+    assert "authors not named in the paper … Key" not in page
+
+
+def test_bibtex_of_the_paper_and_of_the_explorer(client):
+    paper = reader_pages.bibtex_paper()
+    assert paper.startswith("@article{BorisovMamaev2002,")
+    for field in ("author", "title", "journal", "volume", "number", "pages", "year", "doi"):
+        assert re.search(rf"^  {field}\s+= \{{.+\}},?$", paper, re.M), field
+    assert reader_pages.PAPER_DOI in paper and "Regular and Chaotic Dynamics" in paper
+    from datetime import date
+    sw = reader_pages.bibtex_project("http://example.org/case/plane/chaplygin-ball",
+                                     date(2026, 1, 2))
+    assert sw.startswith("@software{RollingHierarchy,")
+    assert "author  = {{rolling-hierarchy contributors}}" in sw
+    assert f"version = {{{__version__}}}" in sw and "year    = {2026}" in sw
+    assert "url     = {http://example.org/case/plane/chaplygin-ball}" in sw
+    assert "urldate = {2026-01-02}" in sw
+    d = client.get("/api/cite").json()
+    assert d["paper"]["fields"]["doi"] == reader_pages.PAPER_DOI
+    assert d["software"]["fields"]["version"] == __version__
+    assert d["software"]["fields"]["author"] == "{rolling-hierarchy contributors}"
+
+
+def test_search_results_link_to_the_claim(client):
+    r = client.get("/api/search", params={"q": "Chaplygin"}).json()
+    assert r["claims"]
+    for c in r["claims"]:
+        anchor = "claim-" + re.sub(r"[^A-Za-z0-9_-]+", "_", c["id"])
+        assert c["href"] == f"/case/{c['case']}#{anchor}"
+    page = client.get("/search", params={"q": "chaplygin"}).text
+    first = r["claims"][0]
+    assert f'href="{first["href"]}"' in page
