@@ -89,7 +89,9 @@ class AssetCache:
             return None
         if not MIN_SIZE <= st.st_size <= MAX_SIZE:
             return None
-        return (str(path), st.st_size, st.st_mtime_ns, encoding)
+        # the level is part of the key: a form made at another quality is not reused
+        level = BROTLI_QUALITY if encoding == "br" else GZIP_LEVEL
+        return (str(path), st.st_size, st.st_mtime_ns, encoding, level)
 
     def _disk(self, key: tuple) -> Path | None:
         if self.dir is None:
