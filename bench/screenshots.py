@@ -79,7 +79,7 @@ def main() -> None:
                                           device_scale_factor=1, bypass_csp=True)
                 page = ctx.new_page()
                 for name, path in pages.items():
-                    print(shoot(page, url, path, args.out, name, width).relative_to(ROOT))
+                    print(shoot(page, url, path, args.out, name, width).resolve().relative_to(ROOT))
                 ctx.close()
             browser.close()
 

@@ -34,6 +34,8 @@ def test_cell_rests_on_lists_the_strongest_first():
             {"claim": f"{case}/reduction/linear", "verdict": "verified",
              "check": "reduced_agrees", "exact": {"holds": True, "negative": False},
              "qualifier": None}]
+    for r in recs:      # the marks annotate() gives formula records (issue 17)
+        r["mark"], r["mark_note"], r["errata"] = levels.formula_mark(r, None, {})
     cells = {r["row"]: r for r in levels.cell_records(recs, CAT, {case})}
     assert cells["integrals"]["rests_on"] == [f"{case}/reduction/linear",
                                               f"{case}/integral/linear-pair"]

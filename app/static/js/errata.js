@@ -31,10 +31,13 @@ let CASES = {};       // case id -> title
 // a row names its claim as the case pages do: the case's title, the claim's kind and printed
 // number (claim_name, solvers/verify/errata.py); the record id only in the link and data-claim
 const caseTitle = (e) => e.case_title || CASES[e.case] || "the case";
+// in a row's summary (the part a reader clicks to open the row) the case is named, not
+// linked: a link inside <summary> is an interactive element nested in another (axe-core's
+// nested-interactive); the link to the claim is in the row's body (claimLink)
 function caseLink(e) {
   const title = caseTitle(e);
   const tip = e.claim_name ? `${e.claim_name}, ${title}` : title;
-  return `<a href="${escapeHtml(caseHref(e))}" title="${escapeHtml(tip)}" data-claim="${escapeHtml(e.claim)}">${escapeHtml(title)}</a>`;
+  return `<span class="casename" title="${escapeHtml(tip)}" data-claim="${escapeHtml(e.claim)}">${escapeHtml(title)}</span>`;
 }
 // the claim itself, linked: "integral (2.24) of the Chaplygin ball"
 function claimLink(e) {

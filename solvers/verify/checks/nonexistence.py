@@ -58,6 +58,7 @@ from flint import fmpq
 
 from solvers.kernels import layout as L
 from solvers.models.cases import build, registry
+from solvers.verify.checks import negative
 from solvers.verify.checks.common import N_SETTINGS
 from solvers.verify.exact.jet import Jet
 from solvers.verify.exact.model import ExactParams, field
@@ -73,15 +74,11 @@ FLAT_POINTS = ((Fraction(1, 5), Fraction(-1, 3)),
                (Fraction(1, 2), Fraction(1, 6)))
 M_PROBE = (Fraction(7, 10), Fraction(-13, 10), Fraction(2, 5))   # for the premise checks
 
-# The change of parameters that restores a known measure (as negative.CONTROLS).
-CONTROLS = {
-    "plane/unbalanced-ball": ({"a1": 0.0, "a2": 0.0, "a3": 0.0},
-                              "a = 0: the Chaplygin ball, density eq2.17"),
-    "sphere/unbalanced-ball": ({"a1": 0.0, "a2": 0.0, "a3": 0.0},
-                               "a = 0: the balanced ball on a sphere, density of Table 2"),
-    "sphere/flat-base": ({"z": 0.0}, "z = 0: density (I3 + m r^2)^-1/2, eq3.16"),
-    "plane/ellipsoid": ({"lambda": 1.0}, "lambda = 1: density eq2.30"),
-}
+# The change of parameters that restores a known measure: negative.CONTROLS's for the cases
+# both checks share, and the ellipsoid's lambda = 1.
+CONTROLS = {**{cid: negative.CONTROLS[cid] for cid in
+               ("plane/unbalanced-ball", "sphere/unbalanced-ball", "sphere/flat-base")},
+            "plane/ellipsoid": ({"lambda": 1.0}, "lambda = 1: density eq2.30")}
 # The ellipsoid's claims hold for lambda not 0 or 1 (eq2.29): the example (lambda = 1, where
 # eq2.30 is a measure) is moved to lambda = 1/2 for them.
 EXAMPLE_CHANGE = {"plane/ellipsoid": {"lambda": 0.5}}

@@ -87,8 +87,8 @@ def chaplygin_bracket(P, x):
 # dx/dtau = {x, H} only for the body of revolution (the theorem on eq2-*3). Under that
 # orientation the printed sign gives the time-reversed field; under dx/dtau = {H, x} (the
 # catalogue's holds_under) the printed bracket itself holds.
-SIGN_NOTE = ("the opposite overall sign, {M_i, M_j} = -eps_ijk ... (equivalently the printed "
-             "bracket read with dx/d tau = {H, x}): read with dx/d tau = {x, H}, the "
+SIGN_NOTE = ("the opposite overall sign, {M_i, M_j} = −ε_ijk ... (equivalently the printed "
+             "bracket read with dx/dτ = {H, x}): read with dx/dτ = {x, H}, the "
              "orientation the paper writes for the body of revolution (theorem on eq2-*3), "
              "the printed sign gives the time-reversed field, -v/rho")
 

@@ -107,8 +107,8 @@ def yaroschuk_density_table(P, x):
     return (_mu(P) + P.m * (r @ r)) ** 1.5
 
 
-@corrected("yaroschuk_density", "(mu + m r^2)^(3/2): the mass is missing in eq2.19 (Table 1 "
-           "prints it); = rho_M det I_Q / mu with rho_M = (mu + m r^2)^(-1/2) of eq2.30")
+@corrected("yaroschuk_density", "(μ + m r²)^(3/2): the mass is missing in eq2.19 (Table 1 "
+           "prints it); = ρ_M det I_Q / μ with ρ_M = (μ + m r²)^(−1/2) of eq2.30")
 def yaroschuk_density_corrected(P, x):
     r = P.r(x[3:6])
     return (_mu(P) + P.m * (r @ r)) ** 1.5
