@@ -60,9 +60,14 @@ def test_every_scene_plots_its_claim_first_and_in_view(page, server, scene_id):
         assert box["x"] >= 0 and box["x"] + box["width"] <= 1280 + 1, (sel, box)
 
 
+# Every tap target in the page's main part, links included (WCAG 2.5.8); a link inside a
+# sentence is exempt (the criterion's "inline" exception): one displayed inline whose
+# parent holds more text than the link itself.
 SMALL = """() => [...document.querySelectorAll(
-    'main button, main input, main select, main summary, main a.button')]
+    'main a, main button, main input, main select, main summary, main [role=button]')]
   .filter((e) => e.offsetParent !== null && e.type !== 'hidden')
+  .filter((e) => !(e.tagName === 'A' && getComputedStyle(e).display === 'inline' &&
+      e.parentElement.textContent.trim().length > e.textContent.trim().length + 5))
   .map((e) => { const r = e.getBoundingClientRect();
     return { what: e.id || e.name || e.textContent.trim().slice(0, 30) || e.className || e.tagName,
              w: Math.round(r.width), h: Math.round(r.height) }; })
@@ -78,5 +83,14 @@ def test_no_control_under_24px_on_a_phone(page, server):
     assert small == [], small
     page.goto(f"{server}/poincare")
     page.locator("#case option").first.wait_for(state="attached")
+    small = page.evaluate(SMALL)
+    assert small == [], small
+    # the home table and a case page (its claims, the run form, the cite box)
+    page.goto(f"{server}/")
+    page.locator("#tbl-plane td").first.wait_for(state="attached")
+    small = page.evaluate(SMALL)
+    assert small == [], small
+    page.goto(f"{server}/case/plane/chaplygin-ball")
+    page.locator("#claims .permalink").first.wait_for(state="attached")
     small = page.evaluate(SMALL)
     assert small == [], small
