@@ -94,3 +94,26 @@ def test_no_control_under_24px_on_a_phone(page, server):
     page.locator("#claims .permalink").first.wait_for(state="attached")
     small = page.evaluate(SMALL)
     assert small == [], small
+
+
+# A word wider than the table cell that holds it is broken mid-word ("param eter"): the
+# cell's inner width against the word's width in the cell's own font (innerText keeps the
+# line breaks of <br>, so words across a break are not joined).
+BROKEN_WORDS = """() => { const c = document.createElement('canvas').getContext('2d'); const out = [];
+ for (const td of document.querySelectorAll('main td, main th')) {
+   if (td.offsetParent === null) continue;
+   const cs = getComputedStyle(td);
+   c.font = `${cs.fontStyle} ${cs.fontWeight} ${cs.fontSize} ${cs.fontFamily}`;
+   const inner = td.clientWidth - parseFloat(cs.paddingLeft) - parseFloat(cs.paddingRight);
+   for (const w of td.innerText.split(/\\s+/).filter((w) => /^[A-Za-z]{4,}[,.;:]?$/.test(w)))
+     if (c.measureText(w).width > inner + 1) { out.push([w, Math.round(inner)]); break; }
+ } return out; }"""
+
+
+def test_no_word_broken_in_a_table_on_a_wide_screen(page, server):
+    page.set_viewport_size({"width": 1440, "height": 900})
+    for path, ready in (("/glossary", "main table td"), ("/how-we-check", "main table td")):
+        page.goto(f"{server}{path}")
+        page.locator(ready).first.wait_for(state="attached")
+        broken = page.evaluate(BROKEN_WORDS)
+        assert broken == [], (path, broken)
