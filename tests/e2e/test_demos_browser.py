@@ -60,9 +60,14 @@ def test_every_scene_plots_its_claim_first_and_in_view(page, server, scene_id):
         assert box["x"] >= 0 and box["x"] + box["width"] <= 1280 + 1, (sel, box)
 
 
+# Every tap target in the page's main part, links included (WCAG 2.5.8); a link inside a
+# sentence is exempt (the criterion's "inline" exception): one displayed inline whose
+# parent holds more text than the link itself.
 SMALL = """() => [...document.querySelectorAll(
-    'main button, main input, main select, main summary, main a.button')]
+    'main a, main button, main input, main select, main summary, main [role=button]')]
   .filter((e) => e.offsetParent !== null && e.type !== 'hidden')
+  .filter((e) => !(e.tagName === 'A' && getComputedStyle(e).display === 'inline' &&
+      e.parentElement.textContent.trim().length > e.textContent.trim().length + 5))
   .map((e) => { const r = e.getBoundingClientRect();
     return { what: e.id || e.name || e.textContent.trim().slice(0, 30) || e.className || e.tagName,
              w: Math.round(r.width), h: Math.round(r.height) }; })
@@ -80,3 +85,35 @@ def test_no_control_under_24px_on_a_phone(page, server):
     page.locator("#case option").first.wait_for(state="attached")
     small = page.evaluate(SMALL)
     assert small == [], small
+    # the home table and a case page (its claims, the run form, the cite box)
+    page.goto(f"{server}/")
+    page.locator("#tbl-plane td").first.wait_for(state="attached")
+    small = page.evaluate(SMALL)
+    assert small == [], small
+    page.goto(f"{server}/case/plane/chaplygin-ball")
+    page.locator("#claims .permalink").first.wait_for(state="attached")
+    small = page.evaluate(SMALL)
+    assert small == [], small
+
+
+# A word wider than the table cell that holds it is broken mid-word ("param eter"): the
+# cell's inner width against the word's width in the cell's own font (innerText keeps the
+# line breaks of <br>, so words across a break are not joined).
+BROKEN_WORDS = """() => { const c = document.createElement('canvas').getContext('2d'); const out = [];
+ for (const td of document.querySelectorAll('main td, main th')) {
+   if (td.offsetParent === null) continue;
+   const cs = getComputedStyle(td);
+   c.font = `${cs.fontStyle} ${cs.fontWeight} ${cs.fontSize} ${cs.fontFamily}`;
+   const inner = td.clientWidth - parseFloat(cs.paddingLeft) - parseFloat(cs.paddingRight);
+   for (const w of td.innerText.split(/\\s+/).filter((w) => /^[A-Za-z]{4,}[,.;:]?$/.test(w)))
+     if (c.measureText(w).width > inner + 1) { out.push([w, Math.round(inner)]); break; }
+ } return out; }"""
+
+
+def test_no_word_broken_in_a_table_on_a_wide_screen(page, server):
+    page.set_viewport_size({"width": 1440, "height": 900})
+    for path, ready in (("/glossary", "main table td"), ("/how-we-check", "main table td")):
+        page.goto(f"{server}{path}")
+        page.locator(ready).first.wait_for(state="attached")
+        broken = page.evaluate(BROKEN_WORDS)
+        assert broken == [], (path, broken)
