@@ -11,7 +11,8 @@ each); vern9's (~17 s), which only method="auto" at tight tolerances or an expli
 vern9 run takes, compiles on its first use (the explorer does it before the request's
 deadline starts: app/api/routes/simulate.py), or here with --all. They are compiled as tasks of
 parallel processes (ROLLING_WARMUP_JOBS, default the number of CPUs, at most 4): the
-general kernels are one task, each structure another; a structure whose small kernels are
+general kernels are one task, the general-field ensembles (Poincare maps) another,
+each structure another; a structure whose small kernels are
 already in the cache is skipped. The big generated integrators (rk.py on a generated field,
 ~37 s a structure, and their ensemble twins) are no longer compiled here: no default route
 needs them (`python -m solvers.warmup --generated` still compiles them).
@@ -142,12 +143,18 @@ def _task(what) -> str:
     if what == GENERAL:
         _general()
         return what
+    if what == ENSEMBLES:
+        warm_ensembles(generated=False)
+        return what
     if isinstance(what, tuple) and what[0] == "generated":
         return compile_generated(what[1])
     return compile_small(what)
 
 
 GENERAL = "general kernels"
+# the general-field ensembles are a task of their own: after the pool they held its one
+# process alone for ~18 s (bench/results/warmup.txt)
+ENSEMBLES = "general ensembles"
 
 
 def warm(jobs: int | None = None, generated: bool = False) -> float:
@@ -155,7 +162,7 @@ def warm(jobs: int | None = None, generated: bool = False) -> float:
     todo = [cases[0] for cases in pending().values()]
     if generated:
         todo += [("generated", cases[0]) for cases in pending(generated=True).values()]
-    jobs = min(jobs or _jobs(), len(todo) + 1)
+    jobs = min(jobs or _jobs(), len(todo) + 2)
     if jobs > 1 and todo:
         import multiprocessing as mp
         from concurrent.futures import ProcessPoolExecutor
@@ -163,11 +170,12 @@ def warm(jobs: int | None = None, generated: bool = False) -> float:
         # spawn: fresh interpreters (a forked numba/LLVM state is not safe to reuse); the
         # general kernels are one more task, so no core waits for them
         with ProcessPoolExecutor(jobs, mp_context=mp.get_context("spawn")) as ex:
-            list(ex.map(_task, [GENERAL, *todo]))
+            list(ex.map(_task, [GENERAL, ENSEMBLES, *todo]))
     else:
-        for what in (GENERAL, *todo):
+        for what in (GENERAL, ENSEMBLES, *todo):
             _task(what)
-    warm_ensembles(generated)
+    if generated:      # the generated twins (the general ones are compiled by then)
+        warm_ensembles(generated)
     return time.perf_counter() - t0
 
 

@@ -180,7 +180,8 @@ def test_same_bits_as_the_generated_integrator():
 
 def test_small_kernel_is_scalar_code():
     """State and stages are scalar locals (no work arrays), the field is inlined code of
-    the generator, and the tableau's coefficients are literals."""
+    the generator, and the tableau's coefficients are literals, passed with their stages
+    to the shared combinations (small.ops_source: axpy2 is y + h * (a0 * k0 + a1 * k1))."""
     from solvers.kernels import small
 
     c = registry()["plane/chaplygin-ball"]
@@ -188,5 +189,6 @@ def test_small_kernel_is_scalar_code():
     src = open(small.small_kernel(m.model, m.p, "dop853").__file__).read()
     run = src[src.index("def run("):]
     assert "np.empty" not in run and "np.zeros" not in run
-    assert "k12_5" in run and "0.05260015195876773 * k0_0" in run
+    assert "k12_5" in run and "z1_0 = axpy1(y_0, h, 0.05260015195876773, k0_0)" in run
+    assert "return y + h * (a0 * k0 + a1 * k1)" in small.ops_source()
     assert generate.numba_source(m.model, m.p).split("v26 = ")[1].split("\n")[0] in src

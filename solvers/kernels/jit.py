@@ -19,6 +19,14 @@ class _PackageStampedLocator(caching.InTreeCacheLocator):
             return None
         return super().from_function(py_func, py_file)
 
+    def __init__(self, py_func, py_file):
+        super().__init__(py_func, py_file)
+        # NUMBA_CACHE_DIR wins, as for numba's own locators: a cold measurement
+        # (bench/warmup_cost.py) or a read-only checkout points it at an empty directory
+        if numba.config.CACHE_DIR:
+            self._cache_path = str(Path(numba.config.CACHE_DIR)
+                                   / self.get_suitable_cache_subpath(py_file))
+
     def get_source_stamp(self):
         return tuple((f.name, f.stat().st_mtime_ns, f.stat().st_size)
                      for f in sorted(_DIR.glob("*.py")))
