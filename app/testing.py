@@ -22,8 +22,9 @@ from app.core.config import Settings
 # quiet, quick defaults for tests: no background verification, no disk cache
 # ("testserver" is the Host of Starlette's TestClient)
 # (no start-up compression of the static files: a test that needs it asks for it)
+# (the kernels were compiled by ./dev test's warm-up: no background warm-up)
 TEST_SETTINGS = {"verify_on_start": False, "use_verdict_cache": False, "workers": 2,
-                 "precompress": False,
+                 "precompress": False, "warm_kernels": False, "kernels_warm": True,
                  "deadline_s": 20.0, "log_level": "warning",
                  "allowed_hosts": ["127.0.0.1", "localhost", "::1", "testserver"]}
 
