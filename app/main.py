@@ -47,13 +47,21 @@ is busy and the queue is full the answer is 503 with `Retry-After`.
 
 
 def _prepare() -> None:
-    """Load the catalogue and the registry and validate every case's demo run, off the
-    event loop: validation calls compiled functions (the support function, the fit on a
-    sphere) whose first call loads them from numba's cache while holding the GIL."""
+    """Load the catalogue and the registry, off the event loop."""
     from catalogue.load import load_catalogue
-    from solvers.models.cases import build, initial_state, registry
+    from solvers.models.cases import registry
 
     load_catalogue()
+    registry()
+
+
+def _validate_examples() -> None:
+    """Validate every case's demo run, in a thread after the server answers: validation
+    calls compiled functions (the support function, the fit on a sphere) whose first call
+    loads them from numba's cache while holding the GIL, or on a fresh machine compiles
+    them (37 s measured at load 10 on 2 cores): the first page must not wait for that."""
+    from solvers.models.cases import build, initial_state, registry
+
     for cid, spec in registry().items():
         initial_state(build(cid, spec.example), spec.state)
 
@@ -79,7 +87,7 @@ def _log_to_stderr(level: str) -> None:
 async def lifespan(app: FastAPI):
     settings: Settings = app.state.settings
     _log_to_stderr(settings.log_level)
-    kernels = KernelWarmup()
+    kernels = KernelWarmup(settings.warmup_command)
     if settings.warm_kernels:
         kernels.expect()    # "warming" from the first request
     # while the kernels compile, a new worker only imports (it would compile them too)
@@ -104,6 +112,10 @@ async def lifespan(app: FastAPI):
                     tg.start_soon(_warm, pool)
 
     async def background() -> None:
+        try:
+            await anyio.to_thread.run_sync(_validate_examples)
+        except Exception as exc:  # serve anyway: that case's run will say what is wrong
+            log.warning("validating the cases' demo runs failed: %r", exc)
         if settings.warm_workers:
             async with anyio.create_task_group() as tg:
                 for _ in range(settings.workers):

@@ -48,6 +48,9 @@ class Settings(BaseSettings):
     # request's deadline starts (app/services/kernel_prepare.py); false: every kind of
     # job is prepared on its first use
     kernels_warm: bool = False
+    # the warm-up's command line (JSON list in ROLLING_WARMUP_COMMAND); None: python -m
+    # solvers.warmup --progress. The tests give a scripted one that prints the same lines.
+    warmup_command: list[str] | None = None
     # make the compressed forms of the static files at start (app.core.compress)
     precompress: bool = True
     # request bodies above this many bytes get 413 before anything parses them

@@ -53,7 +53,7 @@ def warm_imports() -> int:
     import pyarrow  # noqa: F401   (the Arrow answer's first use: ~0.3 s of imports)
 
     import app.services.payloads  # noqa: F401
-    import solvers.models.kinematics  # noqa: F401
+    import solvers.models.kinematics
     import solvers.simulate  # noqa: F401
     return os.getpid()
 
@@ -104,7 +104,7 @@ def prepare_kernels(req: dict) -> int:
         try:
             _run({**tiny, "method": method}, 1000)
             done += 1
-        except Exception:   # noqa: BLE001  (the request's own run reports it)
+        except Exception:   # the request's own run reports it
             pass
     return done
 
@@ -118,7 +118,7 @@ def prepare_scene(req: dict) -> int:
         scene(req["case"], req["params"], req["state"], 1e-3, frames=2,
               rtol=min(req["rtol"], 1e-8), atol=min(req["atol"], 1e-10), max_steps=1000,
               allow_any_inertia=req["allow_any_inertia"])
-    except Exception:   # noqa: BLE001  (the request's own run reports it)
+    except Exception:   # the request's own run reports it
         return 0
     return 1
 

@@ -6,7 +6,7 @@ The explorer no longer waits for it. The app's lifespan starts it as a subproces
 and serves at once. This module reads those lines:
 
   - the terminal shows a progress bar tied to them, one line per finished part:
-    "compiling kernels [#####-----] 4 of 9 parts (plane/chaplygin-ball, 14.2 s)";
+    "compiling kernels: 4 of 9 parts [########------------] (plane/chaplygin-ball, 14.2 s)";
   - /api/health and the pages say which parts are still warming and which cases they hold
     (`public()`), and how long a compile of one case structure took here (`estimate_s`);
   - what needs the kernels waits for `wait_done()` (the background verification), and
@@ -47,7 +47,8 @@ class KernelWarmup:
     assumed warm, or no warm-up was asked for), starting (listing what is not compiled),
     running, done, failed."""
 
-    def __init__(self) -> None:
+    def __init__(self, command: list[str] | None = None) -> None:
+        self._command = command
         self.state = "off"
         self.message = ""
         self.total = 0
@@ -104,7 +105,9 @@ class KernelWarmup:
 
     def command(self) -> list[str]:
         """`python -m solvers.warmup --progress`, reniced first (its spawned compile
-        processes inherit the priority)."""
+        processes inherit the priority); or the command given (Settings.warmup_command)."""
+        if self._command:
+            return list(self._command)
         code = (f"import os, runpy, sys; os.nice({WARMUP_NICE}); "
                 "sys.argv = ['solvers.warmup', '--progress']; "
                 "runpy.run_module('solvers.warmup', run_name='__main__')")
@@ -116,25 +119,23 @@ class KernelWarmup:
             self.parts = [{"name": p["name"], "cases": list(p["cases"]), "done": False,
                            "seconds": None} for p in ev["parts"]]
             self.state = "running"
-            log.info("compiling kernels %s 0 of %d parts, in the background: the explorer "
+            log.info("compiling kernels: 0 of %d parts %s, in the background: the explorer "
                      "serves meanwhile; a run that needs a part still compiling compiles "
-                     "it first (first use on this machine)", bar(0, self.total), self.total)
+                     "it first (first use on this machine)", self.total, bar(0, self.total))
         elif ev.get("event") == "done":
             self.done = int(ev["done"])
             for p in self.parts:
                 if p["name"] == ev["part"] and not p["done"]:
                     p["done"], p["seconds"] = True, float(ev["seconds"])
                     break
-            log.info("compiling kernels %s %d of %d parts (%s, %.1f s)",
-                     bar(self.done, self.total), self.done, self.total, ev["part"],
-                     float(ev["seconds"]))
+            log.info("compiling kernels: %d of %d parts %s (%s, %.1f s)", self.done,
+                     self.total, bar(self.done, self.total), ev["part"], float(ev["seconds"]))
 
     async def run(self) -> None:
         """Run the warm-up to its end (a task of the lifespan; cancelled at shutdown, when
         the subprocess's whole process group is stopped)."""
         self.state, self.started = "starting", time.monotonic()
-        log.info("compiling kernels: listing what the caches lack (%s)", " ".join(
-            self.command()[:1] + ["-m", "solvers.warmup", "--progress"]))
+        log.info("compiling kernels: listing what the caches lack")
         try:
             # its own session: stopping the explorer stops the warm-up's compile processes
             async with await anyio.open_process(self.command(), stdout=-1, stderr=None,
@@ -149,8 +150,8 @@ class KernelWarmup:
             self.seconds = time.monotonic() - self.started
             if code == 0:
                 self.state = "done"
-                log.info("compiling kernels %s done: %d parts in %.1f s",
-                         bar(self.total, self.total), self.total, self.seconds)
+                log.info("compiling kernels: done, %d parts in %.1f s %s", self.total,
+                         self.seconds, bar(self.total, self.total))
             else:
                 self.state = "failed"
                 self.message = (f"the kernel warm-up exited with code {code}: runs compile "
