@@ -608,6 +608,8 @@ async function runScene() {
 
 // ---------------------------------------------------------------- kernels
 
+let kernels = null;   // GET /api/health's kernels at load
+
 // "kernels: k of n compiled; a run of this case compiles its kernel before it starts", while
 // the server's background warm-up runs (refreshed until it is done)
 function showKernels(k) {
@@ -633,6 +635,7 @@ async function main() {
     GLOSSARY = g;
     C = c;
     limits = h.limits;
+    kernels = h.kernels;
     SYMMETRIC = new Set(methods.filter((m) => m.kind === "symmetric").map((m) => m.name));
     const group = (kind, label) => `<optgroup label="${label}">` + methods.filter((m) => m.kind === kind)
       .map((m) => `<option value="${m.name}">${m.name}</option>`).join("") + "</optgroup>";
@@ -648,7 +651,7 @@ async function main() {
   showCells();
   showClaims();
   resetForm();
-  showKernels(h.kernels);
+  showKernels(kernels);
   $("simform").addEventListener("input", onEdit);
   $("simform").addEventListener("change", onEdit);
   $("simform").addEventListener("submit", runSimulation);
