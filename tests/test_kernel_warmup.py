@@ -116,14 +116,15 @@ def test_case_readiness_follows_the_parts():
 
 
 def test_warmup_progress_lines():
-    """solvers/warmup.py's hook: the plan first (every part, with its cases), then one
-    "done" per part, counted; on this machine's warm caches it compiles nothing new."""
+    """The command the explorer starts (solvers/warmup.py's hook, in spawned processes):
+    the plan first (every part, with its cases), then one "done" per part, counted; on this
+    machine's warm caches it compiles nothing new."""
     import os
     import subprocess
     from pathlib import Path
 
     root = str(Path(__file__).resolve().parents[1])
-    out = subprocess.run([sys.executable, "-m", "solvers.warmup", "--progress"], cwd=root,
+    out = subprocess.run(KernelWarmup().command(), cwd=root,
                          env={**os.environ, "PYTHONPATH": root}, capture_output=True,
                          text=True, timeout=900, check=True).stdout.splitlines()
     events = [json.loads(line) for line in out if line.startswith("{")]

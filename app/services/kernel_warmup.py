@@ -104,13 +104,16 @@ class KernelWarmup:
     # --- the subprocess ------------------------------------------------------------------
 
     def command(self) -> list[str]:
-        """`python -m solvers.warmup --progress`, reniced first (its spawned compile
-        processes inherit the priority); or the command given (Settings.warmup_command)."""
+        """solvers.warmup's warm() with its progress hook printing one JSON line per event
+        (as `python -m solvers.warmup --progress`), reniced first (its spawned compile
+        processes inherit the priority); or the command given (Settings.warmup_command).
+        Not runpy as __main__: the spawned processes must find warm()'s tasks by their
+        module's name."""
         if self._command:
             return list(self._command)
-        code = (f"import os, runpy, sys; os.nice({WARMUP_NICE}); "
-                "sys.argv = ['solvers.warmup', '--progress']; "
-                "runpy.run_module('solvers.warmup', run_name='__main__')")
+        code = (f"import json, os; os.nice({WARMUP_NICE}); from solvers import warmup; "
+                "t = warmup.warm(progress=lambda e: print(json.dumps(e), flush=True)); "
+                "print(f'kernels ready in {t:.1f} s', flush=True)")
         return [sys.executable, "-c", code]
 
     def _event(self, ev: dict) -> None:
