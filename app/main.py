@@ -105,6 +105,8 @@ async def lifespan(app: FastAPI):
 
     async def compile_kernels() -> None:
         await kernels.run()
+        if kernels.state != "done":
+            return      # a failed warm-up: jobs.warm would compile everything in a worker
         pool.warm = jobs.warm      # now every kernel loads from the caches
         if settings.warm_workers:
             async with anyio.create_task_group() as tg:
