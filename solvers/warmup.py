@@ -163,7 +163,13 @@ def part_name(what) -> str:
         return "compiled ensembles (Poincare maps)"
     if isinstance(what, tuple) and what[0] == "generated":
         return f"generated integrator of {part_name(what[1])}"
-    return what if isinstance(what, str) else what[0]
+    if isinstance(what, str):
+        return what
+    from solvers.models.cases import registry   # (case, parameters): say what differs
+
+    example = registry()[what[0]].example
+    differs = ", ".join(f"{k} = {v:g}" for k, v in what[1].items() if example.get(k) != v)
+    return f"{what[0]} ({differs})" if differs else what[0]
 
 
 def warm(jobs: int | None = None, generated: bool = False, progress=None) -> float:
