@@ -165,7 +165,8 @@ def part_name(what) -> str:
         return f"generated integrator of {part_name(what[1])}"
     if isinstance(what, str):
         return what
-    from solvers.models.cases import registry   # (case, parameters): say what differs
+    # (case, parameters): say what differs from the case's example
+    from solvers.models.cases import registry
 
     example = registry()[what[0]].example
     differs = ", ".join(f"{k} = {v:g}" for k, v in what[1].items() if example.get(k) != v)
