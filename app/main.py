@@ -29,6 +29,7 @@ from app.core.config import Settings, get_settings
 from app.core.guards import CSP, HeadAsGet, HeaderLimit, RequestGuard, SecurityHeaders
 from app.core.pool import WorkerPool
 from app.services import jobs
+from app.services.kernel_warmup import KernelWarmup
 from app.services.page_cache import PageCache
 from app.services.verdicts import VerdictStore
 
@@ -46,13 +47,21 @@ is busy and the queue is full the answer is 503 with `Retry-After`.
 
 
 def _prepare() -> None:
-    """Load the catalogue and the registry and validate every case's demo run, off the
-    event loop: validation calls compiled functions (the support function, the fit on a
-    sphere) whose first call loads them from numba's cache while holding the GIL."""
+    """Load the catalogue and the registry, off the event loop."""
     from catalogue.load import load_catalogue
-    from solvers.models.cases import build, initial_state, registry
+    from solvers.models.cases import registry
 
     load_catalogue()
+    registry()
+
+
+def _validate_examples() -> None:
+    """Validate every case's demo run, in a thread after the server answers: validation
+    calls compiled functions (the support function, the fit on a sphere) whose first call
+    loads them from numba's cache while holding the GIL, or on a fresh machine compiles
+    them (37 s measured at load 10 on 2 cores): the first page must not wait for that."""
+    from solvers.models.cases import build, initial_state, registry
+
     for cid, spec in registry().items():
         initial_state(build(cid, spec.example), spec.state)
 
@@ -78,19 +87,37 @@ def _log_to_stderr(level: str) -> None:
 async def lifespan(app: FastAPI):
     settings: Settings = app.state.settings
     _log_to_stderr(settings.log_level)
+    kernels = KernelWarmup(settings.warmup_command)
+    if settings.warm_kernels:
+        kernels.expect()    # "warming" from the first request
+    # while the kernels compile, a new worker only imports (it would compile them too)
     pool = WorkerPool(settings.workers, settings.queue_size, settings.retry_after_s,
-                      warm=jobs.warm)
+                      warm=jobs.warm_imports if settings.warm_kernels else jobs.warm)
     from solvers.models.cases import table_case_ids
 
     store = VerdictStore(table_case_ids(), settings.cache_dir)
-    app.state.pool, app.state.verdicts = pool, store
+    app.state.pool, app.state.verdicts, app.state.kernels = pool, store, kernels
     await anyio.to_thread.run_sync(_prepare)
     if settings.use_verdict_cache:
         await anyio.to_thread.run_sync(store.load_cache)
     if settings.verify_on_start:
         store.expect_checks()   # "checking" from the first request, while the workers warm
 
+    async def compile_kernels() -> None:
+        await kernels.run()
+        if kernels.state != "done":
+            return      # a failed warm-up: jobs.warm would compile everything in a worker
+        pool.warm = jobs.warm      # now every kernel loads from the caches
+        if settings.warm_workers:
+            async with anyio.create_task_group() as tg:
+                for _ in range(settings.workers):
+                    tg.start_soon(_warm, pool)
+
     async def background() -> None:
+        try:
+            await anyio.to_thread.run_sync(_validate_examples)
+        except Exception as exc:  # serve anyway: that case's run will say what is wrong
+            log.warning("validating the cases' demo runs failed: %r", exc)
         if settings.warm_workers:
             async with anyio.create_task_group() as tg:
                 for _ in range(settings.workers):
@@ -103,10 +130,15 @@ async def lifespan(app: FastAPI):
             if made:
                 log.info("static files: %d compressed forms made", made)
         if settings.verify_on_start:
+            # the checks run every case's kernels: after the warm-up compiled them, not
+            # each worker compiling them again beside it
+            await kernels.wait_done()
             await store.verify_all(pool, settings.verify_deadline_s)
 
     async with anyio.create_task_group() as tg:
         pool.attach(tg)
+        if settings.warm_kernels:
+            tg.start_soon(compile_kernels)
         tg.start_soon(background)
         yield
         tg.cancel_scope.cancel()

@@ -22,8 +22,9 @@ from app.core.config import Settings
 # quiet, quick defaults for tests: no background verification, no disk cache
 # ("testserver" is the Host of Starlette's TestClient)
 # (no start-up compression of the static files: a test that needs it asks for it)
+# (the kernels were compiled by ./dev test's warm-up: no background warm-up)
 TEST_SETTINGS = {"verify_on_start": False, "use_verdict_cache": False, "workers": 2,
-                 "precompress": False,
+                 "precompress": False, "warm_kernels": False, "kernels_warm": True,
                  "deadline_s": 20.0, "log_level": "warning",
                  "allowed_hosts": ["127.0.0.1", "localhost", "::1", "testserver"]}
 
@@ -41,13 +42,16 @@ def free_port() -> int:
 
 @contextlib.contextmanager
 def live_server(timeout: float = 60.0, plain_uvicorn: bool = False,
+                cwd: Path | None = None, extra_env: dict | None = None,
                 **settings) -> Iterator[str]:
     """Start the explorer's server (app.core.server: uvicorn app.main:app with its bounds)
     on 127.0.0.1 and a free port with ROLLING_* settings;
-    yield its base URL once /api/health answers; stop it (SIGTERM, then SIGKILL)."""
+    yield its base URL once /api/health answers; stop it (SIGTERM, then SIGKILL).
+    cwd, extra_env: where it runs and more environment (a copy of the sources with
+    PYTHONPATH on it: tests/test_cold_prepare.py)."""
     port = free_port()
     # pydantic-settings reads a list or dict from the environment as JSON
-    env = {**os.environ, **{f"ROLLING_{k.upper()}":
+    env = {**os.environ, **(extra_env or {}), **{f"ROLLING_{k.upper()}":
                             json.dumps(v) if isinstance(v, list | dict) else str(v)
                             for k, v in {**TEST_SETTINGS, **settings}.items()}}
     env.setdefault("ROLLING_CACHE_DIR",
@@ -59,7 +63,7 @@ def live_server(timeout: float = 60.0, plain_uvicorn: bool = False,
         [sys.executable, "-m", "uvicorn" if plain_uvicorn else "app.core.server",
          *(["app.main:app"] if plain_uvicorn else []), "--host", "127.0.0.1",
          "--port", str(port), "--log-level", "warning"],
-        env=env, stdout=subprocess.DEVNULL, stderr=log)
+        env=env, stdout=subprocess.DEVNULL, stderr=log, cwd=cwd)
     url = f"http://127.0.0.1:{port}"
     try:
         deadline = time.monotonic() + timeout

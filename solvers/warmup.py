@@ -11,8 +11,7 @@ each); vern9's (~17 s), which only method="auto" at tight tolerances or an expli
 vern9 run takes, compiles on its first use (the explorer does it before the request's
 deadline starts: app/api/routes/simulate.py), or here with --all. They are compiled as tasks of
 parallel processes (ROLLING_WARMUP_JOBS, default the number of CPUs, at most 4): the
-general kernels are one task, the general-field ensembles (Poincare maps) another,
-each structure another; a structure whose small kernels are
+general kernels are one task, each structure another; a structure whose small kernels are
 already in the cache is skipped. The big generated integrators (rk.py on a generated field,
 ~37 s a structure, and their ensemble twins) are no longer compiled here: no default route
 needs them (`python -m solvers.warmup --generated` still compiles them).
@@ -138,8 +137,9 @@ def _jobs() -> int:
 
 
 def _task(what) -> str:
-    """One unit of the parallel warm-up: the general kernels, or a case's structure
-    (("generated", target): its big generated integrator and ensemble twin)."""
+    """One unit of the parallel warm-up: the general kernels, the compiled ensembles on the
+    general field, or a case's structure (("generated", target): its big generated
+    integrator and ensemble twin)."""
     if what == GENERAL:
         _general()
         return what
@@ -152,31 +152,76 @@ def _task(what) -> str:
 
 
 GENERAL = "general kernels"
-# the general-field ensembles are a task of their own: after the pool they held its one
-# process alone for ~18 s (bench/results/warmup.txt)
-ENSEMBLES = "general ensembles"
+ENSEMBLES = "ensembles"
 
 
-def warm(jobs: int | None = None, generated: bool = False) -> float:
+def part_name(what) -> str:
+    """What a task compiles, in words (the progress lines and the explorer's pages)."""
+    if what == GENERAL:
+        return GENERAL
+    if what == ENSEMBLES:
+        return "compiled ensembles (Poincare maps)"
+    if isinstance(what, tuple) and what[0] == "generated":
+        return f"generated integrator of {part_name(what[1])}"
+    if isinstance(what, str):
+        return what
+    # (case, parameters): say what differs from the case's example
+    from solvers.models.cases import registry
+
+    example = registry()[what[0]].example
+    differs = ", ".join(f"{k} = {v:g}" for k, v in what[1].items() if example.get(k) != v)
+    return f"{what[0]} ({differs})" if differs else what[0]
+
+
+def warm(jobs: int | None = None, generated: bool = False, progress=None) -> float:
+    """Compile what is not in the caches yet, `jobs` tasks at a time. progress(event): a
+    dict, first {"event": "plan", "total": n, "parts": [{"name", "cases"}]}, then
+    {"event": "done", "part", "seconds", "done", "total"} as each task finishes (the
+    explorer's progress bar and its pages read these: app/services/kernel_warmup.py)."""
     t0 = time.perf_counter()
-    todo = [cases[0] for cases in pending().values()]
+    plan = [(GENERAL, [])]
+    for cases in pending().values():
+        plan.append((cases[0], sorted({c for c, _ in cases})))
     if generated:
-        todo += [("generated", cases[0]) for cases in pending(generated=True).values()]
-    jobs = min(jobs or _jobs(), len(todo) + 2)
-    if jobs > 1 and todo:
+        plan += [(("generated", cases[0]), sorted({c for c, _ in cases}))
+                 for cases in pending(generated=True).values()]
+    else:   # with generated, after them (their ensemble twins need the integrators)
+        plan.append((ENSEMBLES, []))
+    todo = [what for what, _ in plan]
+    report = progress or (lambda event: None)
+    report({"event": "plan", "total": len(todo),
+            "parts": [{"name": part_name(w), "cases": c} for w, c in plan]})
+    done = 0
+
+    def finished(what, seconds):
+        nonlocal done
+        done += 1
+        report({"event": "done", "part": part_name(what), "seconds": round(seconds, 1),
+                "done": done, "total": len(todo)})
+
+    jobs = min(jobs or _jobs(), len(todo))
+    if jobs > 1:
         import multiprocessing as mp
-        from concurrent.futures import ProcessPoolExecutor
+        from concurrent.futures import ProcessPoolExecutor, as_completed
 
         # spawn: fresh interpreters (a forked numba/LLVM state is not safe to reuse); the
         # general kernels are one more task, so no core waits for them
         with ProcessPoolExecutor(jobs, mp_context=mp.get_context("spawn")) as ex:
-            list(ex.map(_task, [GENERAL, ENSEMBLES, *todo]))
+            futures = {ex.submit(_timed, what): what for what in todo}
+            for f in as_completed(futures):
+                finished(futures[f], f.result())
     else:
-        for what in (GENERAL, ENSEMBLES, *todo):
-            _task(what)
-    if generated:      # the generated twins (the general ones are compiled by then)
+        for what in todo:
+            finished(what, _timed(what))
+    if generated:
         warm_ensembles(generated)
     return time.perf_counter() - t0
+
+
+def _timed(what) -> float:
+    t = time.perf_counter()
+    _task(what)
+    return time.perf_counter() - t
 
 
 def warm_ensembles(generated: bool = False) -> None:
@@ -209,4 +254,13 @@ if __name__ == "__main__":
 
     if "--all" in sys.argv:     # inherited by the spawned processes
         os.environ["ROLLING_WARMUP_ALL"] = "1"
-    print(f"kernels ready in {warm(generated='--generated' in sys.argv):.1f} s")
+    # --progress: one JSON line per event on stdout (the explorer starts this in the
+    # background and draws its progress bar from them)
+    hook = None
+    if "--progress" in sys.argv:
+        import json
+
+        def hook(event):
+            print(json.dumps(event), flush=True)
+    print(f"kernels ready in {warm(generated='--generated' in sys.argv, progress=hook):.1f} s",
+          flush=True)

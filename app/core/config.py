@@ -40,6 +40,17 @@ class Settings(BaseSettings):
     cache_dir: Path = Path.home() / ".cache" / "rolling-hierarchy"
     use_verdict_cache: bool = True
     warm_workers: bool = True         # start the worker processes (numba caches) at start
+    # compile the kernels in the background (python -m solvers.warmup, a subprocess of the
+    # app): the explorer serves at once (app/services/kernel_warmup.py)
+    warm_kernels: bool = True
+    # without the background warm-up: the caches hold what the warm-up compiles (the
+    # tests run after ./dev test's warm-up), so only other kernels are prepared before a
+    # request's deadline starts (app/services/kernel_prepare.py); false: every kind of
+    # job is prepared on its first use
+    kernels_warm: bool = False
+    # the warm-up's command line (JSON list in ROLLING_WARMUP_COMMAND); None: python -m
+    # solvers.warmup --progress. The tests give a scripted one that prints the same lines.
+    warmup_command: list[str] | None = None
     # make the compressed forms of the static files at start (app.core.compress)
     precompress: bool = True
     # request bodies above this many bytes get 413 before anything parses them

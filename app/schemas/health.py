@@ -44,11 +44,32 @@ class ConnectionsPublic(BaseModel):
     lingered: int = Field(description="connections closed with a request body unread")
 
 
+class KernelsPublic(BaseModel):
+    """The compile of the kernels in the background (app/services/kernel_warmup.py)."""
+    state: str = Field(description="off (no warm-up in this server: the caches are "
+                       "assumed warm) | starting | running | done | failed")
+    message: str = ""
+    parts_done: int = Field(description="warm-up parts compiled (the general kernels, the "
+                            "ensembles, one part per case structure)")
+    parts_total: int
+    warming_cases: list[str] = Field(description="cases whose kernels are still compiling: "
+                                     "a run of one compiles its kernel before it starts")
+    warming_parts: list[str]
+    estimate_s: float = Field(description="seconds one case structure took to compile here "
+                              "(a default before the first one finished)")
+    elapsed_s: float | None = Field(None, description="seconds since the warm-up started "
+                                    "(its duration once done)")
+    prepared: list[dict] = Field(default_factory=list, description="the last compiles a "
+                                 "request waited for before its deadline started: keys, "
+                                 "seconds")
+
+
 class HealthPublic(BaseModel):
     status: str = Field(description="always 'ok' when the service answers")
     version: str
     pool: PoolPublic
     limits: LimitsPublic
     verification: VerificationStatus
+    kernels: KernelsPublic
     connections: ConnectionsPublic | None = Field(
         None, description="null when the app runs under a server other than rolling serve")

@@ -161,3 +161,11 @@ class ScenePublic(BaseModel):
 class MethodPublic(BaseModel):
     name: str
     kind: str
+
+
+class CompilesPublic(BaseModel):
+    compiles: bool = Field(description="true: the run compiles its kernels first (first use "
+                           "on this machine, or the background warm-up has not reached "
+                           "them); the compile happens before the run's deadline starts")
+    estimate_s: float = Field(description="seconds one case structure's kernels took to "
+                              "compile on this machine (a default before the first)")

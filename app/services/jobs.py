@@ -34,17 +34,27 @@ def _lower_priority() -> None:
 
 def warm() -> int:
     """Import the solvers and load the compiled kernels from numba's cache: one short run
-    of every case, so that no request pays for a first call (about a second on a sphere)."""
+    of every case, so that no request pays for a first call (about a second on a sphere).
+    Only once the kernels are compiled (the warm-up done): before, `warm_imports`."""
     _lower_priority()
     from solvers.models.cases import registry
     from solvers.simulate import simulate
 
     for cid, case in registry().items():   # the generated kernels too (field="auto")
         simulate(cid, case.example, case.state, 0.01, samples=3)
+    return warm_imports()
+
+
+def warm_imports() -> int:
+    """A worker started while the kernel warm-up still compiles (app/services/
+    kernel_warmup.py): the imports only, no run, so that it compiles nothing the warm-up
+    is compiling; the routes prepare what a request needs (kernel_prepare.py)."""
+    _lower_priority()
     import pyarrow  # noqa: F401   (the Arrow answer's first use: ~0.3 s of imports)
 
     import app.services.payloads  # noqa: F401
-    import solvers.models.kinematics  # noqa: F401
+    import solvers.models.kinematics
+    import solvers.simulate  # noqa: F401
     return os.getpid()
 
 
@@ -78,25 +88,54 @@ def _run(req: dict, max_steps: int):
 
 
 def prepare_kernels(req: dict) -> int:
-    """Compile (or load) the small kernels a simulate request will run (issue 19: no
-    request pays a compile inside its deadline): the route runs this without a deadline
-    the first time it sees a case structure, method and projection choice; method "auto"
-    may pick dop853 or vern9, so both. Returns how many kernels are ready."""
+    """Compile (or load) the kernels a simulate request will run, on a tiny run of the same
+    case, parameters, method and options (issue 19: no request pays a compile inside its
+    deadline; the route runs this without a deadline: app/services/kernel_prepare.py);
+    method "auto" may pick dop853 or vern9, so both. A tiny run that fails (bad input) is
+    left to the request itself to report. Returns how many runs completed."""
     _lower_priority()
-    from solvers.integrate.integrator import SMALL_METHODS, is_plain
-    from solvers.models.cases import build
-    from solvers.simulate import simulate
+    from solvers.integrate.integrator import SMALL_METHODS
 
-    model = build(req["case"], req["params"], allow_any_inertia=req["allow_any_inertia"])
+    step = req.get("step")
+    tiny = {**req, "samples": 2, "t_end": 2.0 * step if step else 1e-6}
     methods = SMALL_METHODS if req["method"] == "auto" else (req["method"],)
     done = 0
     for method in methods:
-        if req.get("field", "auto") != "general" and is_plain(
-                model.model, method, project=req["project"], fixed=req.get("step") is not None):
-            simulate(req["case"], req["params"], req["state"], 1e-6, method=method, samples=2,
-                     allow_any_inertia=req["allow_any_inertia"])
+        try:
+            _run({**tiny, "method": method}, 1000)
             done += 1
+        except Exception:   # the request's own run reports it
+            pass
     return done
+
+
+def prepare_scene(req: dict) -> int:
+    """The kernels of a scene (the scene model's compiled run), on a tiny run."""
+    _lower_priority()
+    from solvers.models.kinematics import scene
+
+    try:
+        scene(req["case"], req["params"], req["state"], 1e-3, frames=2,
+              rtol=min(req["rtol"], 1e-8), atol=min(req["atol"], 1e-10), max_steps=1000,
+              allow_any_inertia=req["allow_any_inertia"])
+    except Exception:   # the request's own run reports it
+        return 0
+    return 1
+
+
+def prepare_scene_check(scene_id: str) -> int:
+    """A teaching scene's checks run its scene and plain runs of its case: their
+    kernels, on tiny runs of the scene's own declaration (catalogue/scenes.yaml)."""
+    from catalogue.scenes import load_scenes
+    from solvers.models.cases import registry
+
+    run = load_scenes()[scene_id].scene
+    case = registry()[run.case]
+    req = {"case": run.case, "params": {**case.example, **run.params},
+           "state": list(run.state or case.state), "rtol": run.rtol, "atol": run.atol,
+           "allow_any_inertia": True, "method": "dop853", "project": False,
+           "precision": None, "field": "auto"}
+    return prepare_scene(req) + prepare_kernels(req)
 
 
 def simulate_json(req: dict, max_steps: int) -> bytes:

@@ -33,3 +33,16 @@ def seconds_per_point(job: dict, y0: list[float], points: int) -> float:
     t0 = time.perf_counter()
     trajectories(timed, [y0])
     return (time.perf_counter() - t0) / points
+
+
+def prepare(job: dict, y0: list[float]) -> int:
+    """Compile (or load) a map's kernels without a deadline before the map's jobs run
+    (app/services/kernel_prepare.py): one crossing of the first start, its step budget
+    cut to a few hundred steps (the compile is the cost, not the run)."""
+    tiny = {**job, "spec": {**job["spec"], "points": 1,
+                            "max_steps": min(job["spec"]["max_steps"], 500)}}
+    try:
+        trajectories(tiny, [y0])
+    except Exception:   # the map itself reports it
+        return 0
+    return 1

@@ -2,7 +2,7 @@
 
 from dataclasses import asdict
 
-from fastapi import APIRouter
+from fastapi import APIRouter, Request
 
 from app import __version__
 from app.api.deps import PoolDep, SettingsDep, VerdictsDep
@@ -13,8 +13,10 @@ router = APIRouter(tags=["health"])
 
 
 @router.get("/health", response_model=HealthPublic)
-async def health(pool: PoolDep, verdicts: VerdictsDep, settings: SettingsDep) -> dict:
-    """Liveness and load: worker pool occupancy and the state of the verification."""
+async def health(request: Request, pool: PoolDep, verdicts: VerdictsDep,
+                 settings: SettingsDep) -> dict:
+    """Liveness and load: worker pool occupancy, the state of the verification and of the
+    kernels' compile (which parts are still warming)."""
     return {"status": "ok", "version": __version__, "pool": asdict(pool.stats()),
             "limits": {"deadline_s": settings.deadline_s, "max_steps": settings.max_steps,
                        "max_samples": min(settings.max_samples, MAX_SAMPLES),
@@ -23,6 +25,7 @@ async def health(pool: PoolDep, verdicts: VerdictsDep, settings: SettingsDep) ->
                              "cases_done": len(verdicts.records),
                              "cases_total": len(verdicts.case_ids),
                              "updated": verdicts.updated},
+            "kernels": request.app.state.kernels.public(),
             "connections": _connections()}
 
 

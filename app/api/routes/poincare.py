@@ -5,13 +5,16 @@ written by bench/paper_figures.py).
 The starts are resolved (validated, sampled with the seed) in a thread; then each
 trajectory is one job of the worker pool (app/services/poincare_jobs.py), `workers` jobs
 at a time. With
-?stream=true the answer is NDJSON: {"event": "estimate", "seconds": s, ...} from a pilot
+?stream=true the answer is NDJSON: {"event": "compiling", "estimate_s": s} first when the
+map's kernels compile before it (first use on this machine; outside the deadline), then
+{"event": "estimate", "seconds": s, ...} from a pilot
 of the first start, {"event": "progress", "done": k, "total": n, "remaining": s} after
 every trajectory that returns, then {"event": "result", "result": {...}} (or {"event":
 "error", "detail": ...}); without it, one JSON object {"trajectories": [...], ...} when all
 are done.
 
-One deadline (Settings.deadline_s) holds for the whole request: every job gets the
+One deadline (Settings.deadline_s) holds for the whole request once its kernels are
+compiled (app/services/kernel_prepare.py): every job gets the
 time that is left, and when none is left the answer is 504 (in a stream: an error event
 with "status": 504).
 """
@@ -35,7 +38,7 @@ from app.schemas.common import (
     PROBLEM_RESPONSES,
 )
 from app.schemas.poincare import PoincarePublic, PoincareRequest
-from app.services import poincare_jobs
+from app.services import kernel_prepare, poincare_jobs
 from app.services.jobs import dumps
 from app.services.reader_pages import static_page
 from solvers.errors import InputError
@@ -145,10 +148,19 @@ async def poincare(req: PoincareRequest, request: Request, pool: PoolDep,
     header, job, starts = await anyio.to_thread.run_sync(resolve, req, settings.max_steps,
                                                          limiter=_threads)
     n = len(starts)
-    end = anyio.current_time() + settings.deadline_s
     results: list[dict | None] = [None] * n
+    kernels = request.app.state.kernels
+    keys = [("map", req.case, req.method)]
+
+    async def prepare():
+        # the map's kernels compile (first use) in a job without a deadline; the map's
+        # one deadline starts after it (issue 19: app/services/kernel_prepare.py)
+        await kernel_prepare.prepare(pool, kernels, settings.kernels_warm, keys,
+                                     poincare_jobs.prepare, job, starts[0])
+        return anyio.current_time() + settings.deadline_s
 
     if not stream:
+        end = await prepare()
         await cancel_on_disconnect(request, lambda: _run_all(pool, settings, job, starts,
                                                              results, end))
         return Response(dumps({**header, "trajectories": results}),
@@ -162,6 +174,11 @@ async def poincare(req: PoincareRequest, request: Request, pool: PoolDep,
     async def events():
         t0 = anyio.current_time()
         try:
+            if kernel_prepare.needed(kernels, settings.kernels_warm, keys):
+                yield json.dumps({"event": "compiling", "estimate_s": kernels.estimate_s(),
+                                  "detail": "compiling the map's kernels (first use on "
+                                  "this machine)"}) + "\n"
+            end = await prepare()
             estimate = await _pilot(pool, settings, starts, job, req.points, end)
         except Exception as exc:
             yield problem(exc)

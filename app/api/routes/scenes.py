@@ -90,7 +90,8 @@ async def scene_check(scene_id: str, k: int, request: Request, pool: PoolDep,
                       settings: SettingsDep) -> Response:
     """Check k of the scene on the scene's own run (solvers/scenes/scene_checks.py), with the
     plot of exactly the data its verdict was taken from: what /scenes draws."""
-    from app.services.jobs import dumps
+    from app.services import kernel_prepare
+    from app.services.jobs import dumps, prepare_scene_check
     from catalogue.scenes import load_scenes
     from solvers.scenes.scene_checks import check_json
 
@@ -102,6 +103,10 @@ async def scene_check(scene_id: str, k: int, request: Request, pool: PoolDep,
         raise HTTPException(404, f"scene {scene_id!r} has checks 0 … {len(s.checks) - 1}")
     body = _checks.get((scene_id, k))
     if body is None:
+        # the scene's kernels compile (first use) before the check's deadline starts
+        await kernel_prepare.prepare(pool, request.app.state.kernels, settings.kernels_warm,
+                                     [("scene-check", scene_id)], prepare_scene_check,
+                                     scene_id)
         d = await cancel_on_disconnect(request, lambda: pool.run(
             check_json, scene_id, k, deadline=settings.deadline_s))
         body = _checks.setdefault((scene_id, k), dumps(d))

@@ -23,6 +23,7 @@ from app.schemas.common import (
     PROBLEM_RESPONSES,
 )
 from app.schemas.simulate import (
+    CompilesPublic,
     MethodPublic,
     ScenePublic,
     SceneRequest,
@@ -30,7 +31,7 @@ from app.schemas.simulate import (
     SimulateResponse,
     ValidatePublic,
 )
-from app.services import jobs, payloads
+from app.services import jobs, kernel_prepare, payloads
 from catalogue.plain_words import invariant_name
 from solvers.errors import InputError
 
@@ -82,40 +83,12 @@ async def _resolved(req: SimulateRequest, settings=None) -> dict:
     return await anyio.to_thread.run_sync(resolve, req, max_steps, limiter=_validation_threads)
 
 
-# (model, structure, method) whose small kernel a worker compiled in this server
-# (solvers/kernels/small.py); the warm-up's structures are compiled before the server starts
-_PREPARED: set = set()
-_WARMED: set = set()
-
-
-def _structure(model) -> tuple:
-    """The nonzero parameter slots (solvers.kernels.generate.structure), without importing
-    numba into the server's process."""
-    return (model.model, tuple(np.flatnonzero(np.asarray(model.p) != 0.0).tolist()))
-
-
-def _warmed() -> set:
-    """(model, structure, method) of the small kernels the warm-up compiled."""
-    if not _WARMED:
-        from solvers.models.cases import build
-        from solvers.warmup import WARM_SMALL, _targets
-
-        _WARMED.update((*_structure(build(cid, params)), method)
-                       for cid, params in _targets() for method in WARM_SMALL)
-    return _WARMED
-
-
-async def _prepare(pool, resolved: dict, job: dict) -> None:
-    """The first request of a case structure outside the warm-up's compiles its small
-    kernel in a job without a deadline (a few seconds), so that the run's own deadline
-    never holds a compile (issue 19); later ones, and the warm-up's structures, skip it."""
-    if job.get("field", "auto") == "general" or job.get("step") is not None or job["project"]:
-        return          # the general kernels (compiled by the warm-up)
-    key = (*_structure(resolved["_model"]), job["method"])
-    if key in _warmed() or key in _PREPARED:
-        return
-    await pool.run(jobs.prepare_kernels, job)
-    _PREPARED.add(key)
+async def _prepare(request: Request, pool, settings, resolved: dict, job: dict) -> None:
+    """The kernels the run needs, compiled (or loaded) in a job without a deadline before
+    the run's own deadline starts (issue 19; app/services/kernel_prepare.py)."""
+    await kernel_prepare.prepare(pool, request.app.state.kernels, settings.kernels_warm,
+                                 kernel_prepare.simulate_keys(resolved),
+                                 jobs.prepare_kernels, job)
 
 
 def _job(resolved: dict) -> dict:
@@ -161,7 +134,7 @@ async def simulate(req: SimulateRequest, request: Request, pool: PoolDep,
         media = {"csv": payloads.CSV, "arrow": payloads.ARROW}.get(format, payloads.JSON)
     resolved = await _resolved(req, settings)
     job = _job(resolved)
-    await _prepare(pool, resolved, job)
+    await _prepare(request, pool, settings, resolved, job)
     fn = {payloads.CSV: jobs.simulate_csv, payloads.ARROW: jobs.simulate_arrow}.get(
         media, jobs.simulate_json)
     body = await cancel_on_disconnect(request, lambda: pool.run(
@@ -196,6 +169,8 @@ async def scene(req: SceneRequest, request: Request, pool: PoolDep,
         raise InputError(f"field = {req.field!r}: a scene runs the default field (auto); "
                          "field applies to /api/simulate")
     job = _job(await _resolved(req, settings))
+    await kernel_prepare.prepare(pool, request.app.state.kernels, settings.kernels_warm,
+                                 [("scene", req.case)], jobs.prepare_scene, job)
     body = await cancel_on_disconnect(request, lambda: pool.run(
         jobs.scene_json, job, req.frames, min(settings.max_steps, 200_000),
         deadline=settings.deadline_s))
@@ -212,3 +187,28 @@ async def methods() -> list[dict]:
              "symmetric" if m in symmetric_methods() else
              "taylor" if m == "taylor" else "auto" if m == "auto" else "compiled"}
             for m in METHODS]
+
+
+@router.post("/simulate/compiles", response_model=CompilesPublic,
+             responses={**PROBLEM_RESPONSES, **GUARD_RESPONSES})
+async def simulate_compiles(req: SimulateRequest, request: Request,
+                            settings: SettingsDep) -> dict:
+    """Whether POST /api/simulate with this body would first compile its kernels (first
+    use on this machine; outside the run's deadline), and about how long that takes: the
+    explorer says "compiling" while it waits."""
+    resolved = await _resolved(req, settings)
+    return _compiles(request, settings, kernel_prepare.simulate_keys(resolved))
+
+
+@router.post("/scene/compiles", response_model=CompilesPublic,
+             responses={**PROBLEM_RESPONSES, **GUARD_RESPONSES})
+async def scene_compiles(req: SceneRequest, request: Request, settings: SettingsDep) -> dict:
+    """As /api/simulate/compiles, for POST /api/scene."""
+    await _resolved(req, settings)
+    return _compiles(request, settings, [("scene", req.case)])
+
+
+def _compiles(request: Request, settings, keys: list[tuple]) -> dict:
+    kernels = request.app.state.kernels
+    return {"compiles": kernel_prepare.needed(kernels, settings.kernels_warm, keys),
+            "estimate_s": kernels.estimate_s()}

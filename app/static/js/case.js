@@ -9,6 +9,7 @@ import { plotDrift, plotGamma, plotState } from "./plots.js";
 import { applyRunQuery, runQuery, setQuery } from "./permalink.js";
 import { csvOf } from "./run_csv.js";
 import { estimate } from "./estimate.js";
+import { kernelSentence, runLabel } from "./kernels.js";
 import { Scene } from "./scene.js";
 import { glossary, tipHtml } from "./glossary.js";
 import { caseCiteHtml, checkedHtml, citeData, decorateClaims } from "./cite.js";
@@ -532,7 +533,8 @@ async function runSimulation(ev) {
   }
   const t0 = performance.now();
   try {
-    const res = await withProgress("running", (signal) => api("/api/simulate", { method: "POST", body: req, signal }));
+    const label = await runLabel("/api/simulate", req, "running");
+    const res = await withProgress(label, (signal) => api("/api/simulate", { method: "POST", body: req, signal }));
     const secs = (performance.now() - t0) / 1000;
     lastRun = { request: req, result: res };
     setQuery(runQuery(req));              // the address is now this run's permalink
@@ -577,7 +579,8 @@ async function runScene() {
   const frames = Math.max(2, Math.min(limits.max_frames, Math.round(Number($("f-frames").value) || 200)));
   $("scene-msg").textContent = "";
   try {
-    const d = await withProgress("computing the scene", (signal) =>
+    const label = await runLabel("/api/scene", { ...req, frames }, "computing the scene");
+    const d = await withProgress(label, (signal) =>
       api("/api/scene", { method: "POST", body: { ...req, frames }, signal }));
     if (scene) scene.destroy();
     const el = $("plot-scene");
@@ -603,6 +606,25 @@ async function runScene() {
   }
 }
 
+// ---------------------------------------------------------------- kernels
+
+let kernels = null;   // GET /api/health's kernels at load
+
+// "kernels: k of n compiled; a run of this case compiles its kernel before it starts", while
+// the server's background warm-up runs (refreshed until it is done)
+function showKernels(k) {
+  $("kernel-status").textContent = kernelSentence(k, caseId);
+  if (k && ["starting", "running"].includes(k.state)) {
+    setTimeout(async () => {
+      try {
+        showKernels((await api("/api/health")).kernels);
+      } catch {
+        // keep the last sentence
+      }
+    }, 5000);
+  }
+}
+
 // ---------------------------------------------------------------- start
 
 async function main() {
@@ -613,6 +635,7 @@ async function main() {
     GLOSSARY = g;
     C = c;
     limits = h.limits;
+    kernels = h.kernels;
     SYMMETRIC = new Set(methods.filter((m) => m.kind === "symmetric").map((m) => m.name));
     const group = (kind, label) => `<optgroup label="${label}">` + methods.filter((m) => m.kind === kind)
       .map((m) => `<option value="${m.name}">${m.name}</option>`).join("") + "</optgroup>";
@@ -628,6 +651,7 @@ async function main() {
   showCells();
   showClaims();
   resetForm();
+  showKernels(kernels);
   $("simform").addEventListener("input", onEdit);
   $("simform").addEventListener("change", onEdit);
   $("simform").addEventListener("submit", runSimulation);

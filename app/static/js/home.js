@@ -4,6 +4,7 @@
 "use strict";
 
 import { api, escapeHtml } from "./api.js";
+import { kernelSentence } from "./kernels.js";
 import { textHtml } from "./latex.js";
 import { markHtml, overview } from "./marks.js";
 
@@ -104,7 +105,9 @@ async function showStatus() {
       await Promise.all([showTable("plane"), showTable("sphere"), showSummary()]);   // new marks
     }
     lastDone = v.cases_done;
-    if (v.state === "running") setTimeout(showStatus, 4000);
+    document.getElementById("kernel-status").textContent = kernelSentence(h.kernels);
+    const warming = ["starting", "running"].includes(h.kernels.state);
+    if (v.state === "running" || warming) setTimeout(showStatus, 4000);
     el.textContent = v.state === "running"
       ? `Computing verdicts: ${v.cases_done} of ${v.cases_total} cases so far; the marks fill in as they come.`
       : v.state === "done" ? ""

@@ -167,7 +167,11 @@ async function compute(ev) {
         buf = buf.slice(nl + 1);
         if (!line.trim()) continue;
         const ev = JSON.parse(line);
-        if (ev.event === "estimate") {
+        if (ev.event === "compiling") {
+          // the map's kernels compile first (routes/poincare.py: outside its time limit)
+          status.textContent = `Compiling the map's kernels (first use on this machine, about ` +
+            `${secs(ev.estimate_s)}; not counted in the time limit)…`;
+        } else if (ev.event === "estimate") {
           // from a real pilot of this case on this server (routes/poincare.py _pilot)
           estimate = ev.seconds;
           status.textContent = `0 of ${ev.total} trajectories; about ${secs(ev.seconds)} in all` +
