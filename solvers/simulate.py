@@ -286,7 +286,8 @@ def simulate(case: str, params: dict | None, state0, t_end: float, *,
                               project, budget, step, FIELDS[field], rung["precision"],
                               compensated=rung["compensated"])   # as measured
 
-        res, checked = run_checked(auto, runner, float(t_end), max_steps)
+        res, checked = run_checked(auto, runner, float(t_end), max_steps,
+                                   taylor_ok=auto["taylor_allowed"])
         method, precision = checked["returned"]["method"], checked["returned"]["precision"]
         rtol = atol = checked["returned"]["tol"]
     status = "ok" if res.success else ("budget" if res.budget_exhausted else "singular")

@@ -120,3 +120,62 @@ def test_a_check_run_tight_enough_becomes_the_returned_run():
     # run's 10^-10.5: that run is reused as the result and checked once more at 1e-12
     assert [t for t, _ in calls] == pytest.approx([1e-9, 10 ** -10.5, 1e-12])
     assert info["met"] and info["returned"]["tol"] == pytest.approx(10 ** -10.5)
+
+
+def _runner_by_method(calls, c, fail_below=0.0):
+    def runner(rung, budget):
+        calls.append((rung["method"], rung["tol"], rung["precision"]))
+        t = np.linspace(0.0, 1.0, 3)
+        ok = rung["tol"] >= fail_below
+        return SimpleNamespace(t=t if ok else t[:1], y=np.full((3, 2), 1.0 + c * rung["tol"]),
+                               success=ok, steps=10, rhs_calls=100, wall_s=0.0,
+                               message="" if ok else "singular")
+    return runner
+
+
+def test_below_the_runge_kutta_floor_it_goes_to_the_taylor_backend():
+    calls = []
+    choice = {"method": "dop853", "tol": 1e-12, "precision": None, "compensated": True,
+              "requested_rtol": 1e-8}
+    res, info = auto.run_checked(choice, _runner_by_method(calls, 1e7), 1.0, 1000,
+                                 taylor_ok=True)
+    # the estimate 1e-5 wants tol 5e-16: below RK_MIN_RUN, so the Taylor backend, in double
+    # at 10^-15.5 and its check in long double at 1e-17 (T = 1: the floors of taylor_backend)
+    assert [(m, p) for m, _, p in calls] == [("dop853", None), ("dop853", None),
+                                             ("taylor", "double"), ("taylor", "long double")]
+    assert [t for _, t, _ in calls] == pytest.approx([1e-12, 10 ** -13.5, 10 ** -15.5, 1e-17])
+    assert info["met"] and info["returned"]["method"] == "taylor"
+
+
+def test_without_taylor_it_stops_at_the_floor_and_returns_the_run_it_checked():
+    calls = []
+    choice = {"method": "dop853", "tol": 1e-12, "precision": None, "compensated": True,
+              "requested_rtol": 1e-8}
+    res, info = auto.run_checked(choice, _runner_by_method(calls, 1e8), 1.0, 1000)
+    assert [t for _, t, _ in calls] == pytest.approx([1e-12, 10 ** -13.5, 1e-16])
+    # the 1e-16 run has no tighter check: the returned run is the checked one, with its
+    # own estimate, and the request is reported as not met
+    assert not info["met"] and info["returned"]["tol"] == 1e-12
+    assert res.y[0, 0] == 1.0 + 1e8 * 1e-12
+    # (divided by max(1, max |y_check|) = 1 + 3e-6: the benchmark's measure)
+    assert info["error_estimate"] == pytest.approx(1e8 * (1e-12 - 10 ** -13.5), rel=1e-5)
+    assert "as tight as auto runs" in info["error_estimate_method"]
+
+
+def test_a_tightened_run_that_fails_is_not_returned():
+    calls = []
+    choice = {"method": "vern9", "tol": 1e-8, "precision": None, "compensated": True,
+              "requested_rtol": 1e-8}
+    res, info = auto.run_checked(choice, _runner_by_method(calls, 100.0, fail_below=1e-9),
+                                 1.0, 1000)
+    # the check at 10^-9.5 fails at once: no estimate at all, the first run returned
+    assert info["error_estimate"] is None and not info["met"] and res.success
+    assert info["error_estimate_method"].startswith("none: the check run")
+    calls = []
+    res, info = auto.run_checked(choice, _runner_by_method(calls, 100.0, fail_below=1e-10),
+                                 1.0, 1000)
+    # checked once (estimate ~1e-6), the tightened run at 10^-10.5 fails: the checked run
+    # comes back with its estimate
+    assert info["returned"]["tol"] == 1e-8 and res.success and not info["met"]
+    assert info["error_estimate"] == pytest.approx(100 * (1e-8 - 10 ** -9.5))
+    assert "stopped early" in info["error_estimate_method"]
