@@ -12,10 +12,10 @@ import pytest
 pytest.importorskip("heyoka")
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "bench"))
 
-from solvers.integrate.auto import error_between  # noqa: E402
-from solvers.integrate.taylor import Taylor  # noqa: E402
-from solvers.models.cases import build, registry  # noqa: E402
-from solvers.simulate import simulate  # noqa: E402
+from solvers.integrate.auto import error_between
+from solvers.integrate.taylor import Taylor
+from solvers.models.cases import build, registry
+from solvers.simulate import simulate
 
 
 @pytest.mark.parametrize("case", ["plane/chaplygin-ball", "sphere/flat-base"])

@@ -115,7 +115,7 @@ def test_a_check_run_tight_enough_becomes_the_returned_run():
     calls = []
     choice = {"method": "vern9", "tol": 1e-9, "precision": None, "compensated": True,
               "requested_rtol": 1e-8}
-    res, info = auto.run_checked(choice, _fake_runner(calls, c=20.0), 1.0, 1000)
+    _res, info = auto.run_checked(choice, _fake_runner(calls, c=20.0), 1.0, 1000)
     # error 2e-8 > 1e-8; aiming at 5e-9 wants tol 2.5e-10 -> 10^-9.75, looser than the check
     # run's 10^-10.5: that run is reused as the result and checked once more at 1e-12
     assert [t for t, _ in calls] == pytest.approx([1e-9, 10 ** -10.5, 1e-12])
@@ -137,7 +137,7 @@ def test_below_the_runge_kutta_floor_it_goes_to_the_taylor_backend():
     calls = []
     choice = {"method": "dop853", "tol": 1e-12, "precision": None, "compensated": True,
               "requested_rtol": 1e-8}
-    res, info = auto.run_checked(choice, _runner_by_method(calls, 1e7), 1.0, 1000,
+    _res, info = auto.run_checked(choice, _runner_by_method(calls, 1e7), 1.0, 1000,
                                  taylor_ok=True)
     # the estimate 1e-5 wants tol 5e-16: below RK_MIN_RUN, so the Taylor backend, in double
     # at 10^-15.5 and its check in long double at 1e-17 (T = 1: the floors of taylor_backend)
