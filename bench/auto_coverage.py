@@ -31,7 +31,7 @@ time (every run's, compile excluded) / the first choice's. No time is asserted.
 
     nice -n 10 .venv/bin/python bench/auto_coverage.py [--quick]
         -> bench/results/auto_coverage{,_quick}.{txt,json}
---quick: 3 starts per case, T at most 100, levels 1e-6 and 1e-10 (a smoke run, ~1 min once
+--quick: 3 starts per case, T at most 100, levels 1e-6 and 1e-10 (a smoke run, seconds once
 the kernels are compiled).
 """
 
