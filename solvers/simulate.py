@@ -274,9 +274,22 @@ def simulate(case: str, params: dict | None, state0, t_end: float, *,
         check_taylor_options(method, precision, project, step)
     _check_options(t_end, method, rtol, atol, samples, project, max_steps, step, field)
     t_out = _times(t_end, samples)
-    res = _integrate(model, y0, t_out, method, rtol, atol, project, max_steps, step,
-                     FIELDS[field], precision,
-                     compensated=bool(auto and auto["compensated"]))   # as measured
+    checked = None
+    if auto is None:
+        res = _integrate(model, y0, t_out, method, rtol, atol, project, max_steps, step,
+                         FIELDS[field], precision)
+    else:   # the choice, checked by a tighter run and tightened until it meets rtol
+        from solvers.integrate.auto import run_checked
+
+        def runner(rung, budget):
+            return _integrate(model, y0, t_out, rung["method"], rung["tol"], rung["tol"],
+                              project, budget, step, FIELDS[field], rung["precision"],
+                              compensated=rung["compensated"])   # as measured
+
+        res, checked = run_checked(auto, runner, float(t_end), max_steps,
+                                   taylor_ok=auto["taylor_allowed"])
+        method, precision = checked["returned"]["method"], checked["returned"]["precision"]
+        rtol = atol = checked["returned"]["tol"]
     status = "ok" if res.success else ("budget" if res.budget_exhausted else "singular")
     message = "" if res.success else res.message
     t, Y = res.t, res.y[:len(res.t)]
@@ -289,7 +302,9 @@ def simulate(case: str, params: dict | None, state0, t_end: float, *,
              "rtol": rtol, "atol": atol, "projected": bool(project), "samples": len(t)}
     stats.update(getattr(res, "extra", {}))
     if auto is not None:
-        stats["auto"] = auto
+        stats["auto"] = {**auto, **{k: v for k, v in checked.items() if k != "returned"}}
+        stats["error_estimate"] = checked["error_estimate"]
+        stats["error_estimate_method"] = checked["error_estimate_method"]
     if step is not None:   # the equal steps the kernel took to land on the samples
         stats["step"] = res.t_stop / res.steps if res.steps else step
         stats["step_requested"] = step
