@@ -105,6 +105,11 @@ class CheckName(StrEnum):
     CASIMIR = "casimir"  # the listed functions are Casimirs of the bracket
     BRACKET_RANK = "bracket_rank"  # rank of the bracket (number of Casimirs)
     HAMILTONIAN_FIELD = "hamiltonian_field"  # after d tau = N dt the field is {x, H}
+    # the same on the zero level of the integral `against` only
+    HAMILTONIAN_FIELD_ON_LEVEL = "hamiltonian_field_on_level"
+    # a construction tried for an unprinted Hamiltonian form: Jacobi + flow everywhere;
+    # unchecked (inconclusive) when it fails: a failed attempt decides nothing
+    HAMILTONIAN_ATTEMPT = "hamiltonian_attempt"
     FUNCTIONALLY_DEPENDENT = "functionally_dependent"  # dF ^ dG ^ ... = 0
     PERMANENT_ROTATIONS = "permanent_rotations"  # dimension of the family of rotations
     # negative statements: each expects a failure or collects evidence of absence
@@ -147,6 +152,8 @@ REQUIRED_ARGS: dict[CheckName, tuple[str, ...]] = {
     CheckName.CASIMIR: ("bracket", "casimirs"),
     CheckName.BRACKET_RANK: ("bracket", "rank"),
     CheckName.HAMILTONIAN_FIELD: ("bracket", "hamiltonian"),
+    CheckName.HAMILTONIAN_FIELD_ON_LEVEL: ("bracket", "hamiltonian", "multiplier", "against"),
+    CheckName.HAMILTONIAN_ATTEMPT: ("bracket", "hamiltonian", "multiplier"),
     CheckName.FUNCTIONALLY_DEPENDENT: ("formula", "against"),
     CheckName.PERMANENT_ROTATIONS: ("formula",),
     CheckName.MEASURE_FAILS: ("formula",),

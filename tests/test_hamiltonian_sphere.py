@@ -3,7 +3,9 @@ docs/hamiltonian-sphere.md): Table 2's "Hamiltonian form" cells of columns 6-9, 
 paper asserts without printing a bracket.
 
 1. every project claim is verified to round-off and recorded with origin "project", and the
-   four cells are decided on it (note: the project's derived formula);
+   four cells are decided on it (note: the project's derived formula); the Borisov-Fedorov
+   cell (column a = 2R): a bracket that holds on the level F = 0 only, two attempts over
+   the whole phase space that decide nothing, so the cell is inconclusive;
 2. the checks catch a perturbed bracket, Hamiltonian or multiplier (flow) and a bracket that
    is not Poisson (Jacobi);
 3. the lemmas of the derivation: the Jacobi identity of X ^ d/dK3 symbolically for arbitrary
@@ -205,12 +207,12 @@ def test_hamiltonian_is_the_energy(case_id):
             assert abs(g[3] - x[3]) <= 1e-12 * abs(x[3]) + 1e-15
 
 
-# --- Borisov-Fedorov: the natural candidate fails (the cell stays unchecked) ------------------
+# --- Borisov-Fedorov: the plane's bracket carried to k fails; e(3) pulled back holds on F = 0 --
 
 def test_bf_candidate_generates_the_flow_but_is_not_poisson():
     """The k-version of eq2b-*1 reproduces the field of eq3.12 after d tau = rho dt at a = 2R
     (k = -1) to round-off, but violates the Jacobi identity there by O(0.1): it is no
-    Hamiltonian form, which is why the cell keeps 'asserted without a printed formula'.
+    Hamiltonian form (the claim .../attempt/plane-bracket records it as inconclusive).
     At k = 1 (the plane's Chaplygin ball, same code) it is Poisson."""
     from solvers.verify.checks.common import full_field
     from solvers.verify.formulas.chaplygin import chaplygin_hamiltonian_m
@@ -240,6 +242,109 @@ def test_bf_candidate_generates_the_flow_but_is_not_poisson():
             assert min(jac) > 1e-2, jac
         else:
             assert max(jac) <= 1e-12, jac
+
+
+BF = "sphere/borisov-fedorov/hamiltonian-after-time-change"
+
+
+def _bf_points(n=5, seed=4, level=True):
+    """(P, x) at the Borisov-Fedorov ball (k = -1), x moved onto F = 0 when level."""
+    from solvers.verify.formulas.sphere_bodies import bf_abar
+
+    rng = np.random.default_rng(seed)
+    P = draw(CAT.case("sphere/borisov-fedorov"), CAT.claim(BF), rng)
+    for y in random_states(P, n, rng):
+        x = np.array(y, dtype=float)
+        if level:
+            ab = bf_abar(P) * x[3:6]
+            x[:3] -= (x[:3] @ ab) * ab / (ab @ ab)
+        yield P, x
+
+
+def _bf_flow(P, x, bracket=hs.bf_level0_bracket, N=hs.bf_level0_time_change):
+    from solvers.verify.checks.common import full_field
+
+    rhs = bracket(P, x) @ gradient(lambda xx: hs.bf_level0_hamiltonian(P, xx), x)
+    v = full_field(P, x) / N(P, x)
+    return np.linalg.norm(v - rhs) / np.linalg.norm(v)
+
+
+def test_bf_level0_bracket_is_poisson_and_generates_the_flow_on_F_zero():
+    """The e(3) pull-back: Jacobi to round-off at any point (it is a pull-back), Casimirs
+    gamma^2 and F = (M, Abar gamma) of eq3.13, and (1/N) dx/dt = J grad H on F = 0."""
+    from solvers.verify.formulas.general import geometric
+    from solvers.verify.formulas.sphere_bodies import bf_integral
+
+    for P, x in _bf_points():
+        J = hs.bf_level0_bracket(P, x)
+        assert np.max(abs(J + J.T)) <= 1e-13 * np.max(abs(J))
+        assert S.jacobi_residual_at(lambda xx, P=P: hs.bf_level0_bracket(P, xx), x) <= 1e-12
+        for C in (geometric, bf_integral):
+            g = gradient(lambda xx, C=C, P=P: C(P, xx), x)
+            assert np.max(abs(J @ g)) <= 1e-12 * np.max(abs(J) @ abs(g))
+        assert _bf_flow(P, x) <= 1e-12
+        assert np.linalg.matrix_rank(J, tol=1e-9 * np.max(abs(J))) == 4
+
+
+def test_bf_level0_bracket_fails_off_the_zero_level():
+    """Off F = 0 the same bracket, H and N do not give the motion (O(0.01-1)): the cell's
+    statement is shown on one level only, which is why the cell stays inconclusive."""
+    worst = max(_bf_flow(P, x) for P, x in _bf_points(level=False))
+    assert worst > 1e-2
+
+
+def test_bf_level0_mutations_are_caught(monkeypatch):
+    """A relative 1e-6 change of the multiplier, of one bracket entry, or of one entry of the
+    map L = K M breaks the flow on F = 0 well above the tolerance; the changed bracket entry
+    also breaks the Jacobi identity."""
+    bump_entry = np.ones((6, 6))
+    bump_entry[0, 4] = bump_entry[4, 0] = 1 + 1e-6
+
+    def N_bad(P, x):
+        return hs.bf_level0_time_change(P, x) * (1 + 1e-6 * x[3])
+
+    def J_bad(P, x):
+        return hs.bf_level0_bracket(P, x) * bump_entry
+
+    for P, x in _bf_points(n=3):
+        assert _bf_flow(P, x, N=N_bad) > 1e-8
+        assert _bf_flow(P, x, bracket=J_bad) > 1e-8
+        assert _bf_flow(P, x, bracket=J_bad) > 1e-8
+        assert S.jacobi_residual_at(lambda xx, P=P: J_bad(P, xx), x) > 1e-8
+    Kf, dKf = hs._bf_map()
+    bump = np.array([[1, 1, 1], [1, 1 + 1e-6, 1], [1, 1, 1]])
+    monkeypatch.setattr(hs, "_bf_map", lambda: (lambda *a: np.asarray(Kf(*a)) * bump, dKf))
+    for P, x in _bf_points(n=3):
+        assert _bf_flow(P, x) > 1e-8
+
+
+def test_bf_cell_is_inconclusive_with_what_was_shown():
+    """The cell: the paper's claim has no formula (not checkable); the project's bracket holds
+    on F = 0 (project-formula, with Jacobi and Casimirs); the two attempts over the whole
+    phase space decide nothing (inconclusive), so the cell is inconclusive and its note says
+    in plain words what held and where."""
+    cid = "sphere/borisov-fedorov/cell/hamiltonian_form"
+    recs = _records(cid)
+    cell = recs[cid]
+    assert cell["mark"] == "inconclusive" and cell["verdict"] == "unchecked"
+    for c in (f"{BF}/project", f"{BF}/project/jacobi", f"{BF}/project/casimirs"):
+        assert recs[c]["verdict"] == "verified" and recs[c]["mark"] == "project-formula"
+        assert recs[c]["residual"] <= 1e-12
+    assert "zero level of the integral (3.11) only" in recs[f"{BF}/project"]["mark_note"]
+    assert recs[BF]["mark"] == "not-checkable"
+    for c in (f"{BF}/attempt/all-levels", f"{BF}/attempt/plane-bracket"):
+        assert recs[c]["verdict"] == "unchecked" and recs[c]["mark"] == "inconclusive"
+    ev = recs[f"{BF}/attempt/all-levels"]["evidence"]
+    assert ev["Jacobi identity residual"] <= TOL < ev["flow residual"]
+    assert ev["flow residual on the level"] <= TOL
+    ev = recs[f"{BF}/attempt/plane-bracket"]["evidence"]
+    assert ev["flow residual"] <= TOL < ev["Jacobi identity residual"]
+    note = cell["mark_note"]
+    assert "(3.11)" in note and "neither confirmed nor refuted" in note
+    assert "not a Poisson bracket" in note
+    assert cell["notes"] == []        # no "holds with the project's formula" on this cell
+    for word in ("bf_", "eq3.", "_bracket", ".py"):
+        assert word not in note
 
 
 # --- the Brun generalizations (Table 2, generalizations row, columns 1-2) ----------------------

@@ -124,7 +124,8 @@ EXPECTED = {
     "sphere/borisov-fedorov/reduction/to-chaplygin": (F, None),   # |M~|^2 rate 3.7e-01
     # no bracket is printed (formula_not_printed); the candidate pulled back through
     # M~ = Abar M fails (1.2; sign-corrected 1.5) because that map does not give a Chaplygin
-    # ball (test_bf_transform_is_not_chaplygin, and .../reduction/to-chaplygin above)
+    # ball (test_bf_transform_is_not_chaplygin, and .../reduction/to-chaplygin above); the
+    # project's bracket on F = 0 and its attempts: tests/test_hamiltonian_sphere.py
     "sphere/borisov-fedorov/hamiltonian-after-time-change": ("unchecked", None),
     "sphere/unbalanced-ball/reduction/equations": (V, None),
     "sphere/unbalanced-ball/integral/energy": (V, None),

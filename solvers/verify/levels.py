@@ -175,8 +175,12 @@ def formula_mark(r: dict, cl, by_claim: dict) -> tuple[str, str | None, list[str
         return "fails", "the project's correction does not hold either", []
     if r.get("origin") == "project":     # the paper prints no formula: the project's own
         if v == "verified":
+            level = (r.get("evidence") or {}).get("level of") \
+                if r.get("check") == "hamiltonian_field_on_level" else None
+            where = f" on the zero level of the integral {level} only" if level else ""
             return ("project-formula", "the paper asserts this without printing a formula; "
-                    "the project's derived formula holds" + _res(r.get("residual")), [])
+                    f"the project's derived formula holds{where}" + _res(r.get("residual")),
+                    [])
         if v == "fails":
             return "fails", "the project's derived formula does not hold" + \
                 _res(r.get("residual")), []
@@ -326,6 +330,10 @@ def cell_records(records: list[dict], cat: Catalogue, case_ids=None) -> list[dic
                 mark = combine([m for (m, _, _), c in zip(marked, ids, strict=True)
                                 if c not in support or m in DECIDING])
                 mark_notes = [n for m, n, _ in marked if m == mark and n]
+                if mark != "project-formula" and CELL_NOTE["project"] in notes:
+                    # a project formula that holds beside an attempt that decides nothing
+                    # (inconclusive): the cell does not "hold", its mark's note says what held
+                    notes.remove(CELL_NOTE["project"])
                 errata = [e for _, _, es in marked for e in es]
                 failing = [c for (v, _), c in zip(judged, ids, strict=True) if v == "fails"]
                 if verdict == "fails":
@@ -334,6 +342,8 @@ def cell_records(records: list[dict], cat: Catalogue, case_ids=None) -> list[dic
                     msg = "; ".join(notes)
                 elif len(ids) == 1:
                     msg = by_claim[ids[0]]["message"]
+                elif mark == "inconclusive":     # several claims, none "as printed"
+                    msg = "inconclusive: " + "; ".join(dict.fromkeys(mark_notes))
                 else:
                     msg = f"{verdict}: {len(ids)} claims, each as printed"
                 out.append({

@@ -143,4 +143,34 @@ def note(r: dict, mark: str, what: str) -> str:
         text = ("the necessary conditions hold (the transformed motion conserves |M̃|² and "
                 "(M̃, γ)); the target's inertia and time scale are not printed, so the full "
                 "equivalence was not tested")
+    elif check == "hamiltonian_attempt" and mark == "inconclusive":
+        text = _hamiltonian_attempt(ev, _tol())
     return text or FALLBACK.get(mark, FALLBACK["inconclusive"])
+
+
+def _hamiltonian_attempt(ev: dict, tol: float) -> str | None:
+    """checks/structure.py check_hamiltonian_attempt: a construction the project tried for a
+    Hamiltonian form the paper asserts without a formula; what failed, in words."""
+    jac, flow = ev.get("Jacobi identity residual"), ev.get("flow residual")
+    if not isinstance(jac, (int, float)) or not isinstance(flow, (int, float)):
+        return None
+    level, on = ev.get("level of"), ev.get("flow residual on the level")
+    if jac <= tol and isinstance(on, (int, float)) and on <= tol:
+        found = (f"the project's bracket is a Poisson bracket (Jacobi identity residual "
+                 f"{_e(jac)}) and, after the change of time, generates the motion on the zero "
+                 f"level of the integral {level} (residual {_e(on)}) but not on its other "
+                 f"levels (residual {_e(flow)}); whether a Hamiltonian form exists there is "
+                 "neither confirmed nor refuted")
+    elif jac <= tol:
+        found = (f"the project tried a Poisson bracket (Jacobi identity residual {_e(jac)}) "
+                 f"that does not generate the motion (residual {_e(flow)})")
+    elif flow <= tol:
+        found = (f"the project tried a bracket that generates the motion after the change of "
+                 f"time (residual {_e(flow)}) but is not a Poisson bracket (Jacobi identity "
+                 f"residual {_e(jac)})")
+    else:
+        found = (f"the project tried a bracket that neither satisfies the Jacobi identity "
+                 f"(residual {_e(jac)}) nor generates the motion (residual {_e(flow)})")
+    if "neither confirmed" in found:
+        return found
+    return f"{found}; a failed attempt neither confirms nor refutes that a Hamiltonian form exists"

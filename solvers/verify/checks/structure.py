@@ -6,6 +6,9 @@ at the random phase points of pointwise.py, mapped to each formula's own variabl
   bracket_rank           rank J(x) equals the printed number (n - number of Casimirs)
   hamiltonian_field      after d tau = N dt: (1/N) dx/dt = J grad H, dx/dt the full field
                          pushed forward by the variable map (or by check_args.transform)
+  hamiltonian_field_on_level  the same at points of the zero level of check_args.against
+  hamiltonian_attempt    a construction tried for an unprinted Hamiltonian form: Jacobi and
+                         flow over the whole phase space; unchecked (inconclusive) unless both hold
   symmetry               [v, X] = DX v - Dv X = 0 for the printed field X (eq2.3)
   functionally_dependent the gradients (in the full state) of the formulas are dependent
   permanent_rotations    dimension of the family of vertical permanent rotations (eq2.29,
@@ -235,13 +238,17 @@ def hamiltonian_parts(catalogue, claim, use_corrected=False):
     return J, Hf, Nf, to_b
 
 
-def hamiltonian_residual(catalogue, case, claim, use_corrected=False, seed=14):
+def hamiltonian_residual(catalogue, case, claim, use_corrected=False, seed=14, level=None):
     """max ||(1/N) dx/dt - J grad H|| / max(||(1/N) dx/dt||, ||J grad H||), dx/dt the model's
-    field pushed forward to the bracket's variables (through check_args.transform when given)."""
+    field pushed forward to the bracket's variables (through check_args.transform when given).
+    level: a formula F of the full state, linear in M; the points are then moved onto F = 0
+    (M -> M - F grad_M F/|grad_M F|^2, exact for F linear in M)."""
     a = claim.check_args
     J, Hf, Nf, to_b = hamiltonian_parts(catalogue, claim, use_corrected)
+    on_level = _zero_level(catalogue, level) if level is not None else (lambda P, y: y)
 
     def residual(P, y):
+        y = on_level(P, y)
         v = full_field(P, y)
         x = np.asarray(to_b(P, y)).real
         xdot = directional(lambda yy: to_b(P, yy), y, v)
@@ -252,6 +259,58 @@ def hamiltonian_residual(catalogue, case, claim, use_corrected=False, seed=14):
         return np.linalg.norm(lhs - rhs) / max(np.linalg.norm(lhs), np.linalg.norm(rhs), 1e-300)
 
     return _max_residual(_points(case, claim, seed), residual)[0]
+
+
+def _zero_level(catalogue, fid):
+    """y -> the point of the zero level of formula fid (linear in M) with the same gamma."""
+    F, V = implementation(fid), _vars(catalogue, fid)
+
+    def project(P, y):
+        f = lambda yy: F(P, to_vars(V, P, yy))  # noqa: E731
+        grad = gradient(f, y)
+        out = np.array(y, dtype=float)
+        out[:3] -= f(y).real * grad[:3] / (grad[:3] @ grad[:3])
+        return out
+    return project
+
+
+@check("hamiltonian_field_on_level")
+def check_hamiltonian_field_on_level(catalogue, case, claim):
+    """hamiltonian_field at points of the zero level of check_args.against only (a bracket
+    that is shown to generate the flow on one level of an integral, not everywhere)."""
+    a = claim.check_args
+    res = hamiltonian_residual(catalogue, case, claim, level=a.against)
+    out = _verdict(res, what=f"d x/d tau = J grad H with J = {a.bracket}, H = {a.hamiltonian}, "
+                   f"d tau = N dt (N = {a.multiplier}), on the level {a.against} = 0")
+    from catalogue.numbering import printed
+    out.evidence = {"level of": printed(catalogue.formula(a.against).label) or a.against,
+                    "flow residual on the level": res}
+    return out
+
+
+@check("hamiltonian_attempt")
+def check_hamiltonian_attempt(catalogue, case, claim):
+    """A construction the project tried for an asserted Hamiltonian form, over the whole phase
+    space: verified if its tensor satisfies the Jacobi identity AND generates the flow after
+    d tau = N dt; otherwise unchecked (inconclusive): a failed attempt neither confirms nor
+    refutes that some bracket exists. Both residuals are kept as evidence."""
+    a = claim.check_args
+    jac = jacobi_residual(catalogue, case, claim)
+    flow = hamiltonian_residual(catalogue, case, claim)
+    ev = {"Jacobi identity residual": jac, "flow residual": flow, "tolerance": TOL}
+    if a.against is not None:     # where the construction does hold: the zero level of F
+        from catalogue.numbering import printed
+        ev["flow residual on the level"] = hamiltonian_residual(catalogue, case, claim,
+                                                                level=a.against)
+        ev["level of"] = printed(catalogue.formula(a.against).label) or a.against
+    what = f"{a.bracket} with H = {a.hamiltonian}, d tau = N dt (N = {a.multiplier})"
+    if jac <= TOL and flow <= TOL:
+        return Outcome("verified", max(jac, flow), f"{what}: Jacobi identity {jac:.2e} and "
+                       f"flow {flow:.2e} <= {TOL:g}", evidence=ev)
+    return Outcome("unchecked", max(jac, flow), f"the attempt {what} is not a Hamiltonian "
+                   f"form: Jacobi identity residual {jac:.2e}, flow residual {flow:.2e} "
+                   f"(tolerance {TOL:g}); this neither confirms nor refutes that a bracket "
+                   "exists", evidence=ev)
 
 
 @check("hamiltonian_field")

@@ -29,6 +29,11 @@ NUMERIC = {
                            "by integration",
     "linear_integrals": "recurrence of K1, K2 along long trajectories: trajectory evidence",
     "casimir": "no exact certifier yet",
+    "hamiltonian_field_on_level": "no exact certifier yet (its points lie on a level set of "
+                                  "an integral, and its bracket is a pull-back computed "
+                                  "with a matrix inverse)",
+    "hamiltonian_attempt": "a failed construction, not a claim that holds: its residuals are "
+                           "evidence, no certificate is due",
     "bracket_rank": "a rank, not an identity",
     "functionally_dependent": "a rank statement about gradients",
     "symmetry": "no exact certifier yet",

@@ -31,6 +31,8 @@ exactly as on the plane (N = k of eq2-*1, density 1/k).
 k is CONVENTIONS.md's signed curvature; on the flat base R = 1/k (signed), as in reduced.py.
 """
 
+import functools
+
 import numpy as np
 
 from solvers.models import reduced as rd
@@ -133,12 +135,16 @@ def flat_axisym_reduced_density(P, x):
     return 1.0 / flat_axisym_time_change(P, x)
 
 
-# --- the Borisov-Fedorov ball (eq3.12 at a = 2R): what the project tried -------------------
-# Not a registered formula and not a claim: the cell "the system is Hamiltonian after the
-# change of time (A. V. Borisov, I. S. Mamaev, 2000)" stays unchecked (the bracket is in
-# another paper). This candidate is recorded so the failure is reproducible
-# (tests/test_hamiltonian_sphere.py::test_bf_candidate_generates_the_flow_but_is_not_poisson).
+# --- the Borisov-Fedorov ball (eq3.12 at a = 2R) ---------------------------------------------
+# Two constructions, derived in docs/hamiltonian-sphere.md:
+#   * bf_candidate_bracket: eq2b-*1 carried to eq3.12's factor k. It generates the flow for
+#     every k but is not Poisson at k = -1 (claim .../project/attempt/plane-bracket).
+#   * bf_level0_bracket: the Lie-Poisson e(3) bracket pulled back through the linear map
+#     L = K(gamma) M below. Poisson by construction (a pull-back), Casimirs gamma^2 and
+#     F = (M, Abar gamma) of eq3.13; after d tau = N dt it generates eq3.12 at k = -1 ON THE
+#     LEVEL F = 0 ONLY (claim .../project); off that level it does not (.../attempt/all-levels).
 
+@formula("bf_plane_bracket_carried")
 def bf_candidate_bracket(P, x):
     """eq2b-*1 (with the sign that generates the flow) carried to eq3.12's factor k:
     {M_i, M_j} = -eps_ijk rho^-1 (M_k - k g gamma_k), {M_i, gamma_j} = -k eps_ijk rho^-1
@@ -157,3 +163,94 @@ def bf_candidate_bracket(P, x):
     top = -irho * eps_dot(M - k * _g(P, M, g) * g)
     mg = -k * irho * eps_dot(g)
     return np.block([[top, mg], [mg, 0.0 * mg]])
+
+
+def _bf_map_build():
+    """(K, dK) as NumPy functions of (gamma, I1, I2, I3, D): L = K(gamma) M and
+    dK[j] = dK/dgamma_j, built once with sympy (complex-safe: the checks differentiate the
+    bracket again by complex step, so dK must be exact, not a finite difference).
+
+    K = N (E - gamma gamma^T/|gamma|^2)(E - w gamma^T) + gamma (Abar gamma)^T with
+      Abar = E - 2 J/tr J, J = I + D (eq3.13), w = J Abar gamma/(I gamma, Abar gamma),
+      N = rho (I gamma, Abar gamma)/(JJ Abar gamma, Abar gamma), JJ = J - D gamma gamma^T
+      (the operator of eq3.12: M = JJ omega), rho of eq2.17.
+    Why this K: on F = 0, (M - (M, gamma) w) is, turned by gamma x, the momentum of the
+    2-degree-of-freedom system on the sphere of gamma; N is the density of the invariant
+    measure (eq2.17 restricted to F = 0) in (gamma, momentum): Chaplygin's reducing
+    multiplier, so L = N x momentum is the canonical e(3) variable at (L, gamma) = 0."""
+    import sympy as sp
+
+    g = sp.Matrix(sp.symbols("g1:4"))
+    I1, I2, I3, D = sp.symbols("I1 I2 I3 D")
+    Iv = sp.Matrix([I1, I2, I3])
+    Jv = Iv + sp.Matrix([D, D, D])
+    trJ = sum(Jv)
+    ab = sp.Matrix([(1 - 2 * Jv[i] / trJ) * g[i] for i in range(3)])          # Abar gamma
+    g2 = (g.T * g)[0]
+    Ig_ab = sum(Iv[i] * g[i] * ab[i] for i in range(3))
+    JJab = sp.Matrix([Jv[i] * ab[i] for i in range(3)]) - D * g * (g.T * ab)[0]
+    rho = 1 / sp.sqrt(1 - D * sum(g[i] ** 2 / Jv[i] for i in range(3)))
+    N = rho * Ig_ab / (JJab.T * ab)[0]
+    w = sp.Matrix([Jv[i] * ab[i] for i in range(3)]) / Ig_ab
+    E = sp.eye(3)
+    K = N * (E - g * g.T / g2) * (E - w * g.T) + g * ab.T
+    args = (*g, I1, I2, I3, D)
+    Kf = sp.lambdify(args, K, modules="numpy", cse=True)
+    dKf = sp.lambdify(args, [K.diff(g[j]) for j in range(3)], modules="numpy", cse=True)
+    return Kf, dKf
+
+
+_bf_map = functools.cache(_bf_map_build)
+
+
+def _bf_args(P, g):
+    return (g[0], g[1], g[2], P.I[0], P.I[1], P.I[2], P.D)
+
+
+def bf_level0_map(P, x):
+    """(L, gamma) = (K(gamma) M, gamma): the map whose e(3) pull-back is bf_level0_bracket.
+    (L, gamma) = |gamma|^2 F, so on the sphere the e(3) Casimir (L, gamma) is eq3.13's F."""
+    K = np.asarray(_bf_map()[0](*_bf_args(P, x[3:6])))
+    return np.concatenate([K @ x[:3], x[3:6]])
+
+
+@formula("bf_level0_bracket")
+def bf_level0_bracket(P, x):
+    """The e(3) bracket {L_i, L_j} = eps_ijk L_k, {L_i, gamma_j} = eps_ijk gamma_k,
+    {gamma_i, gamma_j} = 0 (the sign of eq2b-*3; it generates the flow forward in tau),
+    pulled back to (M, gamma) through L = K(gamma) M: with A = dx/dy = [[K^-1, -K^-1 C], [0, E]],
+    C_ij = (dK/dgamma_j M)_i, the tensor is A Pi(y) A^T. Poisson because it is a pull-back."""
+    from solvers.verify.formulas.chaplygin import eps_dot
+
+    M, g = x[:3], x[3:6]
+    Kf, dKf = _bf_map()
+    a = _bf_args(P, g)
+    K = np.asarray(Kf(*a))
+    C = np.stack([np.asarray(dk) @ M for dk in dKf(*a)], axis=1)
+    Ki = np.linalg.inv(K)
+    L = K @ M
+    Z = np.zeros((3, 3), dtype=Ki.dtype)
+    A = np.block([[Ki, -Ki @ C], [Z, np.eye(3)]])
+    Pi = np.block([[eps_dot(L), eps_dot(g)], [eps_dot(g), 0.0 * Z]])
+    return A @ Pi @ A.T
+
+
+@formula("bf_level0_time_change")
+def bf_level0_time_change(P, x):
+    """d tau = N dt, N = rho (I gamma, Abar gamma)/(JJ Abar gamma, Abar gamma) (see _bf_map):
+    the density of the measure eq2.17 on the level F = 0, written in (gamma, momentum)."""
+    g = x[3:6]
+    J = P.I + P.D
+    ab = (1.0 - 2.0 * J / np.sum(J)) * g
+    JJab = J * ab - P.D * g * (g @ ab)
+    from solvers.verify.variables import chaplygin_rho
+    return chaplygin_rho(P, g) * ((P.I * g) @ ab) / (JJab @ ab) + 0.0 * x[0]
+
+
+@formula("bf_level0_hamiltonian")
+def bf_level0_hamiltonian(P, x):
+    """H = (M, omega)/2 with eq3.12's M = (I + D) omega - D gamma (omega, gamma) (the energy
+    after eq3.12, no field)."""
+    M, g = x[:3], x[3:6]
+    JJ = np.diag(P.I + P.D) - P.D * np.outer(g, g)
+    return 0.5 * (M @ np.linalg.solve(JJ, M))
