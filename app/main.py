@@ -114,14 +114,17 @@ async def lifespan(app: FastAPI):
                     tg.start_soon(_warm, pool)
 
     async def background() -> None:
-        try:
-            await anyio.to_thread.run_sync(_validate_examples)
-        except Exception as exc:  # serve anyway: that case's run will say what is wrong
-            log.warning("validating the cases' demo runs failed: %r", exc)
-        if settings.warm_workers:
-            async with anyio.create_task_group() as tg:
+        # the workers warm beside the validation (separate processes), so that /api/health
+        # reports them "warming" from the first answer on: app.testing.wait_idle and
+        # bench/load.py wait for an idle pool, which must not mean "not started yet"
+        async with anyio.create_task_group() as tg:
+            if settings.warm_workers:
                 for _ in range(settings.workers):
                     tg.start_soon(_warm, pool)
+            try:
+                await pool.starting(_validate_examples)
+            except Exception as exc:  # serve anyway: that case's run will say what is wrong
+                log.warning("validating the cases' demo runs failed: %r", exc)
         if settings.precompress:
             from app.api.routes.pages import plotly_js
 

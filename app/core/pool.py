@@ -142,6 +142,15 @@ class WorkerPool:
         finally:
             self._warming -= 1
 
+    async def starting(self, work: Callable) -> None:
+        """Run the server's own start-up work (a function, in a thread), counted as warming
+        in the stats: an idle pool then means a started one (app.testing.wait_idle)."""
+        self._warming += 1
+        try:
+            await anyio.to_thread.run_sync(work)
+        finally:
+            self._warming -= 1
+
     @property
     def capacity(self) -> int:
         return self.workers + self.queue_size
