@@ -91,6 +91,29 @@ async def browser(client: httpx.AsyncClient, stop: float, lat: list[float],
             errors.append(f"GET {path}: {r.status_code}")
 
 
+async def _answer_while_sending(reader, writer, send, sent: list, out: dict,
+                                silence_is_error: bool = True) -> int:
+    """Send (the coroutine `send`, counting bytes in sent[0]) while reading the answer's
+    head; stop sending once it has come. The answer's status code, 0 for none (an error
+    line too unless silence_is_error is False)."""
+    answer = asyncio.create_task(reader.readuntil(b"\r\n\r\n"))
+    sender = asyncio.create_task(send())
+    try:
+        await asyncio.wait({answer}, timeout=60)
+        raw = answer.result() if answer.done() else b""
+        if not raw and silence_is_error:
+            out["errors"].append(f"no answer after {sent[0]} bytes")
+        return int(raw.split(b" ", 2)[1]) if raw else 0
+    except (ConnectionError, asyncio.IncompleteReadError, OSError) as exc:
+        out["errors"].append(f"{type(exc).__name__} after {sent[0]} bytes")
+        return 0
+    finally:
+        for t in (answer, sender):
+            t.cancel()
+        await asyncio.gather(answer, sender, return_exceptions=True)
+        writer.close()
+
+
 async def big_bodies(url: str, stop: float, out: dict) -> None:
     """POST 50 MB bodies over a raw connection: send in 1 MB chunks while reading the
     answer, stop sending once it has come (what a browser's fetch does). The server
@@ -122,22 +145,7 @@ async def big_bodies(url: str, stop: float, out: dict) -> None:
                 await writer.drain()
                 sent[0] += len(piece)
 
-        answer = asyncio.create_task(reader.readuntil(b"\r\n\r\n"))
-        sender = asyncio.create_task(send())
-        try:
-            await asyncio.wait({answer}, timeout=60)
-            raw = answer.result() if answer.done() else b""
-            code = int(raw.split(b" ", 2)[1]) if raw else 0
-            if not raw:
-                out["errors"].append(f"no answer after {sent[0]} bytes")
-        except (ConnectionError, asyncio.IncompleteReadError, OSError) as exc:
-            code = 0
-            out["errors"].append(f"{type(exc).__name__} after {sent[0]} bytes")
-        finally:
-            for t in (answer, sender):
-                t.cancel()
-            await asyncio.gather(answer, sender, return_exceptions=True)
-            writer.close()
+        code = await _answer_while_sending(reader, writer, send, sent, out)
         key = f"{'chunked' if chunked else 'length'}:{code}"
         out["status"][key] = out["status"].get(key, 0) + 1
         out["answer_ms"].append(1e3 * (time.perf_counter() - t0))
@@ -167,20 +175,8 @@ async def header_bombs(url: str, stop: float, out: dict) -> None:
                 await writer.drain()
                 sent[0] += len(piece)
 
-        answer = asyncio.create_task(reader.readuntil(b"\r\n\r\n"))
-        sender = asyncio.create_task(send())
-        try:
-            await asyncio.wait({answer}, timeout=60)
-            raw = answer.result() if answer.done() else b""
-            code = int(raw.split(b" ", 2)[1]) if raw else 0
-        except (ConnectionError, asyncio.IncompleteReadError, OSError) as exc:
-            code = 0
-            out["errors"].append(f"{type(exc).__name__} after {sent[0]} bytes")
-        finally:
-            for t in (answer, sender):
-                t.cancel()
-            await asyncio.gather(answer, sender, return_exceptions=True)
-            writer.close()
+        code = await _answer_while_sending(reader, writer, send, sent, out,
+                                           silence_is_error=False)
         out["status"][code] = out["status"].get(code, 0) + 1
         out["answer_ms"].append(1e3 * (time.perf_counter() - t0))
         out["sent_mb"].append(sent[0] / 2**20)
