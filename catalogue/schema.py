@@ -715,6 +715,14 @@ class Catalogue(Strict):
                 return claim
         raise KeyError(claim_id)
 
+    def find(self, claim_id: str) -> tuple[Case, Claim]:
+        """The case that holds a claim, and the claim."""
+        for case in self.cases():
+            for claim in case.claims:
+                if claim.id == claim_id:
+                    return case, claim
+        raise KeyError(claim_id)
+
     def formula(self, formula_id: str) -> Formula:
         for formula in self.formulas:
             if formula.id == formula_id:

@@ -18,14 +18,6 @@ CAT = load_catalogue()
 MIN_PROOFS = 100
 
 
-def _claim(cid):
-    for c in CAT.cases():
-        for cl in c.claims:
-            if cl.id == cid:
-                return c, cl
-    raise KeyError(cid)
-
-
 GRID_CLAIMS = ["plane/chaplygin-ball/integral/M2", "sphere/chaplygin-ball/measure",
                "plane/spherical-inertia/measure/omega", "plane/ellipsoid/measure"]
 
@@ -34,7 +26,7 @@ GRID_CLAIMS = ["plane/chaplygin-ball/integral/M2", "sphere/chaplygin-ball/measur
 def test_every_drawn_coordinate_lies_exactly_on_its_grid(cid):
     from solvers.verify.exact.certify import _draw_point
     from solvers.verify.params import draw
-    case, claim = _claim(cid)
+    case, claim = CAT.find(cid)
     rng = GridRng(7)
     P, y = _draw_point(lambda r: draw(case, claim, r), rng)
     assert rng.log, "nothing drawn"
@@ -150,7 +142,7 @@ def _residual(case, claim, corrected=False):
 
 def test_tracked_degree_bounds_the_true_degree_of_a_failing_residual():
     from solvers.verify.exact.certify import prove
-    case, claim = _claim("sphere/borisov-fedorov/reduction/to-chaplygin")
+    case, claim = CAT.find("sphere/borisov-fedorov/reduction/to-chaplygin")
     res, drawer = _residual(case, claim)
     status, info = prove(claim.id, drawer, res, seconds=60)
     assert status == "nonzero", (status, info)
@@ -163,7 +155,7 @@ def test_a_wrong_coefficient_is_not_proved(monkeypatch):
     nonzero rational function, never a proof, and the tracked degree bounds its true one."""
     from solvers.verify.exact.certify import prove
     from solvers.verify.registry import FORMULAS
-    case, claim = _claim("plane/chaplygin-ball/integral/M2")
+    case, claim = CAT.find("plane/chaplygin-ball/integral/M2")
     res, drawer = _residual(case, claim)
     assert prove(claim.id, drawer, res)[0] == "proved"
     monkeypatch.setitem(FORMULAS, "M2", lambda P, x: x[0] ** 2 + x[1] ** 2 + 2 * x[2] ** 2)
@@ -176,7 +168,7 @@ def test_a_wrong_density_is_not_proved(monkeypatch):
     """A density multiplied by (1 + 1e-9 gamma3^2) (the audit's mutation) is not proved."""
     from solvers.verify.exact.certify import prove
     from solvers.verify.registry import CORRECTED
-    case, claim = _claim("plane/spherical-inertia/measure/omega")
+    case, claim = CAT.find("plane/spherical-inertia/measure/omega")
     res, drawer = _residual(case, claim, corrected=True)
     orig = CORRECTED["yaroschuk_density"]
     monkeypatch.setitem(CORRECTED, "yaroschuk_density",
@@ -227,7 +219,7 @@ def test_the_old_degree_losses_no_longer_occur(cid):
     from solvers.verify import run  # noqa: F401
     from solvers.verify.exact.certify import run_points
     from solvers.verify.exact.registry import residual_job
-    case, claim = _claim(cid)
+    case, claim = CAT.find(cid)
     key, drawer, res = residual_job(CAT, case, claim)
     ex = run_points(key, drawer, res)          # the k-point certificate, no stored proof
     assert ex["kind"] == "certificate" and ex["holds"], ex

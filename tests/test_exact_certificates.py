@@ -79,14 +79,6 @@ def test_certified_kinds_are_the_pointwise_ones(records):
     assert kinds <= set(CERTIFIERS) | {"negative_measure"}     # + the found density (item 6)
 
 
-def _claim(cid):
-    for c in CAT.cases():
-        for cl in c.claims:
-            if cl.id == cid:
-                return c, cl
-    raise KeyError(cid)
-
-
 def test_the_spherical_inertia_measure_on_a_sphere_is_certified(records):
     """Item 6: the position-only density the paper doubts exists is certified exactly."""
     rec = records["plane/spherical-inertia/negative/sphere-generalization"]
@@ -106,7 +98,7 @@ def test_a_wrong_coefficient_is_caught_exactly(monkeypatch):
     from solvers.verify import run  # noqa: F401  (registers formulas and checks)
     from solvers.verify.exact import exact_for
     from solvers.verify.registry import FORMULAS
-    case, claim = _claim("plane/chaplygin-ball/integral/M2")
+    case, claim = CAT.find("plane/chaplygin-ball/integral/M2")
     right = exact_for(CAT, case, claim)
     assert right["holds"] is True
     monkeypatch.setitem(FORMULAS, "M2", lambda P, x: x[0] ** 2 + x[1] ** 2 + 2 * x[2] ** 2)
@@ -122,7 +114,7 @@ def test_a_wrong_density_is_caught_exactly(monkeypatch):
     from solvers.verify import run  # noqa: F401
     from solvers.verify.exact import exact_for
     from solvers.verify.registry import CORRECTED
-    case, claim = _claim("plane/spherical-inertia/measure/omega")
+    case, claim = CAT.find("plane/spherical-inertia/measure/omega")
     assert exact_for(CAT, case, claim, corrected=True)["holds"] is True
     monkeypatch.setitem(CORRECTED, "yaroschuk_density",
                         lambda P, x: (P.I[0] + P.m * (P.r(x[3:6]) @ P.r(x[3:6]))) ** 0.5)
@@ -132,6 +124,6 @@ def test_a_wrong_density_is_caught_exactly(monkeypatch):
 def test_witness_is_reproducible():
     from solvers.verify import run  # noqa: F401
     from solvers.verify.exact import exact_for
-    case, claim = _claim("sphere/borisov-fedorov/reduction/to-chaplygin")
+    case, claim = CAT.find("sphere/borisov-fedorov/reduction/to-chaplygin")
     a, b = exact_for(CAT, case, claim), exact_for(CAT, case, claim)
     assert a["holds"] is False and a["witness"] == b["witness"]

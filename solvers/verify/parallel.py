@@ -10,8 +10,8 @@ def _one(claim_id):
     from solvers.verify.run import _run_claim
 
     cat = load_catalogue()
-    case = next(c for c in cat.cases() if any(cl.id == claim_id for cl in c.claims))
-    return [r.to_json() for r in _run_claim(cat, case, case.claim(claim_id))]
+    case, claim = cat.find(claim_id)
+    return [r.to_json() for r in _run_claim(cat, case, claim)]
 
 
 def verify_parallel(case=None, claim=None, workers=0) -> list[dict]:
