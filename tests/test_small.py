@@ -23,6 +23,7 @@ from solvers.integrate.integrator import GENERATED_UNROLLED, integrate
 from solvers.kernels import generate, rk
 from solvers.kernels import layout as L
 from solvers.models.cases import build, case_ids, registry
+from tests import test_unrolled
 
 GENERATED_CASES = [c for c in case_ids()
                    if build(c, registry()[c].example).model in generate.GENERATED_MODELS]
@@ -70,18 +71,7 @@ def test_small_vern9_and_options_of_a_plain_run(method):
         assert_follows(a, b)
 
 
-EXTREMES = [   # tests/test_unrolled.py's (tests/test_extremes.py, test_generated.py)
-    ("plane/round-disk", {}, [0.0, 0.3, 3.0, 1e-2, 0.0, math.sqrt(1 - 1e-4)], 10.0, {}),
-    ("plane/round-disk", {}, [0.0, 0.3, 3.0, 1e-6, 0.0, math.sqrt(1 - 1e-12)], 10.0, {}),
-    ("plane/round-disk", {}, [10.0, 0.0, 5e3, math.cos(1e-3), 0.0, math.sin(1e-3)], 0.02, {}),
-    ("sphere/chaplygin-ball", {"k": 1.0 - 1e-4}, None, 1e-3, {}),
-    ("sphere/chaplygin-ball", {"k": 1.0 - 1e-8}, None, 1e-7, {"max_steps": 3000}),
-    ("plane/chaplygin-ball", {"I2": 1.0 + 1e-12, "I3": 1.5}, None, 10.0, {}),
-    ("plane/chaplygin-ball", {"I1": 1e-6, "I2": 2e-6, "I3": 2.5e-6}, None, 1e-4, {}),
-    ("plane/chaplygin-ball", {"I1": 1e6, "I2": 2e6, "I3": 2.5e6}, None, 10.0, {}),
-    ("plane/chaplygin-ball", {}, [0.5e4, -0.3e4, 0.8e4, 0.3, 0.4, 0.8660254037844386], 0.01,
-     {}),
-]
+EXTREMES = test_unrolled.EXTREMES   # (tests/test_extremes.py, test_generated.py)
 
 
 @pytest.mark.parametrize(("case", "params", "state", "t_end", "kw"), EXTREMES)

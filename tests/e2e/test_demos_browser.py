@@ -81,25 +81,21 @@ def test_no_control_under_24px_on_a_phone(page, server):
         state="attached", timeout=90_000)
     small = page.evaluate(SMALL)
     assert small == [], small
-    page.goto(f"{server}/poincare")
-    page.locator("#case option").first.wait_for(state="attached")
-    small = page.evaluate(SMALL)
-    assert small == [], small
-    # the home table and a case page (its claims, the run form, the cite box)
-    page.goto(f"{server}/")
-    page.locator("#tbl-plane td").first.wait_for(state="attached")
-    small = page.evaluate(SMALL)
-    assert small == [], small
-    page.goto(f"{server}/case/plane/chaplygin-ball")
-    page.locator("#claims .permalink").first.wait_for(state="attached")
-    small = page.evaluate(SMALL)
-    assert small == [], small
+    # /poincare's form, the home table and a case page (its claims, the run form, the cite
+    # box), each once drawn
+    for path, ready in (("/poincare", "#case option"), ("/", "#tbl-plane td"),
+                        ("/case/plane/chaplygin-ball", "#claims .permalink")):
+        page.goto(f"{server}{path}")
+        page.locator(ready).first.wait_for(state="attached")
+        small = page.evaluate(SMALL)
+        assert small == [], (path, small)
 
 
 # A word wider than the table cell that holds it is broken mid-word ("param eter"): the
 # cell's inner width against the word's width in the cell's own font (innerText keeps the
 # line breaks of <br>, so words across a break are not joined).
-BROKEN_WORDS = """() => { const c = document.createElement('canvas').getContext('2d'); const out = [];
+BROKEN_WORDS = """() => {
+ const c = document.createElement('canvas').getContext('2d'); const out = [];
  for (const td of document.querySelectorAll('main td, main th')) {
    if (td.offsetParent === null) continue;
    const cs = getComputedStyle(td);
