@@ -102,3 +102,37 @@ def paper_text() -> str:
             pytest.fail(f"{why} (ROLLING_REQUIRE_SEED=1: required here)")
         pytest.skip(why)
     return path.read_text(encoding="utf-8")
+
+
+@pytest.fixture(scope="session")
+def catalogue_records(tmp_path_factory, worker_id):
+    """The records of every claim of the catalogue, `verify_parallel(workers=2)`, computed
+    once per test session. A full verification costs about a minute of CPU and seven
+    modules read it; under pytest-xdist the first worker that asks computes it under a
+    file lock and the others read its file. For one case, the records are the same as
+    `verify(case=...)`'s (tests/test_verdict_levels.py::test_one_case_is_the_full_run_s)."""
+    import fcntl
+    import pickle
+
+    from solvers.verify.parallel import verify_parallel
+
+    root = tmp_path_factory.getbasetemp()
+    if worker_id != "master":              # xdist: basetemp is per worker, its parent shared
+        root = root.parent
+    path, lock = root / "catalogue-records.pkl", root / "catalogue-records.lock"
+    with open(lock, "w") as fh:
+        fcntl.flock(fh, fcntl.LOCK_EX)
+        try:
+            if path.exists():
+                return pickle.loads(path.read_bytes())
+            records = verify_parallel(workers=2)
+            path.write_bytes(pickle.dumps(records))
+            return records
+        finally:
+            fcntl.flock(fh, fcntl.LOCK_UN)
+
+
+def records_of(records, cases):
+    """The records of the given cases, in the order of `cases` (as a loop of
+    `verify(case=c)` over them would give)."""
+    return [r for c in cases for r in records if r["case"] == c]

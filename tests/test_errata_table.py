@@ -4,10 +4,12 @@ through u of (2.10)), misprints in unnumbered displays and inherited failures (t
 base), the two conventions (the Chaplygin ball), and an inconclusive check that leans
 against the paper (the Chaplygin ball on a sphere); plus the figure findings."""
 
+import copy
 import json
 import re
 
 import pytest
+from conftest import records_of
 from fastapi.testclient import TestClient
 
 from app.main import create_app
@@ -24,10 +26,8 @@ CAT = load_catalogue()
 
 
 @pytest.fixture(scope="module")
-def records():
-    from solvers.verify.run import verify
-
-    return [r for cid in CASES for r in verify(case=cid)]
+def records(catalogue_records):
+    return copy.deepcopy(records_of(catalogue_records, CASES))
 
 
 @pytest.fixture(scope="module")

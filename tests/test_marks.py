@@ -3,12 +3,14 @@ place (solvers/verify/levels.py) from one vocabulary (solvers/verify/marks.yaml)
 real records of `rolling verify` for the cases that carry every kind of mark; the API,
 /how-we-check and the CLI say the same marks."""
 
+import copy
 import html
 import io
 import re
 import typing
 
 import pytest
+from conftest import records_of
 
 from catalogue.load import load_catalogue
 from solvers.verify import levels
@@ -22,9 +24,8 @@ CASES = ("plane/spherical-inertia", "plane/chaplygin-ball", "sphere/round-disk",
 
 
 @pytest.fixture(scope="module")
-def records():
-    from solvers.verify.parallel import verify_parallel
-    return [r for c in CASES for r in verify_parallel(case=c, workers=2)]
+def records(catalogue_records):
+    return copy.deepcopy(records_of(catalogue_records, CASES))
 
 
 @pytest.fixture(scope="module")

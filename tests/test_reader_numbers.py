@@ -17,11 +17,13 @@ The rule that makes "names the display that is meant" checkable:
 
 from __future__ import annotations
 
+import copy
 import json
 import re
 
 import pytest
 import yaml
+from conftest import records_of
 from typer.testing import CliRunner
 
 from catalogue.load import load_catalogue
@@ -128,13 +130,11 @@ CLI_CASES = ("sphere/flat-base", "plane/round-disk", "plane/unbalanced-ball")
 
 
 @pytest.fixture(scope="module")
-def records():
+def records(catalogue_records):
     """Real verdict records of three cases (the flat base and the unbalanced ball: the
     issue's "eq3.16" and "density eq2.17"; the disk: the misprints of (2.17)) on which
     `rolling verify` and `rolling errata` print their text."""
-    from solvers.verify.run import verify
-
-    return [r for cid in CLI_CASES for r in verify(case=cid)]
+    return copy.deepcopy(records_of(catalogue_records, CLI_CASES))
 
 
 def _run(args, monkeypatch=None, records=None) -> str:

@@ -1,5 +1,6 @@
 """Issue 10: two levels of verdicts, the new verdict kinds, the formula-free gyrostat check,
-errata and findings. One full `verify` per module (both cores), then pure checks on it."""
+errata and findings. One full `verify` per test session (the `catalogue_records` fixture,
+both cores), then pure checks on it."""
 
 import copy
 import io
@@ -17,14 +18,30 @@ GYRO_FREE = [f"{c}/gyrostat/linear-integrals/formula-free"
 
 
 @pytest.fixture(scope="module")
-def records():
-    from solvers.verify.parallel import verify_parallel
-    return verify_parallel(workers=2)
+def records(catalogue_records):
+    return copy.deepcopy(catalogue_records)
 
 
 @pytest.fixture(scope="module")
 def by(records):
     return {r["claim"]: r for r in records}
+
+
+def test_one_case_is_the_full_run_s(catalogue_records):
+    """The modules that read one case's records from the session's full run
+    (conftest.records_of) read what `verify(case=...)` gives: the same records in the same
+    order, all fields equal but the time each check took."""
+    from conftest import records_of
+
+    from solvers.verify.run import verify
+
+    case = "plane/unbalanced-ball"
+    alone = verify(case=case)
+    full = records_of(catalogue_records, [case])
+    assert [r["claim"] for r in alone] == [r["claim"] for r in full]
+    for a, b in zip(alone, full, strict=True):     # repr: a NaN residual equals itself
+        assert {k: repr(v) for k, v in a.items() if k != "seconds"} == \
+            {k: repr(v) for k, v in b.items() if k != "seconds"}, a["claim"]
 
 
 # --- the two levels ----------------------------------------------------------------------

@@ -2,37 +2,45 @@
 fits in about three desktop screens (1500 x 950) with every row behind its own anchor and
 both forms typeset; a case page with a Cite box (BibTeX of the paper and of the explorer),
 visible claim permalinks and a 'what was checked' box; search results that land on the
-claim. The server here checks every case (verify on start) and keeps the verdicts in a
-cache directory of its own, so that only the first run pays for the full verification."""
+claim. The server here verifies on start and finds every case's verdicts in a store of its own,
+filled from the session's full verification."""
 
 import re
-import tempfile
 import time
 from datetime import date
-from pathlib import Path
 
 import httpx
 import pytest
 from playwright.sync_api import expect
 
+from app.services.jobs import _finite
+from app.services.verdicts import VerdictStore
 from app.testing import live_server
+from solvers.models.cases import table_case_ids
 
 SCREEN = 950
-CACHE = Path(tempfile.gettempdir()) / "rolling-hierarchy-e2e-verdicts"
 
 
 @pytest.fixture(scope="module")
-def verified():
-    """A server whose background verification has checked every case."""
+def verified(catalogue_records, tmp_path_factory):
+    """A server that verifies on start and finds every case's verdicts in its store. The
+    store is filled from this session's full verification (the `catalogue_records`
+    fixture), as an earlier run of the server would have left it: computing them in the
+    server and serving them after a restart is what tests/e2e/test_checking_browser.py
+    and tests/test_verdict_store.py check."""
+    cache = tmp_path_factory.mktemp("verdicts")
+    store = VerdictStore(table_case_ids(), cache)
+    for cid in store.case_ids:
+        store.put(cid, [_finite(dict(r)) for r in catalogue_records if r["case"] == cid])
     with live_server(max_steps=10**9, deadline_s=60.0, verify_on_start=True,
-                     use_verdict_cache=True, cache_dir=str(CACHE)) as url:
+                     use_verdict_cache=True, cache_dir=str(cache)) as url:
         deadline = time.monotonic() + 1800
         while True:
             v = httpx.get(f"{url}/api/health", timeout=5).json()["verification"]
             if v["state"] == "done":
                 break
             assert time.monotonic() < deadline, f"verification did not finish: {v}"
-            time.sleep(2)
+            time.sleep(0.5)
         yield url
 
 

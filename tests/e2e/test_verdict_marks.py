@@ -5,6 +5,7 @@ order; the errata page lists the misprints and is linked from the home page."""
 import re
 
 import httpx
+import pytest
 from playwright.sync_api import expect
 
 CASES = ["plane/chaplygin-ball", "plane/routh-ball", "plane/spherical-inertia",
@@ -16,14 +17,18 @@ def ready(page):
     page.wait_for_function("document.body?.dataset.ready === '1'")
 
 
-def _verify(server):
+@pytest.fixture(scope="module")
+def verified(server):
+    """The session's server, once it has checked CASES (POST /api/verify: once per
+    module, both tests read the same verdicts)."""
     for cid in CASES:
         r = httpx.post(f"{server}/api/verify/{cid}", timeout=600)
         assert r.status_code == 200, r.text
+    return server
 
 
-def test_cells_over_misprints_show_no_cross(page, server, artifacts):
-    _verify(server)
+def test_cells_over_misprints_show_no_cross(page, verified, artifacts):
+    server = verified
     page.goto(server + "/")
     ready(page)
     expect(page.locator("#tbl-sphere a.cellmark").first).to_be_visible()
@@ -54,8 +59,8 @@ def test_cells_over_misprints_show_no_cross(page, server, artifacts):
     page.screenshot(path=str(artifacts / "errata.png"), full_page=True)
 
 
-def test_case_page_says_why_a_cell_holds(page, server, artifacts):
-    _verify(server)
+def test_case_page_says_why_a_cell_holds(page, verified, artifacts):
+    server = verified
     page.goto(server + "/case/sphere/round-disk")
     ready(page)
     row = page.locator("#row-gyrostat")
