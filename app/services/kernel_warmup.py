@@ -5,8 +5,10 @@ The explorer no longer waits for it. The app's lifespan starts it as a subproces
 (`--progress`: one JSON line per finished part, solvers/warmup.py) at a lower CPU priority,
 and serves at once. This module reads those lines:
 
-  - the terminal shows a progress bar tied to them, one line per finished part:
-    "compiling kernels: 4 of 9 parts [########------------] (plane/chaplygin-ball, 14.2 s)";
+  - the terminal shows a progress bar tied to them, advancing as each part finishes:
+    "compiling kernels: 4 of 9 parts [########------------] (plane/chaplygin-ball, 14.2 s)",
+    one line redrawn in place on a terminal, one log line per part in CI logs and pipes
+    (app/services/progress_line.py);
   - /api/health and the pages say which parts are still warming and which cases they hold
     (`public()`), and how long a compile of one case structure took here (`estimate_s`);
   - what needs the kernels waits for `wait_done()` (the background verification), and
@@ -25,6 +27,8 @@ import sys
 import time
 
 import anyio
+
+from app.services.progress_line import ProgressLine
 
 log = logging.getLogger("rolling.kernels")
 
@@ -47,8 +51,10 @@ class KernelWarmup:
     assumed warm, or no warm-up was asked for), starting (listing what is not compiled),
     running, done, failed."""
 
-    def __init__(self, command: list[str] | None = None) -> None:
+    def __init__(self, command: list[str] | None = None, line: ProgressLine | None = None) -> None:
         self._command = command
+        # the terminal's progress line (stderr; tests pass their own stream and tty mode)
+        self.line = line if line is not None else ProgressLine(log)
         self.state = "off"
         self.message = ""
         self.total = 0
@@ -122,17 +128,24 @@ class KernelWarmup:
             self.parts = [{"name": p["name"], "cases": list(p["cases"]), "done": False,
                            "seconds": None} for p in ev["parts"]]
             self.state = "running"
-            log.info("compiling kernels: 0 of %d parts %s, in the background: the explorer "
-                     "serves meanwhile; a run that needs a part still compiling compiles "
-                     "it first (first use on this machine)", self.total, bar(0, self.total))
+            why = ("in the background: the explorer serves meanwhile; a run that needs a "
+                   "part still compiling compiles it first (first use on this machine)")
+            if self.line.tty:       # the explanation once, then the bar redrawn below it
+                self.line.log.info("compiling kernels: %d parts, %s", self.total, why)
+                self.line.update(f"compiling kernels: 0 of {self.total} parts "
+                                 f"{bar(0, self.total)}")
+            else:
+                self.line.log.info("compiling kernels: 0 of %d parts %s, %s", self.total,
+                                   bar(0, self.total), why)
         elif ev.get("event") == "done":
             self.done = int(ev["done"])
             for p in self.parts:
                 if p["name"] == ev["part"] and not p["done"]:
                     p["done"], p["seconds"] = True, float(ev["seconds"])
                     break
-            log.info("compiling kernels: %d of %d parts %s (%s, %.1f s)", self.done,
-                     self.total, bar(self.done, self.total), ev["part"], float(ev["seconds"]))
+            self.line.update(f"compiling kernels: {self.done} of {self.total} parts "
+                             f"{bar(self.done, self.total)} ({ev['part']}, "
+                             f"{float(ev['seconds']):.1f} s)")
 
     async def run(self) -> None:
         """Run the warm-up to its end (a task of the lifespan; cancelled at shutdown, when
@@ -151,6 +164,7 @@ class KernelWarmup:
                     self.stop()     # its compile processes too, not only its main process
                     raise
             self.seconds = time.monotonic() - self.started
+            self.line.close()
             if code == 0:
                 self.state = "done"
                 log.info("compiling kernels: done, %d parts in %.1f s %s", self.total,
@@ -166,6 +180,7 @@ class KernelWarmup:
             self.state, self.message = "failed", f"the kernel warm-up did not run: {exc!r}"
             log.warning(self.message)
         finally:
+            self.line.close()       # a cancelled warm-up leaves the terminal's line ended
             self._proc = None
             self._finished.set()
 
