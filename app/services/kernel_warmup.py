@@ -49,7 +49,7 @@ def bar(done: int, total: int, width: int = BAR) -> str:
 class KernelWarmup:
     """The state of the background warm-up. `state`: off (not started: the caches are
     assumed warm, or no warm-up was asked for), starting (listing what is not compiled),
-    running, done, failed."""
+    running, done, failed, stopped (with the server)."""
 
     def __init__(self, command: list[str] | None = None, line: ProgressLine | None = None) -> None:
         self._command = command
@@ -64,6 +64,8 @@ class KernelWarmup:
         self.seconds: float | None = None  # wall time of the whole warm-up
         self._finished = anyio.Event()
         self._proc = None
+        self._group: int | None = None     # the warm-up's process group (its session)
+        self._stopping = False
         # prepare jobs run by the routes (app/services/kernel_prepare.py): keys, seconds
         self.prepared: list[dict] = []
 
@@ -156,7 +158,7 @@ class KernelWarmup:
             # its own session: stopping the explorer stops the warm-up's compile processes
             async with await anyio.open_process(self.command(), stdout=-1, stderr=None,
                                                 start_new_session=True) as proc:
-                self._proc = proc
+                self._proc, self._group = proc, proc.pid
                 try:
                     await self._read(proc)
                     code = await proc.wait()
@@ -165,7 +167,11 @@ class KernelWarmup:
                     raise
             self.seconds = time.monotonic() - self.started
             self.line.close()
-            if code == 0:
+            if self._stopping:
+                self.state = "stopped"
+                log.info("compiling kernels: stopped with the server, %d of %d parts done",
+                         self.done, self.total)
+            elif code == 0:
                 self.state = "done"
                 log.info("compiling kernels: done, %d parts in %.1f s %s", self.total,
                          self.seconds, bar(self.total, self.total))
@@ -197,10 +203,46 @@ class KernelWarmup:
                 if isinstance(ev, dict):
                     self._event(ev)
 
-    def stop(self) -> None:
-        proc = self._proc
-        if proc is not None and proc.returncode is None:
-            try:
-                os.killpg(proc.pid, signal.SIGTERM)
-            except (ProcessLookupError, PermissionError):
-                pass
+    def stop(self, sig: int = signal.SIGTERM) -> None:
+        """Signal the warm-up's whole process group (its compile processes too). Safe to
+        call at any time, from the event loop's thread."""
+        if self._group is None:
+            return
+        self._stopping = True
+        try:
+            os.killpg(self._group, sig)
+        except (ProcessLookupError, PermissionError):
+            pass
+
+    async def reap(self, timeout: float = 1.0) -> None:
+        """After stop(): wait until no process of the group is left (a process that
+        ignores SIGTERM, as multiprocessing's resource tracker does, ends when its pipe
+        closes), and kill what is still there after `timeout` s."""
+        if self._group is None or not self._stopping:
+            return
+        with anyio.move_on_after(timeout):
+            while _group_alive(self._group):
+                await anyio.sleep(0.05)
+        if _group_alive(self._group):
+            self.stop(signal.SIGKILL)
+
+
+def _group_alive(pgid: int) -> bool:
+    """Whether a process of the group is left that is not a zombie (a zombie has ended; a
+    container's init may be slow to reap the orphans)."""
+    try:
+        os.killpg(pgid, 0)
+    except (ProcessLookupError, PermissionError):
+        return False
+    from pathlib import Path
+
+    if not Path("/proc").is_dir():
+        return True
+    for stat in Path("/proc").glob("[0-9]*/stat"):
+        try:
+            fields = stat.read_text().rsplit(")", 1)[1].split()
+        except OSError:
+            continue
+        if int(fields[2]) == pgid and fields[0] != "Z":     # state, ppid, pgrp
+            return True
+    return False
