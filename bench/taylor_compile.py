@@ -101,7 +101,8 @@ def main() -> None:
             lines.append(line)
     lines.append(f"load average at end: {os.getloadavg()[0]:.2f}")
     out = ROOT / "bench" / "results" / f"taylor_compile{'_quick' if a.quick else ''}.txt"
-    out.write_text(__doc__.split("\n\n")[0] + "\n\n" + "\n".join(lines) + "\n")
+    head = __doc__.split("\n    PYTHONPATH")[0].rstrip()
+    out.write_text(f"{head}\n\n" + "\n".join(lines) + "\n")
     print(f"-> {out}")
 
 
