@@ -84,7 +84,7 @@ async def in_daemon_thread(work: Callable):
         except BaseException as exc:   # handed to the waiting task
             box["error"] = exc
         finally:
-            with contextlib.suppress(RuntimeError):    # the loop is gone: nobody waits
+            with contextlib.suppress(Exception):    # the loop is gone: nobody waits
                 anyio.from_thread.run_sync(done.set, token=token)
 
     threading.Thread(target=target, name=f"rolling: {getattr(work, '__name__', 'work')}",
