@@ -40,6 +40,8 @@ class ProgressLine:
         if not self.tty:
             self.log.info("%s", text)
             return
+        if not self.log.isEnabledFor(logging.INFO):     # the log level asked for less
+            return
         with self._lock:
             if self._text is None:
                 self._wrap_handlers()
