@@ -90,8 +90,11 @@ def test_taylor_and_auto_compile_outside_their_deadline(tmp_path):
     assert sa["method"] == "taylor" and sa["precision"] == "long double", sa
     assert sa["auto"]["runs"] >= 2 and sa["auto"]["compiled_runs"] == 0, sa["auto"]
     prepared = [p for p in h["kernels"]["prepared"] if p["keys"][0][0] == "taylor"]
-    # one prepare per request; auto's compiles (three long-double integrators) took longer
-    # than the deadline: they ran before it started
+    # one prepare job per request, before its deadline: taylor's one integrator, auto's
+    # three (its run, its check run, the check's check). How long they took depends on
+    # the machine (1-4 s each cold at load 12 on 2 cores: bench/results/
+    # taylor_compile.txt); the runs' own stats above are the evidence that nothing
+    # compiled inside a deadline
     assert len(prepared) == 2, h["kernels"]["prepared"]
-    assert prepared[1]["seconds"] > TAYLOR_DEADLINE, prepared
+    assert len(prepared[0]["keys"]) == 1 and len(prepared[1]["keys"]) == 3, prepared
     assert h["pool"]["timed_out"] == 0 and h["pool"]["crashed"] == 0, h["pool"]

@@ -74,7 +74,8 @@ def _serve(tmp_path, src: Path | None):
            "XDG_CACHE_HOME": str(tmp_path / "xdg"),
            "ROLLING_CACHE_DIR": str(tmp_path / "cache"), "ROLLING_VERIFY_ON_START": "false",
            "ROLLING_USE_VERDICT_CACHE": "false", "ROLLING_PRECOMPRESS": "false",
-           "ROLLING_WORKERS": "2", "ROLLING_LOG_LEVEL": "info"}
+           "ROLLING_WORKERS": "2", "ROLLING_LOG_LEVEL": "info",
+           "ROLLING_WARMUP_JOBS": "2"}      # compile processes, whatever the CPU count
     if src is not None:
         env["NUMBA_CACHE_DIR"] = str(tmp_path / "numba")
     log = open(tmp_path / "serve.log", "wb")     # closed by _stop
