@@ -15,6 +15,13 @@ CHECK_FACTOR tighter follows. Those three rungs are fixed by the request; a larg
 or a third round, tightens to a tolerance computed from the measured estimate, which no
 plan knows before the run (a Taylor run compiled then says so: stats "compiled").
 
+The third rung is prepared ahead of need (CHECKS_AHEAD = 2): it costs the first request of
+a structure and level its compile even when the first estimate meets the request. Measured
+(load ~12 on 2 cores): auto at rtol 1e-10 on the Chaplygin ball runs vern9 at 1e-12, checks
+with vern9 at 3.2e-14, and a second round's check is Taylor in double at 1e-15, a 10-12 s
+cold compile (once per machine: the disk cache); at rtol 1e-15 the three rungs are long
+double Taylor integrators of 1-2.5 s each (bench/results/taylor_compile.txt).
+
 The Runge-Kutta kernels do not depend on the tolerance (compensated summation is a
 run-time flag of the same kernel), so their rungs name only the method.
 """
@@ -22,6 +29,7 @@ run-time flag of the same kernel), so their rungs name only the method.
 from __future__ import annotations
 
 TAYLOR = "taylor"
+CHECKS_AHEAD = 2     # the check run, and the check's check (module doc)
 
 
 def rungs(case_id: str, model, method: str, rtol: float, t_end: float, *,
@@ -42,7 +50,7 @@ def rungs(case_id: str, model, method: str, rtol: float, t_end: float, *,
     first = _rung(choice["method"], choice["tol"], choice["precision"],
                   choice["compensated"], t_end)
     out = [first]
-    for _ in range(2):      # its check run, and the check run's check (module doc)
+    for _ in range(CHECKS_AHEAD):
         out.append(_tightened(out[-1], out[-1]["tol"] / CHECK_FACTOR, t_end,
                               choice["taylor_allowed"]))
     seen, plan = set(), []
