@@ -469,7 +469,17 @@ def serve(
     typer.echo(f"rolling-hierarchy explorer on http://{host}:{port}/  (API docs: /docs)")
     from app.core.server import run  # uvicorn with the bounds of issue 21
 
-    run(host, port, log_level=s.log_level)
+    try:
+        run(host, port, log_level=s.log_level)
+    except KeyboardInterrupt:
+        # Ctrl-C, re-raised by uvicorn once it has shut down: the lifespan has killed the
+        # workers and the warm-up (app/main.py), nothing is left to clean up, and the
+        # interpreter's own teardown (numba's and LLVM's compiled code) took 2-4 s more
+        # here (issue 19: stop within 1-2 s). SIGTERM ends the process the same way.
+        sys.stderr.write("error: interrupted\n")
+        sys.stderr.flush()
+        sys.stdout.flush()
+        os._exit(130)
 
 
 def _parse_section(text: str) -> float:

@@ -7,11 +7,20 @@ uvicorn with bounds on what a client can hold; plain `uvicorn app.main:app` lack
 
 CPU work runs in worker processes (app.core.pool); the lifespan below creates the pool,
 starts the workers and, in the background, the verification of every claim.
+
+Stopping (Ctrl-C, SIGTERM) takes a second or two, whatever is compiling: the first signal
+kills the worker processes and the warm-up's process group at once (`_stop_now`), before
+the server waits for its open requests (a prepare job compiling for a minute now fails at
+once, 503) and before the lifespan's end, which waits until those processes are gone.
 """
 
 from __future__ import annotations
 
+import asyncio
 import logging
+import signal
+import threading
+from collections.abc import Callable
 from contextlib import asynccontextmanager
 from pathlib import Path
 
@@ -83,6 +92,53 @@ def _log_to_stderr(level: str) -> None:
     log.setLevel(level.upper())
 
 
+def _stop_now(pool: WorkerPool, kernels: KernelWarmup) -> None:
+    """Stop all computing at once: the warm-up's process group (SIGTERM; its compile
+    processes included) and every worker process (SIGKILL: a compile in a worker cannot be
+    interrupted, and nothing in a worker needs saving). In the event loop's thread."""
+    kernels.stop()
+    if pool.kill_all():
+        log.info("stopping: worker processes killed")
+
+
+STOP_SIGNALS = (signal.SIGINT, signal.SIGTERM)
+
+
+def _on_stop_signal(stop: Callable[[], None]) -> Callable[[], None]:
+    """Call `stop` in the event loop when SIGINT or SIGTERM arrives, then the handler that
+    was there (uvicorn's, which first waits for the open requests, then ends the lifespan;
+    a second Ctrl-C skips the lifespan's end). Only in the main thread (a server in a
+    thread, as the tests' TestClient, gets no signals). Returns the undo."""
+    if threading.current_thread() is not threading.main_thread():
+        return lambda: None
+    loop = asyncio.get_running_loop()
+    installed = {}
+
+    def make(prev):
+        def handler(signum, frame):
+            if callable(prev):
+                loop.call_soon_threadsafe(stop)
+                prev(signum, frame)
+            else:       # SIG_DFL, no server handler: stop now, then the signal's own effect
+                stop()
+                signal.signal(signum, signal.SIG_DFL)
+                signal.raise_signal(signum)
+        return handler
+
+    for sig in STOP_SIGNALS:
+        prev = signal.getsignal(sig)
+        if prev == signal.SIG_IGN:
+            continue
+        installed[sig] = (prev, make(prev))
+        signal.signal(sig, installed[sig][1])
+
+    def undo() -> None:
+        for sig, (prev, ours) in installed.items():
+            if signal.getsignal(sig) is ours:
+                signal.signal(sig, prev)
+    return undo
+
+
 @asynccontextmanager
 async def lifespan(app: FastAPI):
     settings: Settings = app.state.settings
@@ -138,13 +194,21 @@ async def lifespan(app: FastAPI):
             await kernels.wait_done()
             await store.verify_all(pool, settings.verify_deadline_s)
 
-    async with anyio.create_task_group() as tg:
-        pool.attach(tg)
-        if settings.warm_kernels:
-            tg.start_soon(compile_kernels)
-        tg.start_soon(background)
-        yield
-        tg.cancel_scope.cancel()
+    undo = _on_stop_signal(lambda: _stop_now(pool, kernels))
+    try:
+        async with anyio.create_task_group() as tg:
+            pool.attach(tg)
+            if settings.warm_kernels:
+                tg.start_soon(compile_kernels)
+            tg.start_soon(background)
+            yield
+            _stop_now(pool, kernels)    # also when no signal came (a test, an embedding)
+            tg.cancel_scope.cancel()
+        with anyio.CancelScope(shield=True):
+            await kernels.reap()        # none of the warm-up's processes is left behind
+            await pool.close()          # nor a worker
+    finally:
+        undo()
 
 
 def create_app(settings: Settings | None = None) -> FastAPI:

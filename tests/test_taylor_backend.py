@@ -145,8 +145,17 @@ def test_precision_is_chosen_from_rtol_and_the_length_of_the_run():
         assert tb.floor(prec, 1000.0) < tb.floor(prec, 1e5)
 
 
-def test_the_compile_cache_serves_other_values_of_the_same_structure():
+@pytest.fixture
+def empty_disk(tmp_path, monkeypatch):
+    """An empty disk cache of compiled integrators (taylor_backend.disk_dir), so that a
+    cleared process cache means a compile."""
+    monkeypatch.setattr(tb, "disk_dir", lambda: tmp_path)
     tb.clear_cache()
+    yield tmp_path
+    tb.clear_cache()
+
+
+def test_the_compile_cache_serves_other_values_of_the_same_structure(empty_disk):
     params, state = _demo("plane/chaplygin-ball")
     before = tb.COMPILES[0]
     r1 = simulate("plane/chaplygin-ball", params, state, 10.0, method="taylor", rtol=1e-9)
@@ -165,8 +174,38 @@ def test_the_compile_cache_serves_other_values_of_the_same_structure():
     assert tb.COMPILES[0] == before + 1 and r3.stats["tol"] == 1e-9
 
 
-def test_the_cache_is_bounded():
+def test_a_new_process_loads_the_integrator_from_disk_with_the_same_bits(empty_disk):
+    """heyoka keeps compiled code per process (and in its own disk cache, where a new
+    process still rebuilds the expressions and the Taylor decomposition): taylor_backend
+    stores the integrator, so that another worker (the explorer's prepare job compiles in
+    one, the request may run in another) loads it instead of compiling (issue 19)."""
+    params, state = _demo("plane/round-disk")       # two events: they travel too
+    first = simulate("plane/round-disk", params, state, 5.0, method="taylor", rtol=1e-10)
+    assert first.stats["compiled"] and first.stats["integrator_cache"] is None
+    assert len(list(empty_disk.glob("*.pkl"))) == 1
+    tb.clear_cache()                                 # what a new process has in memory
+    before = tb.COMPILES[0]
+    again = simulate("plane/round-disk", params, state, 5.0, method="taylor", rtol=1e-10)
+    assert tb.COMPILES[0] == before and not again.stats["compiled"]
+    assert again.stats["integrator_cache"] == "disk" and again.stats["load_s"] > 0
+    assert again.state.tobytes() == first.state.tobytes()
+    model = build("plane/round-disk", params)
+    assert tb.ready(model.model, model.p, "double", 1e-10)
+    assert not tb.ready(model.model, model.p, "long double", 1e-10)
+
+
+def test_a_damaged_stored_integrator_is_compiled_again(empty_disk):
+    params, state = _demo("plane/chaplygin-ball")
+    simulate("plane/chaplygin-ball", params, state, 1.0, method="taylor", rtol=1e-8)
+    (stored,) = empty_disk.glob("*.pkl")
+    stored.write_bytes(b"not a pickle")
     tb.clear_cache()
+    r = simulate("plane/chaplygin-ball", params, state, 1.0, method="taylor", rtol=1e-8)
+    assert r.ok and r.stats["compiled"]
+    assert stored.read_bytes() != b"not a pickle"      # replaced by the new compile
+
+
+def test_the_cache_is_bounded(empty_disk):
     params, _state = _demo("plane/chaplygin-ball")
     model = build("plane/chaplygin-ball", params)
     for i in range(tb.MAX_CACHED + 2):

@@ -17,17 +17,27 @@ request waited 1.0-1.9 s).
 Idle workers are kept alive: anyio's pool kills a worker idle for 5 minutes, after which the
 next request would pay a cold start (a new process, the compiled kernels loaded again, about
 2 s). The number of processes is bounded by `workers` anyway, so keeping them costs nothing.
+
+Stopping (Ctrl-C, SIGTERM: app.main): `kill_all()` kills every worker at once, running or
+idle, and the pool neither replaces them nor starts a job after that (a prepare job may
+compile for a minute; a worker holds nothing that needs saving). Without it the workers
+outlived the server: uvicorn ends the process by the re-raised signal before anyio's own
+clean-up runs, and a worker only exits when it reads the end of its input, after its job.
 """
 
 from __future__ import annotations
 
+import contextlib
 import logging
 import math
+import threading
 from collections.abc import Callable
 from dataclasses import dataclass
 
 import anyio
 import anyio.abc
+import anyio.from_thread
+import anyio.lowlevel
 from anyio import to_process
 
 log = logging.getLogger("rolling")
@@ -54,6 +64,35 @@ class DeadlineExceeded(Exception):
 
 class WorkerCrashed(Exception):
     """The worker process died without an answer (killed from outside, out of memory)."""
+
+
+STOPPING = "the server is stopping"
+
+
+async def in_daemon_thread(work: Callable):
+    """work() in a daemon thread, awaited. A cancelled wait abandons the thread: a numba
+    compile in it cannot be interrupted, and a daemon thread does not hold up the
+    interpreter's exit (anyio's worker threads do: after Ctrl-C the process waited for
+    the start-up validation to finish compiling)."""
+    done = anyio.Event()
+    box: dict = {}
+    token = anyio.lowlevel.current_token()
+
+    def target() -> None:
+        try:
+            box["value"] = work()
+        except BaseException as exc:   # handed to the waiting task
+            box["error"] = exc
+        finally:
+            with contextlib.suppress(Exception):    # the loop is gone: nobody waits
+                anyio.from_thread.run_sync(done.set, token=token)
+
+    threading.Thread(target=target, name=f"rolling: {getattr(work, '__name__', 'work')}",
+                     daemon=True).start()
+    await done.wait()
+    if "error" in box:
+        raise box["error"]
+    return box.get("value")
 
 
 @dataclass
@@ -93,23 +132,48 @@ class WorkerPool:
         self._completed = self._rejected = self._cancelled = self._timed_out = 0
         self._warming = 0
         self._crashed = self._replaced = 0
+        self.closing = False    # the server is stopping: no job starts, no worker is replaced
 
     def attach(self, tg: anyio.abc.TaskGroup) -> None:
         """Background tasks (re-warming) run in this task group (the app's lifespan)."""
         self._tg = tg
 
     def _replace_killed_worker(self) -> None:
-        if self.warm is not None and self._tg is not None:
+        if self.warm is not None and self._tg is not None and not self.closing:
             self._tg.start_soon(self.refill)
 
     @staticmethod
-    def live_workers() -> int:
-        """Worker processes of anyio's pool that are alive (0 before the first job)."""
+    def _processes() -> list:
+        """anyio's worker processes of this event loop (none before the first job)."""
         try:
-            procs = to_process._process_pool_workers.get()
+            return list(to_process._process_pool_workers.get())
         except LookupError:
-            return 0
-        return sum(1 for p in procs if p.returncode is None)
+            return []
+
+    @classmethod
+    def live_workers(cls) -> int:
+        """Worker processes of anyio's pool that are alive (0 before the first job)."""
+        return sum(1 for p in cls._processes() if p.returncode is None)
+
+    def kill_all(self) -> int:
+        """The server is stopping: kill every worker process now (SIGKILL), running or idle;
+        from here on no job starts and no worker is replaced. In the event loop's thread.
+        Returns how many were killed."""
+        self.closing = True
+        killed = 0
+        for proc in self._processes():
+            if proc.returncode is None:
+                with contextlib.suppress(ProcessLookupError):
+                    proc.kill()
+                    killed += 1
+        return killed
+
+    async def close(self, timeout: float = 2.0) -> None:
+        """kill_all(), then wait (at most `timeout` s) until the processes are gone."""
+        self.kill_all()
+        with anyio.move_on_after(timeout):
+            for proc in self._processes():
+                await proc.wait()
 
     async def refill(self) -> None:
         """Bring the pool back to `workers` warm processes after one was killed or died.
@@ -133,7 +197,7 @@ class WorkerPool:
     async def prewarm(self) -> None:
         """Start one worker process and load the kernels in it (no deadline, not counted
         against the queue)."""
-        if self.warm is None:
+        if self.warm is None or self.closing:
             return
         self._warming += 1
         try:
@@ -147,7 +211,7 @@ class WorkerPool:
         in the stats: an idle pool then means a started one (app.testing.wait_idle)."""
         self._warming += 1
         try:
-            await anyio.to_thread.run_sync(work)
+            await in_daemon_thread(work)
         finally:
             self._warming -= 1
 
@@ -163,6 +227,8 @@ class WorkerPool:
 
     async def run(self, fn: Callable, *args, deadline: float | None = None):
         """fn(*args) in a worker process; see the module docstring."""
+        if self.closing:
+            raise WorkerCrashed(STOPPING)
         if self._admitted >= self.capacity:
             self._rejected += 1
             raise QueueFull(self.retry_after, self.capacity)
@@ -174,6 +240,8 @@ class WorkerPool:
                 self._cancelled += 1          # the client left while waiting in the queue
                 raise
             try:
+                if self.closing:     # it waited in the queue while the server began to stop
+                    raise WorkerCrashed(STOPPING)
                 self._running += 1
                 try:
                     with anyio.move_on_after(math.inf if deadline is None else deadline) as sc:

@@ -47,7 +47,8 @@ class ConnectionsPublic(BaseModel):
 class KernelsPublic(BaseModel):
     """The compile of the kernels in the background (app/services/kernel_warmup.py)."""
     state: str = Field(description="off (no warm-up in this server: the caches are "
-                       "assumed warm) | starting | running | done | failed")
+                       "assumed warm) | starting | running | done | failed | "
+                       "stopped (with the server)")
     message: str = ""
     parts_done: int = Field(description="warm-up parts compiled (the general kernels, the "
                             "ensembles, one part per case structure)")

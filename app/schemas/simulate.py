@@ -122,8 +122,10 @@ class SimulateResponse(BaseModel):
     stats: dict[str, Any] = Field(description="steps, rejected, rhs_calls, wall_s, method, "
                                   "rtol, atol, projected, samples, drift (max relative "
                                   "drift of every invariant), max_steps; taylor: "
-                                  "precision, taylor_order, compiled, compile_s; auto: "
-                                  "the method chosen, why and the front point")
+                                  "precision, taylor_order, compiled (this run compiled "
+                                  "its integrator: compile_s), integrator_cache (memory, "
+                                  "disk or null), load_s; auto: the method chosen, why and "
+                                  "the front point, compiled_runs")
 
 
 class ValidatePublic(BaseModel):

@@ -91,9 +91,13 @@ def prepare_kernels(req: dict) -> int:
     """Compile (or load) the kernels a simulate request will run, on a tiny run of the same
     case, parameters, method and options (issue 19: no request pays a compile inside its
     deadline; the route runs this without a deadline: app/services/kernel_prepare.py);
-    method "auto" may pick dop853 or vern9, so both. A tiny run that fails (bad input) is
+    methods "taylor" and "auto": kernel_prepare.prepare_run. A tiny run that fails (bad input) is
     left to the request itself to report. Returns how many runs completed."""
     _lower_priority()
+    if req["method"] in ("taylor", "auto"):     # the rungs the request fixes (run_plan.py)
+        from app.services.kernel_prepare import prepare_run
+
+        return prepare_run(req)
     from solvers.integrate.integrator import SMALL_METHODS
 
     step = req.get("step")

@@ -8,6 +8,9 @@ them. Then the request's job starts and its deadline counts. Keys:
 
   ("small", model, structure, method)   a plain run's small kernel (solvers/kernels/small.py)
   ("general", model, method, project, fixed)   the general rk.py kernel of a simulation
+  ("taylor", structure, k > 0, precision, tol)   heyoka's integrator of a "taylor" run, or
+                                        of a rung of an "auto" run (solvers/integrate/
+                                        run_plan.py: the rungs the request fixes)
   ("map", case, method)                 a Poincare map's compiled ensemble (sections)
   ("scene", case)                       a scene's run (the scene model, general field)
   ("scene-check", scene id)             a teaching scene's checks
@@ -16,7 +19,11 @@ What the warm-up compiles (solvers/warmup.py: the general kernels, the ensembles
 general field, the small dop853 kernels of every case's example structure) needs no
 prepare once it is done, or when the caches are known to be warm (Settings.kernels_warm:
 the tests, after `./dev test`'s warm-up). Anything else is prepared once per server:
-cheap when it is already in a cache (a tiny run in a worker, milliseconds).
+cheap when it is already in a cache (a tiny run in a worker, milliseconds). The warm-up
+compiles no Taylor integrator, so those are always prepared once per server: heyoka keeps
+compiled code in the memory of one process only, and the prepare job may run in another
+worker than the request; taylor_backend's disk cache carries it across (the request's
+worker loads it in ~10-50 ms: bench/results/taylor_compile.txt).
 """
 
 from __future__ import annotations
@@ -52,21 +59,80 @@ def _warmed() -> set:
 
 def simulate_keys(resolved: dict) -> list[tuple]:
     """The kernels a simulate request runs (integrator.is_plain decides small or general;
-    method "auto" may take dop853 or vern9)."""
+    methods "taylor" and "auto": the rungs of run_plan.rungs, from the request alone).
+    Not on the event loop: planning "auto" reads the measured front and imports heyoka."""
     from solvers.integrate.integrator import SMALL_METHODS
+    from solvers.integrate.run_plan import TAYLOR, rungs
 
     model = resolved["_model"]
-    method, project = resolved["method"], bool(resolved["project"])
+    project = bool(resolved["project"])
     fixed = resolved.get("step") is not None
-    methods = SMALL_METHODS if method == "auto" else (method,)
     plain = resolved.get("field", "auto") != "general" and not project and not fixed
     keys = []
-    for m in methods:
-        if plain and m in SMALL_METHODS and _has_generated(model.model):
+    for rung in _plan(resolved, rungs):
+        m = rung["method"]
+        if m == TAYLOR:
+            from solvers.integrate.taylor_backend import cache_key
+
+            keys.append(("taylor", *cache_key(model.model, model.p, rung["precision"],
+                                              rung["tol"])))
+        elif plain and m in SMALL_METHODS and _has_generated(model.model):
             keys.append(("small", *structure(model), m))
         else:
             keys.append(("general", model.model, m, project, fixed))
-    return keys
+    return list(dict.fromkeys(keys))
+
+
+def _plan(req: dict, rungs) -> list[dict]:
+    model = req.get("_model")
+    if model is None:
+        from solvers.models.cases import build
+
+        model = build(req["case"], req["params"], allow_any_inertia=req["allow_any_inertia"])
+    return rungs(req["case"], model, req["method"], float(req["rtol"]), float(req["t_end"]),
+                 project=bool(req["project"]), step=req.get("step"),
+                 precision=req.get("precision"))
+
+
+MIN_RTOL = 1e-16     # simulate's smallest rtol (solvers/simulate.py)
+
+
+def prepare_run(req: dict) -> int:
+    """The prepare job of a simulate request of method "taylor" or "auto", in a worker:
+    compile (or load) each rung's code on a tiny run of that rung (which also loads what
+    every run needs, the invariants' kernels): a Taylor rung's heyoka integrator, stored on
+    disk for whichever worker runs the request (taylor_backend.compiled; a check rung
+    tighter than simulate's smallest rtol is compiled directly), a Runge-Kutta rung's
+    kernel. A rung that fails (bad input) is left to the request itself to report.
+    Returns how many rungs are ready."""
+    from app.services.jobs import _lower_priority, _run
+    from solvers.integrate.run_plan import TAYLOR, rungs
+
+    _lower_priority()
+    try:
+        plan = _plan(req, rungs)
+    except Exception:   # the request's own run reports it
+        return 0
+    done = 0
+    for rung in plan:
+        try:
+            tiny = {**req, "samples": 2, "t_end": 1e-6, "method": rung["method"],
+                    "precision": rung["precision"], "step": None}
+            if rung["method"] == TAYLOR and rung["tol"] < MIN_RTOL:
+                from solvers.integrate.taylor_backend import compiled
+                from solvers.models.cases import build
+
+                m = build(req["case"], req["params"], allow_any_inertia=req["allow_any_inertia"])
+                compiled(m.model, m.p, rung["precision"], rung["tol"])
+            elif rung["method"] == TAYLOR:     # rtol = the compiled tol (snap_tol keeps it)
+                _run({**tiny, "rtol": rung["tol"], "atol": rung["tol"]}, 1000)
+            else:       # as jobs.prepare_kernels: a fixed step fits twice in the run
+                step = req.get("step")
+                _run({**tiny, "step": step, "t_end": 2.0 * step if step else 1e-6}, 1000)
+            done += 1
+        except Exception:   # the request's own run reports it
+            pass
+    return done
 
 
 def _has_generated(model_code: int) -> bool:
@@ -81,8 +147,10 @@ def needed(kernels: KernelWarmup, assumed_warm: bool, keys: list[tuple]) -> bool
     if not todo:
         return False
     if kernels.state == "done" or (kernels.state == "off" and assumed_warm):
-        # the warm-up compiled everything but the small kernels of other structures
-        return any(k[0] == "small" and k not in _warmed() for k in todo)
+        # the warm-up compiled everything but the small kernels of other structures and
+        # the Taylor integrators
+        return any((k[0] == "small" and k not in _warmed()) or k[0] == "taylor"
+                   for k in todo)
     return True
 
 

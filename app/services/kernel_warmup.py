@@ -5,8 +5,10 @@ The explorer no longer waits for it. The app's lifespan starts it as a subproces
 (`--progress`: one JSON line per finished part, solvers/warmup.py) at a lower CPU priority,
 and serves at once. This module reads those lines:
 
-  - the terminal shows a progress bar tied to them, one line per finished part:
-    "compiling kernels: 4 of 9 parts [########------------] (plane/chaplygin-ball, 14.2 s)";
+  - the terminal shows a progress bar tied to them, advancing as each part finishes:
+    "compiling kernels: 4 of 9 parts [########------------] (plane/chaplygin-ball, 14.2 s)",
+    one line redrawn in place on a terminal, one log line per part in CI logs and pipes
+    (app/services/progress_line.py);
   - /api/health and the pages say which parts are still warming and which cases they hold
     (`public()`), and how long a compile of one case structure took here (`estimate_s`);
   - what needs the kernels waits for `wait_done()` (the background verification), and
@@ -25,6 +27,8 @@ import sys
 import time
 
 import anyio
+
+from app.services.progress_line import ProgressLine
 
 log = logging.getLogger("rolling.kernels")
 
@@ -45,10 +49,12 @@ def bar(done: int, total: int, width: int = BAR) -> str:
 class KernelWarmup:
     """The state of the background warm-up. `state`: off (not started: the caches are
     assumed warm, or no warm-up was asked for), starting (listing what is not compiled),
-    running, done, failed."""
+    running, done, failed, stopped (with the server)."""
 
-    def __init__(self, command: list[str] | None = None) -> None:
+    def __init__(self, command: list[str] | None = None, line: ProgressLine | None = None) -> None:
         self._command = command
+        # the terminal's progress line (stderr; tests pass their own stream and tty mode)
+        self.line = line if line is not None else ProgressLine(log)
         self.state = "off"
         self.message = ""
         self.total = 0
@@ -58,6 +64,8 @@ class KernelWarmup:
         self.seconds: float | None = None  # wall time of the whole warm-up
         self._finished = anyio.Event()
         self._proc = None
+        self._group: int | None = None     # the warm-up's process group (its session)
+        self._stopping = False
         # prepare jobs run by the routes (app/services/kernel_prepare.py): keys, seconds
         self.prepared: list[dict] = []
 
@@ -122,17 +130,24 @@ class KernelWarmup:
             self.parts = [{"name": p["name"], "cases": list(p["cases"]), "done": False,
                            "seconds": None} for p in ev["parts"]]
             self.state = "running"
-            log.info("compiling kernels: 0 of %d parts %s, in the background: the explorer "
-                     "serves meanwhile; a run that needs a part still compiling compiles "
-                     "it first (first use on this machine)", self.total, bar(0, self.total))
+            why = ("in the background: the explorer serves meanwhile; a run that needs a "
+                   "part still compiling compiles it first (first use on this machine)")
+            if self.line.tty:       # the explanation once, then the bar redrawn below it
+                self.line.log.info("compiling kernels: %d parts, %s", self.total, why)
+                self.line.update(f"compiling kernels: 0 of {self.total} parts "
+                                 f"{bar(0, self.total)}")
+            else:
+                self.line.log.info("compiling kernels: 0 of %d parts %s, %s", self.total,
+                                   bar(0, self.total), why)
         elif ev.get("event") == "done":
             self.done = int(ev["done"])
             for p in self.parts:
                 if p["name"] == ev["part"] and not p["done"]:
                     p["done"], p["seconds"] = True, float(ev["seconds"])
                     break
-            log.info("compiling kernels: %d of %d parts %s (%s, %.1f s)", self.done,
-                     self.total, bar(self.done, self.total), ev["part"], float(ev["seconds"]))
+            self.line.update(f"compiling kernels: {self.done} of {self.total} parts "
+                             f"{bar(self.done, self.total)} ({ev['part']}, "
+                             f"{float(ev['seconds']):.1f} s)")
 
     async def run(self) -> None:
         """Run the warm-up to its end (a task of the lifespan; cancelled at shutdown, when
@@ -143,7 +158,7 @@ class KernelWarmup:
             # its own session: stopping the explorer stops the warm-up's compile processes
             async with await anyio.open_process(self.command(), stdout=-1, stderr=None,
                                                 start_new_session=True) as proc:
-                self._proc = proc
+                self._proc, self._group = proc, proc.pid
                 try:
                     await self._read(proc)
                     code = await proc.wait()
@@ -151,7 +166,12 @@ class KernelWarmup:
                     self.stop()     # its compile processes too, not only its main process
                     raise
             self.seconds = time.monotonic() - self.started
-            if code == 0:
+            self.line.close()
+            if self._stopping:
+                self.state = "stopped"
+                log.info("compiling kernels: stopped with the server, %d of %d parts done",
+                         self.done, self.total)
+            elif code == 0:
                 self.state = "done"
                 log.info("compiling kernels: done, %d parts in %.1f s %s", self.total,
                          self.seconds, bar(self.total, self.total))
@@ -166,6 +186,7 @@ class KernelWarmup:
             self.state, self.message = "failed", f"the kernel warm-up did not run: {exc!r}"
             log.warning(self.message)
         finally:
+            self.line.close()       # a cancelled warm-up leaves the terminal's line ended
             self._proc = None
             self._finished.set()
 
@@ -182,10 +203,46 @@ class KernelWarmup:
                 if isinstance(ev, dict):
                     self._event(ev)
 
-    def stop(self) -> None:
-        proc = self._proc
-        if proc is not None and proc.returncode is None:
-            try:
-                os.killpg(proc.pid, signal.SIGTERM)
-            except (ProcessLookupError, PermissionError):
-                pass
+    def stop(self, sig: int = signal.SIGTERM) -> None:
+        """Signal the warm-up's whole process group (its compile processes too). Safe to
+        call at any time, from the event loop's thread."""
+        if self._group is None:
+            return
+        self._stopping = True
+        try:
+            os.killpg(self._group, sig)
+        except (ProcessLookupError, PermissionError):
+            pass
+
+    async def reap(self, timeout: float = 1.0) -> None:
+        """After stop(): wait until no process of the group is left (a process that
+        ignores SIGTERM, as multiprocessing's resource tracker does, ends when its pipe
+        closes), and kill what is still there after `timeout` s."""
+        if self._group is None or not self._stopping:
+            return
+        with anyio.move_on_after(timeout):
+            while _group_alive(self._group):
+                await anyio.sleep(0.05)
+        if _group_alive(self._group):
+            self.stop(signal.SIGKILL)
+
+
+def _group_alive(pgid: int) -> bool:
+    """Whether a process of the group is left that is not a zombie (a zombie has ended; a
+    container's init may be slow to reap the orphans)."""
+    try:
+        os.killpg(pgid, 0)
+    except (ProcessLookupError, PermissionError):
+        return False
+    from pathlib import Path
+
+    if not Path("/proc").is_dir():
+        return True
+    for stat in Path("/proc").glob("[0-9]*/stat"):
+        try:
+            fields = stat.read_text().rsplit(")", 1)[1].split()
+        except OSError:
+            continue
+        if int(fields[2]) == pgid and fields[0] != "Z":     # state, ppid, pgrp
+            return True
+    return False

@@ -205,7 +205,8 @@ def run_checked(choice: dict, runner, t_end: float, max_steps: int, taylor_ok: b
     runner(rung, max_steps) -> an integrator result (t, y, success, steps, ...).
     taylor_ok: the Taylor backend may run this case (beyond the Runge-Kutta floor).
     Returns (the result to return, {"error_estimate", "error_estimate_method", "met",
-    "rounds", "runs", "steps_total", "rhs_calls_total", "wall_s_total", "returned"})."""
+    "rounds", "runs", "compiled_runs", "steps_total", "rhs_calls_total", "wall_s_total",
+    "returned"})."""
     requested = choice["requested_rtol"]
     rung = _rung(choice["method"], choice["tol"], choice["precision"],
                  choice["compensated"], t_end)
@@ -260,6 +261,9 @@ def run_checked(choice: dict, runner, t_end: float, max_steps: int, taylor_ok: b
     info = {"error_estimate": estimate, "error_estimate_method": how,
             "met": estimate is not None and estimate <= requested,
             "rounds": rounds, "runs": len(runs),
+            # Taylor runs that compiled their integrator here (not from a cache): what a
+            # request's deadline paid for (app/services/kernel_prepare.py prepares them)
+            "compiled_runs": sum(1 for x in runs if getattr(x, "extra", {}).get("compiled")),
             "steps_total": int(sum(x.steps for x in runs)),
             "rhs_calls_total": int(sum(x.rhs_calls for x in runs)),
             "wall_s_total": float(sum(x.wall_s for x in runs)),

@@ -4,9 +4,13 @@ The system is the case's lean generated field (solvers/kernels/generate.py,
 `heyoka_system(fold=False)`): the same sympy equations as the generated numba field
 (eq1.1-eq1.3, eq3.14-eq3.15), zero terms dropped, the nonzero parameters heyoka runtime
 parameters `par[slot]`, so one compiled integrator serves every parameter value of a case
-*structure*. heyoka compiles it with LLVM (0.5-10 s, see `bench/results/taylor_compile.txt`);
-the compiled integrator is kept process-wide per (structure, precision, tol) in a small LRU
-(`MAX_CACHED`), so an interactive run pays the compile once.
+*structure*. heyoka compiles it with LLVM (1-10 s a case, `bench/taylor_compile.py`); heyoka
+itself keeps nothing across processes, so the compiled integrator is kept process-wide per
+(structure, precision, tol) in a small LRU (`MAX_CACHED`) and on disk (`disk_dir()`: the
+integrator pickled by heyoka's own serialization, which carries the compiled object code,
+loaded in ~10-30 ms instead of compiled): a run pays the compile once per machine, and the
+explorer's prepare job (app/services/kernel_prepare.py) compiles in any worker what the
+request's worker then loads (issue 19: no compile inside a request's deadline).
 
 Tolerance: heyoka takes one `tol`; it picks the Taylor order ~ -ln(tol)/2 and a step
 that keeps the last terms of the series below tol * max(1, |y|_inf) (Jorba & Zou): an
@@ -41,11 +45,16 @@ in `dev`); without it `method="taylor"` is an InputError saying so.
 
 from __future__ import annotations
 
+import hashlib
 import math
+import os
+import pickle
 import threading
 import time
 from collections import OrderedDict
 from dataclasses import dataclass
+from functools import lru_cache
+from pathlib import Path
 
 import numpy as np
 
@@ -157,11 +166,13 @@ class Compiled:
     events: tuple[int, ...]      # layout status code of each terminal event
     compile_s: float
     lock: threading.Lock
+    load_s: float = 0.0          # read from the disk cache in this many seconds (0: compiled)
 
 
 _cache: OrderedDict = OrderedDict()
 _cache_lock = threading.Lock()
 COMPILES = [0]      # compiles done in this process (tests count them)
+LOADS = [0]         # integrators loaded from the disk cache in this process
 
 
 def snap_tol(rtol: float) -> float:
@@ -178,25 +189,106 @@ def cache_key(model: int, p, precision: str, tol: float) -> tuple:
             float(tol))
 
 
-def compiled(model: int, p, precision: str, tol: float) -> tuple[Compiled, bool]:
-    """(the compiled integrator of the case structure, whether it came from the cache)."""
+def disk_dir() -> Path:
+    """Where compiled integrators are kept between processes: beside the generated numba
+    kernels (ROLLING_KERNEL_CACHE, else ~/.cache/rolling-hierarchy/kernels), in taylor/."""
+    from solvers.kernels.generate import cache_dir
+
+    d = cache_dir() / "taylor"
+    d.mkdir(parents=True, exist_ok=True)
+    return d
+
+
+@lru_cache(maxsize=1)
+def _build_stamp() -> str:
+    """What a stored integrator depends on besides its key: the sources of the expressions
+    (solvers/kernels, via the generator's stamp) and of this module (the events), heyoka's
+    and numpy's versions, and the host CPU (LLVM compiles for it)."""
+    import heyoka as hy
+    import llvmlite.binding as ll
+
+    from solvers.kernels.generate import _sources_stamp
+
+    h = hashlib.sha256()
+    for part in (_sources_stamp(), Path(__file__).read_bytes(), hy.__version__,
+                 np.__version__, ll.get_host_cpu_name(), ll.get_host_cpu_features().flatten()):
+        h.update(part if isinstance(part, bytes) else str(part).encode())
+    return h.hexdigest()[:16]
+
+
+def _disk_path(key: tuple) -> Path:
+    name = hashlib.sha256(repr((key, _build_stamp())).encode()).hexdigest()[:24]
+    return disk_dir() / f"{name}.pkl"
+
+
+def ready(model: int, p, precision: str, tol: float) -> bool:
+    """Whether the integrator is compiled: in this process or in the disk cache."""
+    key = cache_key(model, p, precision, tol)
+    with _cache_lock:
+        if key in _cache:
+            return True
+    return _disk_path(key).is_file()
+
+
+def _load(key: tuple) -> Compiled | None:
+    """The integrator stored by an earlier process, or None (absent, or unreadable: a
+    partial or foreign file is recompiled and replaced)."""
+    path = _disk_path(key)
+    try:
+        t0 = time.perf_counter()
+        with open(path, "rb") as f:
+            ta, n_par, events, compile_s = pickle.load(f)
+        load_s = time.perf_counter() - t0
+    except FileNotFoundError:
+        return None
+    except Exception:       # any damage means: compile again
+        return None
+    LOADS[0] += 1
+    return Compiled(ta, _fp(heyoka(), key[2]), n_par,
+                    tuple(events), compile_s, threading.Lock(), load_s)
+
+
+def _store(key: tuple, entry: Compiled) -> None:
+    """Write the integrator for later processes (atomically: a reader never sees half a
+    file). A cache that cannot be written only costs the next process a compile."""
+    path = _disk_path(key)
+    tmp = path.with_name(f"{path.name}.{os.getpid()}.tmp")
+    try:
+        with open(tmp, "wb") as f:
+            pickle.dump((entry.ta, entry.n_par, entry.events, entry.compile_s), f,
+                        protocol=pickle.HIGHEST_PROTOCOL)
+        os.replace(tmp, path)
+    except OSError:
+        tmp.unlink(missing_ok=True)
+
+
+def compiled(model: int, p, precision: str, tol: float) -> tuple[Compiled, str | None]:
+    """(the compiled integrator of the case structure, where it came from: "memory" (this
+    process), "disk" (an earlier process compiled it) or None (compiled now))."""
     key = cache_key(model, p, precision, tol)
     with _cache_lock:
         if key in _cache:
             _cache.move_to_end(key)
-            return _cache[key], True
-    entry = _compile(model, p, precision, tol)
+            return _cache[key], "memory"
+    entry, source = _load(key), "disk"
+    if entry is None:
+        entry, source = _compile(model, p, precision, tol), None
+        _store(key, entry)
     with _cache_lock:
         _cache[key] = entry
         _cache.move_to_end(key)
         while len(_cache) > MAX_CACHED:
             _cache.popitem(last=False)
-    return entry, False
+    return entry, source
 
 
-def clear_cache() -> None:
+def clear_cache(disk: bool = False) -> None:
+    """Forget the integrators of this process (disk: and the stored ones)."""
     with _cache_lock:
         _cache.clear()
+    if disk:
+        for f in disk_dir().glob("*.pkl"):
+            f.unlink(missing_ok=True)
 
 
 def _compile(model: int, p, precision: str, tol: float) -> Compiled:
@@ -271,7 +363,7 @@ def run(model: int, p, y0, t_out, *, rtol: float, precision: str | None = None,
     prec = precision or choose_precision(rtol, float(t_out[-1] - t_out[0]))
     check_precision(prec)
     tol = snap_tol(rtol)
-    entry, cached = compiled(model, p, prec, tol)
+    entry, source = compiled(model, p, prec, tol)
     fp = entry.fp
     p = np.asarray(p, dtype=float)
     cb = None
@@ -315,8 +407,12 @@ def run(model: int, p, y0, t_out, *, rtol: float, precision: str | None = None,
         message = f"the wall-time limit of {wall_limit:g} s ran out before the last output time"
     if status != L.OK:
         message += f" (stopped at t = {t_stop:.17g})"
-    extra = {"precision": prec, "taylor_order": int(ta.order), "compiled": not cached,
-             "compile_s": 0.0 if cached else entry.compile_s, "tol": tol,
+    # compiled: whether this run compiled its integrator (compile_s); else it came from
+    # this process ("memory") or the disk cache ("disk", read in load_s)
+    extra = {"precision": prec, "taylor_order": int(ta.order), "compiled": source is None,
+             "compile_s": entry.compile_s if source is None else 0.0,
+             "integrator_cache": source,
+             "load_s": round(entry.load_s, 4) if source == "disk" else 0.0, "tol": tol,
              "atol_effective": tol}
     # one Taylor jet (the series of every state variable to the order) per step
     return TaylorRun(t=t_out[:m].copy(), y=Y[:m], status=int(status), message=message,

@@ -87,8 +87,13 @@ async def _prepare(request: Request, pool, settings, resolved: dict, job: dict) 
     """The kernels the run needs, compiled (or loaded) in a job without a deadline before
     the run's own deadline starts (issue 19; app/services/kernel_prepare.py)."""
     await kernel_prepare.prepare(pool, request.app.state.kernels, settings.kernels_warm,
-                                 kernel_prepare.simulate_keys(resolved),
-                                 jobs.prepare_kernels, job)
+                                 await _keys(resolved), jobs.prepare_kernels, job)
+
+
+async def _keys(resolved: dict) -> list[tuple]:
+    """The kernels of the run (kernel_prepare.simulate_keys), off the event loop."""
+    return await anyio.to_thread.run_sync(kernel_prepare.simulate_keys, resolved,
+                                          limiter=_validation_threads)
 
 
 def _job(resolved: dict) -> dict:
@@ -197,7 +202,7 @@ async def simulate_compiles(req: SimulateRequest, request: Request,
     use on this machine; outside the run's deadline), and about how long that takes: the
     explorer says "compiling" while it waits."""
     resolved = await _resolved(req, settings)
-    return _compiles(request, settings, kernel_prepare.simulate_keys(resolved))
+    return _compiles(request, settings, await _keys(resolved))
 
 
 @router.post("/scene/compiles", response_model=CompilesPublic,
