@@ -58,7 +58,7 @@ def main() -> None:
           httpx.Client() as client):
         wait_idle(url, timeout=600)
         cases = [c["id"] for c in client.get(url + "/api/cases").json() if c["body"] != "flat"]
-        print(f"{'case':34s} {'E0':>6s} {'g0':>5s} {'N x P':>9s} {'median s':>9s} "
+        print(f"{'case':34s} {'E0':>6s} {'g0':>5s} {'dir':>3s} {'N x P':>9s} {'median s':>9s} "
               f"{'runs s':>18s} {'no return':>9s} statuses")
         for case in a.case or cases:
             body = request_for(case, d)
@@ -74,7 +74,7 @@ def main() -> None:
             statuses = sorted({t["status"] for t in res["trajectories"]})
             times = [r[0] for r in runs]
             print(f"{case:34s} {body['energy']:6g} {body['section'][2:]:>5s} "
-                  f"{body['trajectories']:>3d} x {body['points']:<4d} "
+                  f"{body['direction']:>3d} {body['trajectories']:>3d} x {body['points']:<4d} "
                   f"{statistics.median(times):9.2f} "
                   f"{' '.join(f'{t:.2f}' for t in times):>18s} "
                   f"{empty:>5d} of {len(res['trajectories'])} {','.join(statuses)}", flush=True)
