@@ -1,8 +1,13 @@
-"""Browser layout test (issue 20): in every Plotly plot of /scenes, /poincare,
-/work-precision and a case page, no axis title, legend, plot title or toolbar (modebar)
-overlaps another, and none is cut off by the plot's own box, at 1280 px and at 390 px."""
+"""Browser layout test (issue 20): in every Plotly plot of /scenes (every scene), /poincare,
+/work-precision and a case page (its run and its 3D view), no axis title, legend, plot
+title or toolbar (modebar) overlaps another, and none is cut off by the plot's own box, at
+1280 px and at 390 px."""
+
+from functools import partial
 
 import pytest
+
+from catalogue.scenes import load_scenes
 
 # the parts of a plot a reader must be able to read, by Plotly's class names
 BOXES = """(root) => [...document.querySelectorAll('.js-plotly-plot')].map((p) => {
@@ -44,6 +49,9 @@ def case_page(page, server):
     page.wait_for_function("document.body?.dataset.ready === '1'", timeout=60_000)
     page.click("#run")
     page.wait_for_function("document.body.dataset.run === '1'", timeout=120_000)
+    # and its 3D view (app/static/js/scene.js), whose legend shares the plot with the body
+    page.click("#scene-btn")
+    page.wait_for_function("document.body.dataset.scene === '1'", timeout=120_000)
 
 
 def scenes(page, server, sid):
@@ -67,9 +75,9 @@ def work_precision(page, server):
     page.wait_for_timeout(500)
 
 
+# every scene (its claim plots and its 3D view); the home page draws no plot
 PAGES = {
-    "scenes-rattleback": lambda p, s: scenes(p, s, "rattleback-spin-reversal"),
-    "scenes-chaplygin": lambda p, s: scenes(p, s, "chaplygin-ball-quasiperiodic"),
+    **{f"scenes-{sid}": partial(scenes, sid=sid) for sid in load_scenes()},
     "poincare": poincare,
     "work-precision": work_precision,
     "case": case_page,

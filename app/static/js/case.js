@@ -534,10 +534,14 @@ async function runSimulation(ev) {
     return;
   }
   const t0 = performance.now();
+  // marks for bench/demos_timing.py: the click, the answer, each plot drawn
+  performance.clearMarks();
+  performance.mark("run:click");
   try {
     const label = await runLabel("/api/simulate", req, "running");
     const res = await withProgress(label, (signal) => api("/api/simulate", { method: "POST", body: req, signal }));
     const secs = (performance.now() - t0) / 1000;
+    performance.mark("run:data");
     lastRun = { request: req, result: res };
     setQuery(runQuery(req));              // the address is now this run's permalink
     $("permalink").href = location.href;
@@ -564,8 +568,10 @@ async function showPlots(res) {
       '<div class="plot full" id="plot-gamma"></div>';
   }
   await plotState($("plot-state"), res);
+  performance.mark("run:first-plot");
   await plotDrift($("plot-drift"), res);
   await plotGamma($("plot-gamma"), res);
+  performance.mark("run:plots");
 }
 
 function fileStem() {

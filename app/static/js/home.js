@@ -7,6 +7,7 @@ import { api, escapeHtml } from "./api.js";
 import { kernelSentence } from "./kernels.js";
 import { textHtml } from "./latex.js";
 import { markHtml, overview } from "./marks.js";
+import { pinHeader } from "./pinned_head.js";
 
 function katexReady() {
   return new Promise((resolve) => {
@@ -120,4 +121,5 @@ async function showStatus() {
 
 await katexReady();
 await Promise.all([showTable("plane"), showTable("sphere"), showStatus(), showSummary()]);
+for (const id of ["plane", "sphere"]) pinHeader(document.querySelector(`#table-${id} .table-wrap`));
 document.body.dataset.ready = "1";

@@ -231,9 +231,35 @@ document.getElementById("map-csv").addEventListener("click", () => download(`${s
 document.getElementById("map-json").addEventListener("click", () => download(`${stem()}.json`,
   JSON.stringify({ request: lastMap.request, ...lastMap.result }, null, 1), "application/json"));
 
+// The form's defaults, per case (static/data/poincare_defaults.json): chosen so that every
+// trajectory of a case's default map returns to the section within a few seconds (issue 20)
+let DEFAULTS = { form: {}, cases: {} };
+
+function applyDefaults(form, caseId) {
+  const own = DEFAULTS.cases[caseId] || {};
+  const values = { ...DEFAULTS.form, ...own };
+  for (const [k, v] of Object.entries(values)) {
+    const el = form.elements.namedItem(k);
+    if (el && "value" in el) el.value = String(v);
+  }
+  form.elements.namedItem("params").value = "";     // the case's example parameters
+  document.getElementById("case-note").textContent = own.why
+    ? `This case's defaults: ${Object.keys(own).filter((k) => k !== "why")
+      .map((k) => `${k} = ${own[k]}`).join(", ")}. ${own.why}` : "";
+}
+
+async function loadDefaults() {
+  const res = await fetch("/static/data/poincare_defaults.json");
+  if (!res.ok) throw new Error(`the form's defaults: ${res.status} ${res.statusText}`);
+  DEFAULTS = await res.json();
+}
+
 const form = document.getElementById("map-form");
 form.addEventListener("submit", compute);
-cases().then(() => {
+form.elements.namedItem("case").addEventListener("change", (e) => applyDefaults(form, e.target.value));
+Promise.all([cases(), loadDefaults()]).then(() => {
+  applyDefaults(form, form.elements.namedItem("case").value);
+  document.body.dataset.defaults = "1";
   // a permalink (?case=...&energy=...&run=1): fill the form and compute that map
   if (applyFormQuery(form, location.search, { flag: "map", result: "map-plot" })) form.requestSubmit();
 }).catch((e) => {

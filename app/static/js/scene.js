@@ -3,7 +3,7 @@
 // path on the plane or the sphere.
 "use strict";
 
-import { CONFIG, FONT, sphereMesh } from "./plots.js";
+import { CONFIG, FONT } from "./plots.js";
 
 const BODY_COLORS = ["#2b5d8a", "#f0c419"];
 const AXIS_COLORS = ["#c21c2c", "#2a8a3e", "#1f5f99"];
@@ -16,22 +16,98 @@ function transform(Q, x, v) {
   ];
 }
 
+// The server's mesh is a grid over the normals (solvers/models/kinematics.py body_mesh):
+// each pole is a whole ring of copies of one point. Smooth shading averages a vertex's
+// normal over its faces, so the copies (and the empty triangles between them) left dark
+// spokes and a jagged rim at the poles: one vertex per point, no empty triangle.
+export function weld(mesh) {
+  const index = new Map(), vertices = [], remap = [];
+  for (const v of mesh.vertices) {
+    const key = v.map((c) => c.toFixed(9)).join(",");
+    if (!index.has(key)) { index.set(key, vertices.length); vertices.push(v); }
+    remap.push(index.get(key));
+  }
+  const faces = [], pattern = [];
+  mesh.faces.forEach((f, n) => {
+    const [a, b, c] = f.map((i) => remap[i]);
+    if (a === b || b === c || a === c) return;
+    faces.push([a, b, c]);
+    pattern.push(mesh.pattern[n]);
+  });
+  return { vertices, faces, pattern };
+}
+
+// a sphere of radius R as a triangle mesh: one vertex at each pole, rings between
+function ballMesh(R, nt = 18, nf = 36) {
+  const x = [0], y = [0], z = [R], i = [], j = [], k = [];
+  for (let a = 1; a < nt; a++) {
+    const th = (Math.PI * a) / nt;
+    for (let b = 0; b < nf; b++) {
+      const ph = (2 * Math.PI * b) / nf;
+      x.push(R * Math.sin(th) * Math.cos(ph)); y.push(R * Math.sin(th) * Math.sin(ph));
+      z.push(R * Math.cos(th));
+    }
+  }
+  x.push(0); y.push(0); z.push(-R);
+  const ring = (a, b) => 1 + (a - 1) * nf + (b % nf), south = x.length - 1;
+  for (let b = 0; b < nf; b++) {
+    i.push(0); j.push(ring(1, b)); k.push(ring(1, b + 1));
+    i.push(south); j.push(ring(nt - 1, b + 1)); k.push(ring(nt - 1, b));
+    for (let a = 1; a < nt - 1; a++) {
+      i.push(ring(a, b), ring(a, b)); j.push(ring(a + 1, b), ring(a + 1, b + 1));
+      k.push(ring(a + 1, b + 1), ring(a, b + 1));
+    }
+  }
+  return { x, y, z, i, j, k };
+}
+
+// frames the view is fitted to (every frame of a long run costs more than it tells)
+const FIT_FRAMES = 60;
+
 export class Scene {
   constructor(el, data, { onFrame } = {}) {
     this.el = el;
     this.d = data;
+    this.mesh = weld(data.mesh);
     this.onFrame = onFrame || (() => {});
     this.frame = 0;
     this.playing = false;
     this.timer = null;
-    const V = data.mesh.vertices;
+    const V = this.mesh.vertices;
     this.size = Math.max(...V.map((v) => Math.hypot(v[0], v[1], v[2])));
-    this.axisLen = 1.35 * this.size;
+    // each body axis drawn a little beyond the body along it (a long stone's e1 longer
+    // than its e3; a thin coin's e3 still visible)
+    this.axisLen = [0, 1, 2].map((i) =>
+      1.15 * Math.max(0.5 * this.size, ...V.map((v) => Math.abs(v[i]))));
     // on the plane the body may roll far away: by default the view follows it (the floor's
     // checker pattern moves under it); on a sphere the whole support stays in view
     this.follow = !data.support_radius;
-    this.W = Math.max(3.2 * this.size, 2);
-    this.cell = this.W / 5;
+    // the body's own reach (its mesh and its axes, turned as in the frames) sets the view:
+    // a flat body (the rattleback) is not framed as if it could stand on its tip
+    const ext = this.extent();
+    this.ext = ext;
+    this.W = 1.1 * Math.max(ext.horizontal, 0.5 * this.size);
+    this.top = ext.top;
+    this.cell = this.W / 3;
+  }
+
+  // how far the body and its axes reach from x_G horizontally, and how high above the
+  // floor they go, over FIT_FRAMES frames of the run
+  extent() {
+    const n = this.d.t.length, step = Math.max(1, Math.floor(n / FIT_FRAMES));
+    const L = this.axisLen;
+    const pts = [...this.mesh.vertices, [L[0], 0, 0], [0, L[1], 0], [0, 0, L[2]]];
+    let horizontal = 0;
+    const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
+    for (let f = 0; f < n; f += step) {
+      const Q = this.d.Q[f], g = this.d.x_G[f];
+      for (const v of pts) {
+        const p = transform(Q, g, v);
+        horizontal = Math.max(horizontal, Math.abs(p[0] - g[0]), Math.abs(p[1] - g[1]));
+        for (let i = 0; i < 3; i++) { lo[i] = Math.min(lo[i], p[i]); hi[i] = Math.max(hi[i], p[i]); }
+      }
+    }
+    return { horizontal, top: hi[2], lo, hi };
   }
 
   offset(f) {
@@ -44,7 +120,7 @@ export class Scene {
     const Q = this.d.Q[f], o = this.offset(f), g = this.d.x_G[f];
     const x = [g[0] - o[0], g[1] - o[1], g[2] - o[2]];
     const X = [], Y = [], Z = [];
-    for (const v of this.d.mesh.vertices) {
+    for (const v of this.mesh.vertices) {
       const p = transform(Q, x, v);
       X.push(p[0]); Y.push(p[1]); Z.push(p[2]);
     }
@@ -52,11 +128,11 @@ export class Scene {
   }
 
   axesXYZ(f) {
-    const Q = this.d.Q[f], o = this.offset(f), g = this.d.x_G[f], L = this.axisLen;
+    const Q = this.d.Q[f], o = this.offset(f), g = this.d.x_G[f];
     const x = [g[0] - o[0], g[1] - o[1], g[2] - o[2]];
     return [0, 1, 2].map((i) => {
       const e = [0, 0, 0];
-      e[i] = L;
+      e[i] = this.axisLen[i];
       const p = transform(Q, x, e);
       return [[x[0], p[0]], [x[1], p[1]], [x[2], p[2]]];
     });
@@ -64,46 +140,64 @@ export class Scene {
 
   bounds() {
     if (this.follow) {
-      const top = Math.max(...this.d.x_G.map((p) => p[2])) + 1.5 * this.size;
-      return [[-this.W, -this.W, -0.05 * this.W], [this.W, this.W, Math.max(top, 0.6 * this.W)]];
+      // the floor just wider than the body's reach, the box just taller than its top:
+      // no empty space above a small body (issue 20)
+      return [[-this.W, -this.W, -0.02 * this.W], [this.W, this.W, 1.04 * this.top]];
     }
-    const pts = [...this.d.contact, ...this.d.x_G];
-    const lo = [0, 1, 2].map((i) => Math.min(...pts.map((p) => p[i])) - 1.15 * this.size);
-    const hi = [0, 1, 2].map((i) => Math.max(...pts.map((p) => p[i])) + 1.15 * this.size);
-    if (this.d.support_radius) {
-      const R = this.d.support_radius;
-      for (let i = 0; i < 3; i++) {
-        lo[i] = Math.min(lo[i], -R * 1.05);
-        hi[i] = Math.max(hi[i], R * 1.05);
-      }
-    } else {
-      lo[2] = Math.min(lo[2], -0.05 * this.size);
+    // on a sphere: where the body and its axes go over the run, the contact path and the
+    // support ball, and no more
+    const lo = [...this.ext.lo], hi = [...this.ext.hi];
+    const R = this.d.support_radius;
+    for (const p of [...this.d.contact, [-R, -R, -R], [R, R, R]]) {
+      for (let i = 0; i < 3; i++) { lo[i] = Math.min(lo[i], p[i]); hi[i] = Math.max(hi[i], p[i]); }
     }
-    return [lo, hi];
+    const pad = 0.03 * Math.max(...hi.map((h, i) => h - lo[i]));
+    return [lo.map((v) => v - pad), hi.map((v) => v + pad)];
   }
 
-  supportTrace(lo, hi) {
+  // The support as a triangle mesh (a Plotly surface costs several times more to draw
+  // and to move in a browser without a GPU): a sphere, or the floor's checker board.
+  supportTrace() {
     if (this.d.support_radius) {
-      const s = sphereMesh(this.d.support_radius, 40);
       const inside = this.d.k > 0 && !this.d.support_inside_body; // a cavity around the body
-      return { type: "surface", ...s, showscale: false, hoverinfo: "skip", name: "support",
-        opacity: inside ? 0.12 : 0.45, colorscale: [[0, "#9aa5b1"], [1, "#c9d1d9"]],
-        surfacecolor: s.z, lighting: { ambient: 0.7 } };
+      return { type: "mesh3d", ...ballMesh(this.d.support_radius), color: "#b3bcc6",
+        opacity: inside ? 0.12 : 0.45, hoverinfo: "skip", name: "support",
+        lighting: { ambient: 0.7, diffuse: 0.5, specular: 0.05 } };
     }
-    const n = 40;
-    const xs = Array.from({ length: n + 1 }, (_, i) => lo[0] + ((hi[0] - lo[0]) * i) / n);
-    const ys = Array.from({ length: n + 1 }, (_, i) => lo[1] + ((hi[1] - lo[1]) * i) / n);
-    const z = ys.map(() => xs.map(() => 0));
-    this.floor = { xs, ys, z };
-    return { type: "surface", x: xs, y: ys, z, surfacecolor: this.checker([0, 0, 0]), showscale: false,
-      hoverinfo: "skip", cmin: 0, cmax: 1, colorscale: [[0, "#e9ecef"], [1, "#cfd5db"]], opacity: 0.95,
-      name: "plane", lighting: { ambient: 0.9, diffuse: 0.2 } };
+    this.floor = this.floorFaces();
+    return { type: "mesh3d", ...this.floorXYZ(this.offset(0)), ...this.floor, hoverinfo: "skip",
+      name: "plane", flatshading: true, lighting: { ambient: 0.95, diffuse: 0.1, specular: 0 } };
   }
 
-  checker(o) {
-    const c = this.cell;
-    const { xs, ys } = this.floor;
-    return ys.map((y) => xs.map((x) => (Math.floor((x + o[0]) / c) + Math.floor((y + o[1]) / c)) & 1));
+  // The checker board's lines are k*cell shifted by the body's offset modulo two cells and
+  // clamped into [-W, W]: the vertices move, the colour of each square never changes and
+  // the board always covers the floor (squares beyond the edge shrink to nothing).
+  floorLines(o) {
+    const c = this.cell, K = Math.ceil(this.W / c);
+    const r = ((o % (2 * c)) + 2 * c) % (2 * c);
+    const out = [];
+    for (let k = -K; k <= K + 2; k++) out.push(Math.min(this.W, Math.max(-this.W, k * c - r)));
+    return out;
+  }
+
+  floorXYZ(o) {
+    const xs = this.floorLines(o[0]), ys = this.floorLines(o[1]);
+    const x = [], y = [], z = [];
+    for (const yv of ys) for (const xv of xs) { x.push(xv); y.push(yv); z.push(0); }
+    return { x, y, z };
+  }
+
+  floorFaces() {
+    const n = this.floorLines(0).length;
+    const i = [], j = [], k = [], facecolor = [];
+    for (let b = 0; b + 1 < n; b++) {
+      for (let a = 0; a + 1 < n; a++) {
+        const v = b * n + a, col = (a + b) & 1 ? "#cfd5db" : "#eceff2";
+        i.push(v, v); j.push(v + 1, v + n + 1); k.push(v + n + 1, v + n);
+        facecolor.push(col, col);
+      }
+    }
+    return { i, j, k, facecolor };
   }
 
   pathXYZ(f, upto) {
@@ -117,35 +211,42 @@ export class Scene {
     const d = this.d;
     const [lo, hi] = this.bounds();
     const [X, Y, Z] = this.bodyXYZ(0);
-    const F = d.mesh.faces;
+    const F = this.mesh.faces;
     const full = this.pathXYZ(0, false);
     const translucent = d.support_inside_body;
     const traces = [
-      this.supportTrace(lo, hi),
+      this.supportTrace(),
       { type: "scatter3d", mode: "lines", x: full[0], y: full[1], z: full[2], name: "contact path",
         line: { width: 3, color: "#8c959f" }, hoverinfo: "skip", connectgaps: false },
       { type: "scatter3d", mode: "lines", x: [full[0][0]], y: [full[1][0]], z: [full[2][0]],
         name: "travelled", line: { width: 6, color: "#d97706" }, hoverinfo: "skip" },
       { type: "mesh3d", x: X, y: Y, z: Z, i: F.map((f) => f[0]), j: F.map((f) => f[1]),
-        k: F.map((f) => f[2]), facecolor: d.mesh.pattern.map((p) => BODY_COLORS[p]),
-        flatshading: true, opacity: translucent ? 0.35 : 1, name: "body", hoverinfo: "skip",
-        lighting: { ambient: 0.55, diffuse: 0.7, specular: 0.15 } },
+        k: F.map((f) => f[2]), facecolor: this.mesh.pattern.map((p) => BODY_COLORS[p]),
+        // smooth shading over the welded mesh: no facets, no seams
+        flatshading: false, opacity: translucent ? 0.35 : 1, name: "body", hoverinfo: "skip",
+        lighting: { ambient: 0.6, diffuse: 0.65, specular: 0.1, roughness: 0.6, fresnel: 0.1 } },
       ...this.axesXYZ(0).map((a, i) => ({ type: "scatter3d", mode: "lines", x: a[0], y: a[1], z: a[2],
-        name: ["e₁", "e₂", "e₃"][i] + " (body axes)", line: { width: 6, color: AXIS_COLORS[i] }, hoverinfo: "skip" })),
+        name: ["e₁", "e₂", "e₃ (body axes)"][i], line: { width: 6, color: AXIS_COLORS[i] }, hoverinfo: "skip" })),
     ];
     const span = hi.map((h, i) => h - lo[i]);
     const m = Math.max(...span);
-    const ax = (i, t) => ({ range: [lo[i], hi[i]], title: { text: t }, backgroundcolor: "#fff",
-      gridcolor: "#eef0f2", zeroline: false });
+    // no axis box, ticks or axis titles: the floor (or the support) is the scale, and
+    // WebGL text is most of the first draw's cost in a browser without a GPU (issue 20)
+    const ax = (i) => ({ range: [lo[i], hi[i]], visible: false });
+    // close enough that the box (fitted to the body above) fills the view
+    const eye = this.follow ? { x: 0.85, y: -1.0, z: 0.56 } : { x: 0.92, y: -1.06, z: 0.6 };
     const layout = {
       font: FONT, margin: { l: 0, r: 0, t: 0, b: 0 }, showlegend: true,
       legend: { orientation: "h", y: 0.02 }, paper_bgcolor: "#fff",
-      scene: { xaxis: ax(0, "x"), yaxis: ax(1, "y"), zaxis: ax(2, "z"), aspectmode: "manual",
+      scene: { xaxis: ax(0), yaxis: ax(1), zaxis: ax(2), aspectmode: "manual",
         aspectratio: { x: span[0] / m, y: span[1] / m, z: span[2] / m },
-        camera: { eye: this.follow ? { x: 1.1, y: -1.3, z: 0.75 } : { x: 1.05, y: -1.2, z: 0.7 } } },
+        // look a little below the middle of the box: the floor seen from above takes the
+        // lower part of the view, the body the middle, no empty band above it
+        camera: { eye, center: { x: 0, y: 0, z: this.follow ? -0.12 : -0.04 } } },
       uirevision: "scene",
     };
-    return window.Plotly.react(this.el, traces, layout, CONFIG).then(() => this.show(0));
+    // the traces above are frame 0 already: drawing it again would double the first draw
+    return window.Plotly.react(this.el, traces, layout, CONFIG).then(() => this.onFrame(0, d.t[0]));
   }
 
   show(f) {
@@ -162,13 +263,11 @@ export class Scene {
     if (this.follow) {
       // the floor and the whole path move under the body
       const full = this.pathXYZ(f, false);
-      const { xs, ys, z } = this.floor;
-      upd.x.unshift(xs, full[0]);
-      upd.y.unshift(ys, full[1]);
-      upd.z.unshift(z, full[2]);
-      upd.surfacecolor = [this.checker(this.offset(f)), null];
+      const board = this.floorXYZ(this.offset(f));
+      upd.x.unshift(board.x, full[0]);
+      upd.y.unshift(board.y, full[1]);
+      upd.z.unshift(board.z, full[2]);
       idx.unshift(0, 1);
-      upd.surfacecolor.push(...idx.slice(2).map(() => null));
     }
     window.Plotly.restyle(this.el, upd, idx);
     this.onFrame(f, this.d.t[f]);
@@ -183,7 +282,8 @@ export class Scene {
       this.show(next);
       this.timer = setTimeout(() => requestAnimationFrame(step), 40);
     };
-    step();
+    // the next frame after the browser has shown this one, not in the same task
+    this.timer = setTimeout(() => requestAnimationFrame(step), 40);
   }
 
   pause() {

@@ -27,13 +27,16 @@ function card(s) {
 let playToken = 0;
 
 // The claim first, from the data its check measured (GET /api/scenes/{id}/checks/{k}),
-// one plot per check as each arrives; the 3D animation after the first plot, so the
-// first plot never waits for the 3D (issue 20).
+// one plot per check as each arrives; the 3D animation's data fetched beside them and
+// drawn after the first plot, so the first plot never waits for the 3D (issue 20).
 async function play(id) {
   const s = presets.find((p) => p.id === id);
   if (!s) return;
   const token = ++playToken;
   const live = () => token === playToken;
+  // marks for bench/demos_timing.py: where the time from the click to the 3D view goes
+  performance.clearMarks();
+  performance.mark("scene:play");
   $("player").hidden = false;
   $("h-player").textContent = s.title;
   $("scene-claim").textContent = s.claim;
@@ -51,6 +54,14 @@ async function play(id) {
   $("player").scrollIntoView({ block: "start" });
   const n = s.checks.length;
   let anim = null;
+  // the animation's data is asked for at once, beside the checks (the checks are kept by
+  // the server, the scene is computed by a worker); it is drawn after the first plot
+  const sc = s.scene;
+  performance.mark("scene:3d-request");
+  const data = api("/api/scene", { method: "POST", body: {
+    case: sc.case, params: sc.params, state: sc.state, t_end: sc.t_end, frames: sc.samples,
+  } }).then((d) => { performance.mark("scene:3d-data"); return d; });
+  data.catch(() => {});      // a failure is shown by animate(), not as an unhandled rejection
   for (let k = 0; k < n; k++) {
     $("claim-progress").textContent = `Checking the claim on the scene's run: check ${k + 1} of ${n}…`;
     let d;
@@ -74,8 +85,9 @@ async function play(id) {
     box.appendChild(fig);
     if (d.plot) await plotClaim(fig.querySelector(".claim-plot"), d.plot);
     if (k === 0) {
+      performance.mark("scene:first-plot");
       document.body.dataset.claimed = s.id;
-      anim = animate(s, live);      // the 3D starts once the first plot is drawn
+      anim = animate(data, live, s.id);      // the 3D is drawn once the first plot is
     }
   }
   if (live()) $("claim-progress").textContent = "";
@@ -87,13 +99,10 @@ function setStatus(text, error = false) {
   $("scene-status").classList.toggle("error", error);
 }
 
-async function animate(s, live) {
+async function animate(data, live, id) {
   setStatus("Computing the 3D animation…");
   try {
-    const sc = s.scene;
-    const d = await api("/api/scene", { method: "POST", body: {
-      case: sc.case, params: sc.params, state: sc.state, t_end: sc.t_end, frames: sc.samples,
-    } });
+    const d = await data;
     if (!live()) return;
     setStatus((d.status !== "ok" ? `${d.status}: ${d.message}. ` : "") + `${d.t.length} frames.`);
     current = new Scene($("scene-plot"), d, {
@@ -103,10 +112,12 @@ async function animate(s, live) {
       },
     });
     await current.render();
+    performance.mark("scene:3d-drawn");
     $("scrub").max = String(d.t.length - 1);
     current.play();
     $("play").textContent = "Pause";
-    document.body.dataset.playing = s.id;
+    performance.mark("scene:3d-playing");
+    document.body.dataset.playing = id;
   } catch (e) {
     if (live()) setStatus(`The 3D animation failed: ${e.message}`, true);
   }
