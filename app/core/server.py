@@ -33,6 +33,7 @@ import asyncio
 import logging
 import resource
 import time
+from collections import OrderedDict
 from dataclasses import dataclass
 
 import h11
@@ -51,17 +52,77 @@ class Limits:
     body_timeout_s: float = 10.0
     keep_alive_s: float = 5.0
     linger_s: float = 1.0
+    stall_grace_s: float = 1.0
 
     @classmethod
     def from_settings(cls, s) -> Limits:
         return cls(max_connections=s.max_connections, max_header_bytes=s.max_header_bytes,
                    header_timeout_s=s.header_timeout_s, body_timeout_s=s.body_timeout_s,
-                   keep_alive_s=s.keep_alive_s, linger_s=s.linger_s)
+                   keep_alive_s=s.keep_alive_s, linger_s=s.linger_s,
+                   stall_grace_s=s.stall_grace_s)
 
 
-# what the guards did, for /api/health and bench/load.py (one process, one event loop)
+# what the guards did, for /api/health and bench/load.py (one process, one event loop);
+# evicted_by: the evictions by rank (see _Candidates.victim)
 STATS = {"connections": 0, "peak_connections": 0, "evicted": 0, "refused": 0,
-         "header_timeouts": 0, "body_timeouts": 0, "header_too_large": 0, "lingered": 0}
+         "header_timeouts": 0, "body_timeouts": 0, "header_too_large": 0, "lingered": 0,
+         "evicted_by": {"stalled": 0, "new_head": 0, "idle": 0, "young_body": 0}}
+
+# the kinds of connection that may be evicted (a connection is in at most one):
+#   dead     closed by a read timeout, still lingering
+#   head     waiting for a request head; since = the connection, or the first byte of the
+#            next request on a keep-alive connection (a trickle does not renew it)
+#   body     sending a request body; since = its last byte
+#   closing  lingering after an answer (413, 431, 400); since = the close
+#   idle     a keep-alive connection between requests; since = the end of the last answer
+# Never in any: a request read to its end whose answer is being made or sent, a
+# connection closing with no unread input (its answer is being flushed).
+KINDS = ("dead", "head", "body", "closing", "idle")
+
+
+class _Candidates:
+    """The evictable connections of one server, by kind. Each kind is an insertion-ordered
+    dict protocol -> since, and every (re)insertion is made with since = now, so that each
+    dict is ordered by `since` (time is monotonic) and its oldest entry is its first: a
+    victim is found in O(1), whatever the number of connections."""
+
+    def __init__(self) -> None:
+        self.kinds: dict[str, OrderedDict] = {k: OrderedDict() for k in KINDS}
+
+    @staticmethod
+    def _first(d: OrderedDict, skip=None):
+        for p, since in d.items():
+            if skip is None or not skip(p):
+                return since, p
+        return None
+
+    def victim(self, now: float, grace: float):
+        """(connection, rank) to evict, or None. The ranks, in order:
+        stalled     a timed-out connection still lingering; else the longest silent of a
+                    head, a body (not paused by the app) or a lingering answer, once
+                    silent for `grace` seconds;
+        new_head    a head younger than that, oldest first (a flood of fresh sockets
+                    evicts its own oldest; a client's head arrives in one piece);
+        idle        a keep-alive connection between requests, idle the longest first;
+        young_body  a body or lingering answer silent for less than `grace`, the longest
+                    silent first (a streaming body's last byte is milliseconds old)."""
+        k = self.kinds
+        if k["dead"]:
+            return next(iter(k["dead"])), "stalled"
+        # a body whose reading the app paused (it has not read what came) is not stalled
+        fronts = [f for f in (self._first(k["head"]),
+                              self._first(k["body"], lambda p: p.flow.read_paused),
+                              self._first(k["closing"])) if f is not None]
+        oldest = min(fronts, key=lambda f: f[0]) if fronts else None
+        if oldest is not None and now - oldest[0] >= grace:
+            return oldest[1], "stalled"
+        if k["head"]:
+            return next(iter(k["head"])), "new_head"
+        if k["idle"]:
+            return next(iter(k["idle"])), "idle"
+        if oldest is not None:
+            return oldest[1], "young_body"
+        return None
 
 
 # the limits of the server running in this process (set by config())
@@ -106,9 +167,12 @@ class _LingeringTransport:
             return
         self._closing = True
         if not self._p.unread_input() or self._p.limits.linger_s <= 0:
+            # a timed-out one may go at once; otherwise its answer is being flushed
+            self._p._place("dead" if self._p._timed_out else None)
             self._t.close()
             return
         STATS["lingered"] += 1
+        self._p._place("dead" if self._p._timed_out else "closing")
         self._t.pause_reading()
         try:
             if self._t.can_write_eof():
@@ -131,9 +195,14 @@ class GuardedH11Protocol(H11Protocol):
             self.conn = h11.Connection(h11.SERVER, self.limits.max_header_bytes)
         self._timer: asyncio.TimerHandle | None = None
         self._timer_kind = ""
-        self._since = time.monotonic()
         self._refused = False
+        self._timed_out = False
         self._served = 0
+        self._kind: str | None = None     # see KINDS
+        cands = getattr(server_state, "rolling_candidates", None)
+        if cands is None:                # one index per server (its connections' set)
+            cands = server_state.rolling_candidates = _Candidates()
+        self._cands: _Candidates = cands
 
     def unread_input(self) -> bool:
         """The client may still be sending: a body not read to its end, a head cut short
@@ -144,23 +213,38 @@ class GuardedH11Protocol(H11Protocol):
 
     # --- the cap -----------------------------------------------------------------------
 
-    def _holds_no_request(self) -> bool:
-        return (self.conn.their_state is h11.IDLE
-                and (self.cycle is None or self.cycle.response_complete))
+    def _place(self, kind: str | None) -> None:
+        """Put this connection among the candidates of `kind` (None: not evictable). A
+        body that stays a body is moved to the end (its last byte is now); a head that
+        stays a head keeps its place (its deadline runs from its start)."""
+        if kind == self._kind and kind != "body":
+            return
+        kinds = self._cands.kinds
+        if self._kind is not None:
+            kinds[self._kind].pop(self, None)
+        self._kind = kind
+        if kind is not None:
+            kinds[kind][self] = time.monotonic()
+
+    def _classify(self) -> str | None:
+        state = self.conn.their_state
+        if state is h11.IDLE and (self.cycle is None or self.cycle.response_complete):
+            return "head" if self._served == 0 or self.conn.trailing_data[0] else "idle"
+        if state is h11.SEND_BODY and not (self.cycle and self.cycle.response_started):
+            return "body"
+        return None                      # a request being answered
 
     def _evict_one(self) -> bool:
-        idle = [p for p in self.connections
-                if isinstance(p, GuardedH11Protocol) and p._holds_no_request()
-                and not p.transport.is_closing()]
-        if not idle:
+        found = self._cands.victim(time.monotonic(), self.limits.stall_grace_s)
+        if found is None:
             return False
-        # a connection that never finished a request (a stalled or empty head) goes before
-        # an idle keep-alive one (a prober or a browser between two requests)
-        oldest = min(idle, key=lambda p: (p._served > 0, p._since))
+        victim, rank = found
         STATS["evicted"] += 1
-        oldest._cancel_timer()
-        oldest.transport.abort()
-        oldest.connections.discard(oldest)
+        STATS["evicted_by"][rank] += 1
+        victim._cancel_timer()
+        victim._place(None)
+        victim.transport.abort()
+        victim.connections.discard(victim)
         return True
 
     def connection_made(self, transport) -> None:  # type: ignore[override]
@@ -173,11 +257,13 @@ class GuardedH11Protocol(H11Protocol):
         STATS["connections"] = len(self.connections)
         STATS["peak_connections"] = max(STATS["peak_connections"], len(self.connections))
         self._arm("header", self.limits.header_timeout_s)
+        self._place("head")
 
     def connection_lost(self, exc) -> None:
         if self._refused:
             return
         self._cancel_timer()
+        self._place(None)
         super().connection_lost(exc)
         STATS["connections"] = len(self.connections)
 
@@ -225,6 +311,7 @@ class GuardedH11Protocol(H11Protocol):
                 self._cancel_timer()
         else:
             self._cancel_timer()
+        self._place(self._classify())
 
     def on_response_complete(self) -> None:
         self._served += 1
@@ -233,6 +320,8 @@ class GuardedH11Protocol(H11Protocol):
         # request has begun to arrive: handle_events armed the header deadline)
         if self._timer_kind == "header" and not self.conn.trailing_data[0]:
             self._cancel_timer()
+        if not self.transport.is_closing():
+            self._place(self._classify())
 
     def _expired(self) -> None:
         kind, self._timer, self._timer_kind = self._timer_kind, None, ""
@@ -246,6 +335,7 @@ class GuardedH11Protocol(H11Protocol):
                     f"{self.limits.header_timeout_s:g} s"))
         else:
             STATS["body_timeouts"] += 1
+        self._timed_out = True
         self.transport.close()
 
     # --- uvicorn's own answers -----------------------------------------------------------
