@@ -17,6 +17,7 @@ import httpx
 import pytest
 
 from app.testing import live_server
+from tests.test_server_limits import _one_response
 
 CAP = 20
 LIMITS = {"max_connections": CAP, "header_timeout_s": 60.0, "body_timeout_s": 60.0,
@@ -55,26 +56,6 @@ def _closed_by_server(s: socket.socket) -> bool:
         return s.recv(65536) == b""
     except (ConnectionResetError, BlockingIOError):
         return True
-
-
-def _one_response(s: socket.socket) -> bytes:
-    """One whole answer (head and Content-Length body) from a keep-alive connection."""
-    s.settimeout(5.0)
-    data = b""
-    while b"\r\n\r\n" not in data:
-        b = s.recv(65536)
-        if not b:
-            return data
-        data += b
-    head, _, rest = data.partition(b"\r\n\r\n")
-    length = next(int(line.split(b":", 1)[1]) for line in head.split(b"\r\n")
-                  if line.lower().startswith(b"content-length:"))
-    while len(rest) < length:
-        b = s.recv(65536)
-        if not b:
-            break
-        rest += b
-    return head + b"\r\n\r\n" + rest
 
 
 def test_a_flood_of_stalled_bodies_and_heads_evicts_itself_not_the_legitimate_clients(server):
@@ -160,3 +141,27 @@ def test_a_cap_full_of_stalled_bodies_lets_a_new_client_in(server):
     # the oldest bodies went first: the closed ones are a prefix of the flood
     n = sum(closed)
     assert n >= 2 and closed[:n] == [True] * n, closed
+
+
+def test_the_file_limit_is_raised_so_that_the_cap_is_not_halved():
+    """A soft file limit of 256 (hard limit higher) would make fd_bound cut a cap of 1000
+    to 128; the server raises the soft limit first (before: the cap was cut)."""
+    import resource
+    import subprocess
+    import sys
+
+    _, hard = resource.getrlimit(resource.RLIMIT_NOFILE)
+    if hard != resource.RLIM_INFINITY and hard < 2 * 1000 + 64:
+        pytest.skip(f"the hard file limit ({hard}) is below what a cap of 1000 needs")
+    code = ("import resource\n"
+            "soft, hard = resource.getrlimit(resource.RLIMIT_NOFILE)\n"
+            "resource.setrlimit(resource.RLIMIT_NOFILE, (256, hard))\n"
+            "from app.core.server import config\n"
+            "from app.testing import settings_for_tests\n"
+            "c = config('127.0.0.1', 0, settings_for_tests(max_connections=1000))\n"
+            "from app.core import server\n"
+            "print(server.ACTIVE.max_connections, "
+            "resource.getrlimit(resource.RLIMIT_NOFILE)[0])\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         timeout=120, check=True).stdout.split()
+    assert out == ["1000", "2064"], out
