@@ -7,7 +7,11 @@
 2. what held connections cost a live server: its resident memory with 0 and with `--hold`
    stalled sockets (half a head or half a body), and how many connections a second it
    accepts and evicts while a flood opens them as fast as one client can;
-3. with --profile: what legitimate clients look like to the server, to set stall_grace_s:
+3. --body-cpu: the server's CPU time per stalled half body at the cap (100, held by
+   stalled half bodies; 1000 more opened, then a pause for the server to drain them).
+   This branch evicts each stalled one; main refused each new one at once. Run it from a
+   checkout of another commit (with this file) to compare servers.
+4. with --profile: what legitimate clients look like to the server, to set stall_grace_s:
    a server whose protocol records, for every request that completed, the time its head
    took (from the connection, or from the first byte of a keep-alive connection's next
    request), the longest gap inside its body, and the idle gap before a keep-alive
@@ -17,6 +21,7 @@
     python bench/connection_cap.py                  # cap 1000, hold 1000
     python bench/connection_cap.py --cap 4000 --hold 4000
     python bench/connection_cap.py --profile 20 [--hostile]
+    python bench/connection_cap.py --body-cpu
 """
 
 from __future__ import annotations
@@ -192,6 +197,44 @@ def held_cost(hold: int, cap: int, flood_s: float, clients: int) -> dict:
             - before, "evicted_by": c2["evicted_by"], "refused": c2["refused"]}
 
 
+def body_cpu(cap: int = 100, n: int = 1000) -> dict:
+    import httpx
+    import psutil
+
+    from app.testing import live_server
+
+    with live_server(max_connections=cap, header_timeout_s=60.0, body_timeout_s=60.0) as url:
+        port = int(url.rsplit(":", 1)[1])
+        server = psutil.Process(_server_pid(port))
+        held = [_half(port, HALF_BODY) for _ in range(cap)]
+        time.sleep(2.0)
+        cpu0 = sum(server.cpu_times()[:2])
+        for _ in range(n):
+            try:
+                held.append(_half(port, HALF_BODY))
+            except OSError:
+                pass
+            if len(held) > 4 * cap:      # this client's own sockets stay bounded
+                for s in held[:2 * cap]:
+                    s.close()
+                del held[:2 * cap]
+        time.sleep(3.0)
+        cpu = sum(server.cpu_times()[:2]) - cpu0
+        try:
+            c = httpx.get(f"{url}/api/health", timeout=10.0).json()["connections"]
+        except httpx.HTTPError as exc:       # main refused this one too
+            c = f"health refused: {type(exc).__name__}"
+        for s in held:
+            s.close()
+    return {"cap": cap, "n": n, "cpu_us": 1e6 * cpu / n, "connections": c}
+
+
+def _half(port: int, what: bytes) -> socket.socket:
+    s = socket.create_connection(("127.0.0.1", port), timeout=5.0)
+    s.sendall(what)
+    return s
+
+
 def _serve_profiled(port: int, out: str) -> None:
     """The explorer's server with a protocol that records the legitimate clients' timing
     (see the module docstring), written to `out` as JSON every half second."""
@@ -298,6 +341,8 @@ def main(argv=None) -> int:
     ap.add_argument("--rounds", type=int, default=2000)
     ap.add_argument("--flood-s", type=float, default=3.0)
     ap.add_argument("--flood-clients", type=int, default=1)
+    ap.add_argument("--body-cpu", action="store_true",
+                    help="only the server's CPU per stalled half body at the cap")
     ap.add_argument("--profile", type=float, metavar="SECONDS",
                     help="profile the legitimate clients of bench/load.py for SECONDS")
     ap.add_argument("--hostile", action="store_true", help="with --profile: its hostile mix")
@@ -306,6 +351,12 @@ def main(argv=None) -> int:
     a = ap.parse_args(argv)
     if a.serve_profiled:
         _serve_profiled(int(a.serve_profiled[0]), a.serve_profiled[1])
+        return 0
+    if a.body_cpu:
+        r = body_cpu()
+        print(f"machine: {os.cpu_count()} cores; load average {os.getloadavg()[0]:.2f}")
+        print(f"server CPU per stalled half body at the cap ({r['cap']}, {r['n']} opened): "
+              f"{r['cpu_us']:.0f} us; guards afterwards: {r['connections']}")
         return 0
     if a.profile:
         if not 0 < a.profile <= 120:

@@ -166,3 +166,35 @@ def test_the_file_limit_is_raised_so_that_the_cap_is_not_halved():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          timeout=120, check=True).stdout.split()
     assert out == ["1000", "2064"], out
+
+
+@pytest.mark.parametrize("how", ["one-piece", "two-pieces", "expect-100", "chunked"])
+def test_a_small_body_reaches_the_app_however_it_comes(server, how):
+    """The app of a small Content-Length body starts once the body is in (_DeferringLoop):
+    a body in two pieces, one behind Expect: 100-continue (the client waits for the
+    server) and a chunked one are all answered by the app."""
+    _, port = server
+    body = b'{"case": "plane/chaplygin-ball", "example": true}'
+    s = socket.create_connection(("127.0.0.1", port), timeout=10.0)
+    head = b"POST /api/validate HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/json\r\n"
+    head += (b"Transfer-Encoding: chunked\r\n" if how == "chunked"
+             else b"Content-Length: %d\r\n" % len(body))
+    head += b"Expect: 100-continue\r\n" if how == "expect-100" else b""
+    try:
+        s.sendall(head + b"\r\n")
+        if how == "expect-100":
+            assert s.recv(100).startswith(b"HTTP/1.1 100")
+        if how == "chunked":
+            s.sendall(b"%x\r\n%s\r\n0\r\n\r\n" % (len(body), body))
+        elif how == "two-pieces":
+            s.sendall(body[:10])
+            time.sleep(0.3)
+            s.sendall(body[10:])
+        else:
+            s.sendall(body)
+        answer = _one_response(s)
+    finally:
+        s.close()
+    # the app's own answer (the validation's 422 or 200), not a timeout or a reset
+    assert answer.split(b" ", 2)[1] in (b"200", b"422"), answer[:200]
+    assert b"application/json" in answer.split(b"\r\n\r\n", 1)[0].lower()
