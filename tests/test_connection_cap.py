@@ -58,6 +58,14 @@ def _closed_by_server(s: socket.socket) -> bool:
         return True
 
 
+def _guards_then_closed(url: str, flood: list) -> tuple[dict, list[bool]]:
+    """The guards' counts, then which flood sockets the server closed. The server accepts
+    in order: once the counts are answered it has seen every earlier socket."""
+    after = _guards(url)
+    time.sleep(0.2)
+    return after, [_closed_by_server(s) for s in flood]
+
+
 def test_a_flood_of_stalled_bodies_and_heads_evicts_itself_not_the_legitimate_clients(server):
     url, port = server
     before = _guards(url)
@@ -96,10 +104,7 @@ def test_a_flood_of_stalled_bodies_and_heads_evicts_itself_not_the_legitimate_cl
             except httpx.TransportError as exc:
                 answers.append(repr(exc))
             time.sleep(0.1)
-        # the server accepts in order: once this is answered it has seen every socket
-        after = _guards(url)
-        time.sleep(0.2)
-        closed = [_closed_by_server(s) for s in flood]
+        after, closed = _guards_then_closed(url, flood)
     finally:
         for s in flood:
             s.close()
@@ -131,9 +136,7 @@ def test_a_cap_full_of_stalled_bodies_lets_a_new_client_in(server):
         before = _guards(url)       # this connection evicts the oldest body
         with httpx.Client(timeout=10.0) as fresh:
             codes = [fresh.get(f"{url}/api/health").status_code for _ in range(3)]
-        after = _guards(url)
-        time.sleep(0.2)
-        closed = [_closed_by_server(s) for s in flood]
+        after, closed = _guards_then_closed(url, flood)
     finally:
         for s in flood:
             s.close()
