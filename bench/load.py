@@ -387,6 +387,9 @@ def main(argv=None) -> int:
                     help="stalled sockets to attempt (half a head or body; at most 5000)")
     ap.add_argument("--hostile", action="store_true",
                     help="the hostile mix of issue 21: --big 3 --bombs 2 --stalled 3000")
+    ap.add_argument("--max-connections", type=int,
+                    help="the server's connection cap (default: its setting, 1000); a "
+                    "smaller one lets a slow flood fill it on a loaded machine")
     ap.add_argument("--plain-uvicorn", action="store_true",
                     help="start `uvicorn app.main:app` with its defaults (httptools, no "
                     "bounds) instead of app.core.server, for comparison")
@@ -401,6 +404,8 @@ def main(argv=None) -> int:
         ap.error("users in [1, 200], duration in (0, 600] s")
     if not (0 <= args.bombs <= 8 and 0 <= args.stalled <= 5000):
         ap.error("--bombs in [0, 8], --stalled in [0, 5000]")
+    if args.max_connections is not None and not 8 <= args.max_connections <= 100_000:
+        ap.error("--max-connections in [8, 100000]")
     if (args.pages or 0) + (args.big or 0) > args.users or min(args.pages or 0,
                                                                args.big or 0) < 0:
         ap.error("--pages and --big are parts of --users")
@@ -423,14 +428,15 @@ def main(argv=None) -> int:
         from app.testing import live_server, wait_idle
 
         s = Settings()
+        cap = {} if args.max_connections is None else {"max_connections": args.max_connections}
         settings = {"workers": s.workers, "queue_size": s.queue_size,
-                    "deadline_s": s.deadline_s, "max_steps": s.max_steps,
+                    "deadline_s": s.deadline_s, "max_steps": s.max_steps, **cap,
                     "server": "plain uvicorn (httptools)" if args.plain_uvicorn else
                     "app.core.server (h11 + bounds)"}
         # the defaults of `rolling serve`, without the background verification
         with live_server(plain_uvicorn=args.plain_uvicorn,
                          verify_on_start=False, workers=s.workers, queue_size=s.queue_size,
-                         deadline_s=s.deadline_s, max_steps=s.max_steps) as url:
+                         deadline_s=s.deadline_s, max_steps=s.max_steps, **cap) as url:
             wait_idle(url, timeout=600)
             r = run(url, settings)
     return 1 if r["unplanned_5xx"] else 0

@@ -58,7 +58,8 @@ class Settings(BaseSettings):
     # what one client may hold (app.core.server, issue 21): open connections (at most half
     # the file limit), the request line and headers in bytes and in fields, the time a
     # request head may take to arrive and the longest gap inside a body, the idle time of
-    # a keep-alive connection, and how long a connection refused mid-body lingers
+    # a keep-alive connection, and how long a connection refused mid-body lingers; at the
+    # cap, a head or body silent for stall_grace_s is stalled and evicted first
     max_connections: int = Field(1000, ge=8, le=100_000)
     max_header_bytes: int = Field(64 * 1024, ge=4096, le=1 << 20)
     max_headers: int = Field(100, ge=8, le=10_000)
@@ -66,6 +67,7 @@ class Settings(BaseSettings):
     body_timeout_s: float = Field(10.0, gt=0, le=3600)
     keep_alive_s: float = Field(5.0, gt=0, le=3600)
     linger_s: float = Field(1.0, ge=0, le=60)
+    stall_grace_s: float = Field(1.0, gt=0, le=60)
     # Host header allow-list (DNS rebinding): None = the loopback names when bound to a
     # loopback address, any host otherwise; a list (JSON in ROLLING_ALLOWED_HOSTS) replaces it
     allowed_hosts: list[str] | None = None

@@ -12,10 +12,25 @@ added here, on h11's protocol class:
   `max_headers` fields (431, app.core.guards.HeaderLimit), within `header_timeout_s` of
   the connection or of the first byte of the request (408 and close);
 - a body: a gap of `body_timeout_s` without a byte closes the connection;
-- at most `max_connections` open connections: at the cap a new connection evicts the
-  oldest one that holds no request, first among those that never completed one (half a
-  head, nothing sent), then among idle keep-alive ones, so a flood of stalled sockets
-  cannot lock out /api/health; with none to evict it is closed at once;
+- at most `max_connections` open connections. At the cap a new connection evicts one
+  that makes no progress (_Candidates.victim), never a legitimate one while a stalled one
+  is there: first one closed by a read timeout and still lingering; then the longest
+  silent of a head (counted from its start), a body (from its last byte; not one the app
+  paused) or a lingering answer, once silent for `stall_grace_s`; then a younger head,
+  oldest first; then an idle keep-alive connection, idle longest first; last a body
+  silent for less than the grace. A request read to its end whose answer is being made
+  or sent is never evicted; with nothing to evict the new connection is closed at once.
+  The grace, 1 s: the legitimate clients of bench/load.py had their whole head within
+  0.5 s of the connection and no gap inside a body over 0.15 s at load 11-14, while the
+  issue's flood (500 sockets a second against a cap of 1000) leaves its own sockets 2 s
+  to age (bench/results/connection_cap.txt). A flood of stalled heads never pushes out
+  an idle client; one of half bodies does only if it brings more than the cap of them
+  within the grace time (1000 a second). The candidates are kept in time order per
+  kind, so choosing one costs microseconds, not a scan of every connection (the scan it
+  replaced took 1.6-2.8 ms at the cap of 1000: most of a core at 500 new connections a
+  second). The soft file limit is raised towards the hard one, so that fd_bound does not
+  halve the cap; the app of a request with a small body starts once the body is in
+  (_DeferringLoop), so that the stalled half bodies the cap now admits cost no app run;
 - closing while the client is still sending (a 413, a 431, a timeout): reading stops,
   the answer is flushed, the write side is shut (the client sees the end of the answer),
   and the socket is closed `linger_s` later. The unread bytes stay in the kernel's
@@ -33,9 +48,11 @@ import asyncio
 import logging
 import resource
 import time
+from collections import OrderedDict
 from dataclasses import dataclass
 
 import h11
+from uvicorn.protocols.http.flow_control import HIGH_WATER_LIMIT
 from uvicorn.protocols.http.h11_impl import H11Protocol
 
 from app.core.guards import HEADERS
@@ -51,21 +68,97 @@ class Limits:
     body_timeout_s: float = 10.0
     keep_alive_s: float = 5.0
     linger_s: float = 1.0
+    stall_grace_s: float = 1.0
 
     @classmethod
     def from_settings(cls, s) -> Limits:
         return cls(max_connections=s.max_connections, max_header_bytes=s.max_header_bytes,
                    header_timeout_s=s.header_timeout_s, body_timeout_s=s.body_timeout_s,
-                   keep_alive_s=s.keep_alive_s, linger_s=s.linger_s)
+                   keep_alive_s=s.keep_alive_s, linger_s=s.linger_s,
+                   stall_grace_s=s.stall_grace_s)
 
 
-# what the guards did, for /api/health and bench/load.py (one process, one event loop)
+# what the guards did, for /api/health and bench/load.py (one process, one event loop);
+# evicted_by: the evictions by rank (see _Candidates.victim)
 STATS = {"connections": 0, "peak_connections": 0, "evicted": 0, "refused": 0,
-         "header_timeouts": 0, "body_timeouts": 0, "header_too_large": 0, "lingered": 0}
+         "header_timeouts": 0, "body_timeouts": 0, "header_too_large": 0, "lingered": 0,
+         "evicted_by": {"stalled": 0, "new_head": 0, "idle": 0, "young_body": 0}}
+
+# the kinds of connection that may be evicted (a connection is in at most one):
+#   dead     closed by a read timeout, still lingering
+#   head     waiting for a request head; since = the connection, or the first byte of the
+#            next request on a keep-alive connection (a trickle does not renew it)
+#   body     sending a request body; since = its last byte
+#   closing  lingering after an answer (413, 431, 400); since = the close
+#   idle     a keep-alive connection between requests; since = the end of the last answer
+# Never in any: a request read to its end whose answer is being made or sent, a
+# connection closing with no unread input (its answer is being flushed).
+KINDS = ("dead", "head", "body", "closing", "idle")
+
+
+class _Candidates:
+    """The evictable connections of one server, by kind. Each kind is an insertion-ordered
+    dict protocol -> since, and every (re)insertion is made with since = now, so that each
+    dict is ordered by `since` (time is monotonic) and its oldest entry is its first: a
+    victim is found in O(1), whatever the number of connections."""
+
+    def __init__(self) -> None:
+        self.kinds: dict[str, OrderedDict] = {k: OrderedDict() for k in KINDS}
+
+    @staticmethod
+    def _first(d: OrderedDict, skip=None):
+        for p, since in d.items():
+            if skip is None or not skip(p):
+                return since, p
+        return None
+
+    def victim(self, now: float, grace: float):
+        """(connection, rank) to evict, or None. The ranks, in order:
+        stalled     a timed-out connection still lingering; else the longest silent of a
+                    head, a body (not paused by the app) or a lingering answer, once
+                    silent for `grace` seconds;
+        new_head    a head younger than that, oldest first (a flood of fresh sockets
+                    evicts its own oldest; a client's head arrives in one piece);
+        idle        a keep-alive connection between requests, idle the longest first;
+        young_body  a body or lingering answer silent for less than `grace`, the longest
+                    silent first (a streaming body's last byte is milliseconds old)."""
+        k = self.kinds
+        if k["dead"]:
+            return next(iter(k["dead"])), "stalled"
+        # a body whose reading the app paused (it has not read what came) is not stalled
+        fronts = [f for f in (self._first(k["head"]),
+                              self._first(k["body"], lambda p: p.flow.read_paused),
+                              self._first(k["closing"])) if f is not None]
+        oldest = min(fronts, key=lambda f: f[0]) if fronts else None
+        if oldest is not None and now - oldest[0] >= grace:
+            return oldest[1], "stalled"
+        if k["head"]:
+            return next(iter(k["head"])), "new_head"
+        if k["idle"]:
+            return next(iter(k["idle"])), "idle"
+        if oldest is not None:
+            return oldest[1], "young_body"
+        return None
 
 
 # the limits of the server running in this process (set by config())
 ACTIVE: Limits | None = None
+
+
+def raise_fd_limit(wanted: int) -> None:
+    """Raise the process's soft file limit towards its hard one, to twice the wanted cap
+    (a soft limit of 1024, common, would halve a cap of 1000 through fd_bound, and with
+    it the flood rate the eviction policy absorbs: cap / stall_grace_s a second)."""
+    soft, hard = resource.getrlimit(resource.RLIMIT_NOFILE)
+    need = 2 * wanted + 64
+    if soft == resource.RLIM_INFINITY or soft >= need:
+        return
+    target = need if hard == resource.RLIM_INFINITY else min(need, hard)
+    if target > soft:
+        try:
+            resource.setrlimit(resource.RLIMIT_NOFILE, (target, hard))
+        except (ValueError, OSError) as exc:
+            log.warning("cannot raise the file limit from %d to %d: %s", soft, target, exc)
 
 
 def fd_bound(wanted: int) -> int:
@@ -106,9 +199,12 @@ class _LingeringTransport:
             return
         self._closing = True
         if not self._p.unread_input() or self._p.limits.linger_s <= 0:
+            # a timed-out one may go at once; otherwise its answer is being flushed
+            self._p._place("dead" if self._p._timed_out else None)
             self._t.close()
             return
         STATS["lingered"] += 1
+        self._p._place("dead" if self._p._timed_out else "closing")
         self._t.pause_reading()
         try:
             if self._t.can_write_eof():
@@ -122,6 +218,36 @@ class _LingeringTransport:
         self._t.abort()
 
 
+class _DeferringLoop:
+    """The event loop as one connection's protocol sees it: the ASGI task of a request
+    whose small body (Content-Length up to HIGH_WATER_LIMIT, no Expect: 100-continue) has
+    not all arrived starts once it has (GuardedH11Protocol._release_app), and never if
+    the connection goes first. The app reads such a body whole before anything else, so
+    only a stalled half body sees a difference: it costs its parse, not a run of the
+    app's middleware. Measured (bench/connection_cap.py --body-cpu, load 10-15, noisy):
+    server CPU per stalled half body at the cap 440-760 us with this, 700-1200 us with
+    the app started at once, 510-570 us for main, which refused them."""
+
+    def __init__(self, loop: asyncio.AbstractEventLoop, protocol: GuardedH11Protocol):
+        self._loop = loop
+        self._p = protocol
+
+    def __getattr__(self, name):
+        return getattr(self._loop, name)
+
+    def create_task(self, coro, **kw):
+        if not self._p._small_body_coming():
+            return self._loop.create_task(coro, **kw)
+        ready = self._loop.create_future()
+        self._p._app_held = (coro, ready)
+
+        async def after_body():
+            await ready
+            return await coro
+
+        return self._loop.create_task(after_body(), **kw)
+
+
 class GuardedH11Protocol(H11Protocol):
     limits = Limits()
 
@@ -131,9 +257,16 @@ class GuardedH11Protocol(H11Protocol):
             self.conn = h11.Connection(h11.SERVER, self.limits.max_header_bytes)
         self._timer: asyncio.TimerHandle | None = None
         self._timer_kind = ""
-        self._since = time.monotonic()
         self._refused = False
+        self._timed_out = False
         self._served = 0
+        self._kind: str | None = None     # see KINDS
+        cands = getattr(server_state, "rolling_candidates", None)
+        if cands is None:                # one index per server (its connections' set)
+            cands = server_state.rolling_candidates = _Candidates()
+        self._cands: _Candidates = cands
+        self._app_held: tuple | None = None    # (the app's coroutine, its start signal)
+        self.loop = _DeferringLoop(self.loop, self)
 
     def unread_input(self) -> bool:
         """The client may still be sending: a body not read to its end, a head cut short
@@ -142,25 +275,62 @@ class GuardedH11Protocol(H11Protocol):
         return (state is h11.SEND_BODY or state is h11.ERROR
                 or (state is h11.IDLE and bool(self.conn.trailing_data[0])))
 
-    # --- the cap -----------------------------------------------------------------------
+    # --- the app of a small body starts once the body is in ---------------------------
 
-    def _holds_no_request(self) -> bool:
-        return (self.conn.their_state is h11.IDLE
-                and (self.cycle is None or self.cycle.response_complete))
+    def _small_body_coming(self) -> bool:
+        if self.conn.their_state is not h11.SEND_BODY:
+            return False
+        length = None
+        for name, value in self.headers:
+            if name == b"expect":        # the client waits for the app's 100 Continue
+                return False
+            if name == b"content-length":
+                length = value
+        return length is not None and length.isdigit() and int(length) <= HIGH_WATER_LIMIT
+
+    def _release_app(self, run: bool) -> None:
+        coro, ready = self._app_held
+        self._app_held = None
+        if run:
+            if not ready.done():
+                ready.set_result(None)
+        else:                            # the connection went before its body came
+            ready.cancel()
+            coro.close()
+
+
+    def _place(self, kind: str | None) -> None:
+        """Put this connection among the candidates of `kind` (None: not evictable). A
+        body that stays a body is moved to the end (its last byte is now); a head that
+        stays a head keeps its place (its deadline runs from its start)."""
+        if kind == self._kind and kind != "body":
+            return
+        kinds = self._cands.kinds
+        if self._kind is not None:
+            kinds[self._kind].pop(self, None)
+        self._kind = kind
+        if kind is not None:
+            kinds[kind][self] = time.monotonic()
+
+    def _classify(self) -> str | None:
+        state = self.conn.their_state
+        if state is h11.IDLE and (self.cycle is None or self.cycle.response_complete):
+            return "head" if self._served == 0 or self.conn.trailing_data[0] else "idle"
+        if state is h11.SEND_BODY and not (self.cycle and self.cycle.response_started):
+            return "body"
+        return None                      # a request being answered
 
     def _evict_one(self) -> bool:
-        idle = [p for p in self.connections
-                if isinstance(p, GuardedH11Protocol) and p._holds_no_request()
-                and not p.transport.is_closing()]
-        if not idle:
+        found = self._cands.victim(time.monotonic(), self.limits.stall_grace_s)
+        if found is None:
             return False
-        # a connection that never finished a request (a stalled or empty head) goes before
-        # an idle keep-alive one (a prober or a browser between two requests)
-        oldest = min(idle, key=lambda p: (p._served > 0, p._since))
+        victim, rank = found
         STATS["evicted"] += 1
-        oldest._cancel_timer()
-        oldest.transport.abort()
-        oldest.connections.discard(oldest)
+        STATS["evicted_by"][rank] += 1
+        victim._cancel_timer()
+        victim._place(None)
+        victim.transport.abort()
+        victim.connections.discard(victim)
         return True
 
     def connection_made(self, transport) -> None:  # type: ignore[override]
@@ -173,11 +343,15 @@ class GuardedH11Protocol(H11Protocol):
         STATS["connections"] = len(self.connections)
         STATS["peak_connections"] = max(STATS["peak_connections"], len(self.connections))
         self._arm("header", self.limits.header_timeout_s)
+        self._place("head")
 
     def connection_lost(self, exc) -> None:
         if self._refused:
             return
         self._cancel_timer()
+        self._place(None)
+        if self._app_held is not None:
+            self._release_app(run=False)
         super().connection_lost(exc)
         STATS["connections"] = len(self.connections)
 
@@ -225,6 +399,10 @@ class GuardedH11Protocol(H11Protocol):
                 self._cancel_timer()
         else:
             self._cancel_timer()
+        self._place(self._classify())
+        if self._app_held is not None and (state is not h11.SEND_BODY
+                                           or self.flow.read_paused):
+            self._release_app(run=True)
 
     def on_response_complete(self) -> None:
         self._served += 1
@@ -233,6 +411,8 @@ class GuardedH11Protocol(H11Protocol):
         # request has begun to arrive: handle_events armed the header deadline)
         if self._timer_kind == "header" and not self.conn.trailing_data[0]:
             self._cancel_timer()
+        if not self.transport.is_closing():
+            self._place(self._classify())
 
     def _expired(self) -> None:
         kind, self._timer, self._timer_kind = self._timer_kind, None, ""
@@ -246,6 +426,7 @@ class GuardedH11Protocol(H11Protocol):
                     f"{self.limits.header_timeout_s:g} s"))
         else:
             STATS["body_timeouts"] += 1
+        self._timed_out = True
         self.transport.close()
 
     # --- uvicorn's own answers -----------------------------------------------------------
@@ -275,6 +456,7 @@ def config(host: str, port: int, settings=None, **kw):
 
     s = settings or get_settings()
     limits = Limits.from_settings(s)
+    raise_fd_limit(limits.max_connections)
     limits = Limits(**{**limits.__dict__, "max_connections": fd_bound(limits.max_connections)})
     global ACTIVE
     ACTIVE = limits

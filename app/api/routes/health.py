@@ -38,4 +38,5 @@ def _connections() -> dict | None:
     return {"open": st["connections"], "peak": st["peak_connections"],
             "max_connections": server.ACTIVE.max_connections,
             **{k: st[k] for k in ("evicted", "refused", "header_timeouts", "body_timeouts",
-                                  "header_too_large", "lingered")}}
+                                  "header_too_large", "lingered")},
+            "evicted_by": dict(st["evicted_by"])}

@@ -1,0 +1,203 @@
+"""The connection cap under a flood of stalled sockets (issue 21, app/core/server.py): the
+connections evicted to make room are the stalled ones (half a head, half a body), never a
+legitimate client's while a stalled one is there. Before: a stalled half-BODY was never
+evictable, so a flood of them filled the cap; then the idle keep-alive connections of
+legitimate clients were evicted and new ones refused (bench/results/load_hostile.txt at
+a381c9c: 1475 legitimate requests without an answer).
+
+A live server with a cap of 20 and read timeouts of 60 s, so that only the cap closes the
+flood's sockets; the flood is paced so that it never opens more than the cap within the
+grace time (`stall_grace_s`, 1 s by default), as the policy documents."""
+
+import select
+import socket
+import time
+
+import httpx
+import pytest
+
+from app.testing import live_server
+from tests.test_server_limits import _one_response
+
+CAP = 20
+LIMITS = {"max_connections": CAP, "header_timeout_s": 60.0, "body_timeout_s": 60.0,
+          "keep_alive_s": 60.0, "linger_s": 0.5}
+GRACE = 1.0           # the server's default stall_grace_s
+
+HALF_HEAD = b"GET /api/health HTTP/1.1\r\nHost: 127.0.0.1\r\nX-Stalled: "
+HALF_BODY = (b"POST /api/validate HTTP/1.1\r\nHost: 127.0.0.1\r\n"
+             b"Content-Type: application/json\r\nContent-Length: 1000\r\n\r\n{\"case\": ")
+REQUEST = b"GET /api/health HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n"
+
+
+@pytest.fixture(scope="module")
+def server():
+    with live_server(**LIMITS) as url:
+        yield url, int(url.rsplit(":", 1)[1])
+
+
+def _guards(url: str) -> dict:
+    with httpx.Client(timeout=10.0) as c:       # a connection of its own, closed at once
+        return c.get(f"{url}/api/health").json()["connections"]
+
+
+def _stalled(port: int, what: bytes) -> socket.socket:
+    s = socket.create_connection(("127.0.0.1", port), timeout=5.0)
+    s.sendall(what)
+    return s
+
+
+def _closed_by_server(s: socket.socket) -> bool:
+    """The server closed (or reset) this socket: it is readable and reads as the end."""
+    if not select.select([s], [], [], 0)[0]:
+        return False
+    try:
+        s.setblocking(False)
+        return s.recv(65536) == b""
+    except (ConnectionResetError, BlockingIOError):
+        return True
+
+
+def _guards_then_closed(url: str, flood: list) -> tuple[dict, list[bool]]:
+    """The guards' counts, then which flood sockets the server closed. The server accepts
+    in order: once the counts are answered it has seen every earlier socket."""
+    after = _guards(url)
+    time.sleep(0.2)
+    return after, [_closed_by_server(s) for s in flood]
+
+
+def test_a_flood_of_stalled_bodies_and_heads_evicts_itself_not_the_legitimate_clients(server):
+    url, port = server
+    before = _guards(url)
+    # the legitimate clients: a raw keep-alive socket, an httpx pool, and new connections
+    keep = socket.create_connection(("127.0.0.1", port), timeout=5.0)
+    keep.sendall(REQUEST)
+    assert _one_response(keep).startswith(b"HTTP/1.1 200")
+    pooled = httpx.Client(base_url=url, timeout=10.0)
+    assert pooled.get("/api/health").status_code == 200
+    flood, answers = [], []
+    try:
+        # two waves of stalled sockets, half of them half a body, each wave smaller than
+        # the cap and stalled past the grace time; the second fills the cap and evicts the
+        # first's
+        for _wave in range(2):
+            for k in range(CAP - 4):
+                flood.append(_stalled(port, HALF_BODY if k % 2 else HALF_HEAD))
+            time.sleep(GRACE + 0.3)
+        # the flood goes on (one half head and one half body a round) while the legitimate
+        # clients make their requests
+        for _ in range(8):
+            flood.append(_stalled(port, HALF_BODY))
+            flood.append(_stalled(port, HALF_HEAD))
+            try:
+                keep.sendall(REQUEST)
+                answers.append(_one_response(keep)[:12])
+            except OSError as exc:
+                answers.append(repr(exc))
+            try:
+                answers.append(pooled.get("/api/health").status_code)
+            except httpx.TransportError as exc:
+                answers.append(repr(exc))
+            try:
+                with httpx.Client(timeout=10.0) as fresh:
+                    answers.append(fresh.get(f"{url}/api/health").status_code)
+            except httpx.TransportError as exc:
+                answers.append(repr(exc))
+            time.sleep(0.1)
+        after, closed = _guards_then_closed(url, flood)
+    finally:
+        for s in flood:
+            s.close()
+        keep.close()
+        pooled.close()
+    assert answers == [b"HTTP/1.1 200", 200, 200] * 8, answers
+    evicted = after["evicted"] - before["evicted"]
+    by = {k: after["evicted_by"][k] - before["evicted_by"][k] for k in after["evicted_by"]}
+    # every flood socket the server closed was evicted (the timeouts are 60 s), all of
+    # them as stalled or new heads, and the first wave's bodies among them; no idle
+    # keep-alive connection was evicted and no connection refused
+    assert after["refused"] == before["refused"], (before, after)
+    assert by["idle"] == 0 and by["young_body"] == 0, by
+    assert sum(closed) == evicted and evicted >= len(flood) - CAP, (sum(closed), evicted)
+    assert by["stalled"] >= len(flood) - CAP - 4, by
+    assert all(closed[1:CAP - 4:2]), "a stalled body of the first wave was not evicted"
+
+
+def test_a_cap_full_of_stalled_bodies_lets_a_new_client_in(server):
+    """Only half bodies, stalled past the grace time: a new connection evicts the one
+    silent the longest (before: nothing was evictable and the client was refused)."""
+    url, port = server
+    flood = []
+    try:
+        for _ in range(CAP + 5):
+            flood.append(_stalled(port, HALF_BODY))
+            time.sleep(0.01)
+        time.sleep(GRACE + 0.3)
+        before = _guards(url)       # this connection evicts the oldest body
+        with httpx.Client(timeout=10.0) as fresh:
+            codes = [fresh.get(f"{url}/api/health").status_code for _ in range(3)]
+        after, closed = _guards_then_closed(url, flood)
+    finally:
+        for s in flood:
+            s.close()
+    assert codes == [200, 200, 200]
+    assert after["refused"] == before["refused"]
+    # the oldest bodies went first: the closed ones are a prefix of the flood
+    n = sum(closed)
+    assert n >= 2 and closed[:n] == [True] * n, closed
+
+
+def test_the_file_limit_is_raised_so_that_the_cap_is_not_halved():
+    """A soft file limit of 256 (hard limit higher) would make fd_bound cut a cap of 1000
+    to 128; the server raises the soft limit first (before: the cap was cut)."""
+    import resource
+    import subprocess
+    import sys
+
+    _, hard = resource.getrlimit(resource.RLIMIT_NOFILE)
+    if hard != resource.RLIM_INFINITY and hard < 2 * 1000 + 64:
+        pytest.skip(f"the hard file limit ({hard}) is below what a cap of 1000 needs")
+    code = ("import resource\n"
+            "soft, hard = resource.getrlimit(resource.RLIMIT_NOFILE)\n"
+            "resource.setrlimit(resource.RLIMIT_NOFILE, (256, hard))\n"
+            "from app.core.server import config\n"
+            "from app.testing import settings_for_tests\n"
+            "c = config('127.0.0.1', 0, settings_for_tests(max_connections=1000))\n"
+            "from app.core import server\n"
+            "print(server.ACTIVE.max_connections, "
+            "resource.getrlimit(resource.RLIMIT_NOFILE)[0])\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         timeout=120, check=True).stdout.split()
+    assert out == ["1000", "2064"], out
+
+
+@pytest.mark.parametrize("how", ["one-piece", "two-pieces", "expect-100", "chunked"])
+def test_a_small_body_reaches_the_app_however_it_comes(server, how):
+    """The app of a small Content-Length body starts once the body is in (_DeferringLoop):
+    a body in two pieces, one behind Expect: 100-continue (the client waits for the
+    server) and a chunked one are all answered by the app."""
+    _, port = server
+    body = b'{"case": "plane/chaplygin-ball", "example": true}'
+    s = socket.create_connection(("127.0.0.1", port), timeout=10.0)
+    head = b"POST /api/validate HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/json\r\n"
+    head += (b"Transfer-Encoding: chunked\r\n" if how == "chunked"
+             else b"Content-Length: %d\r\n" % len(body))
+    head += b"Expect: 100-continue\r\n" if how == "expect-100" else b""
+    try:
+        s.sendall(head + b"\r\n")
+        if how == "expect-100":
+            assert s.recv(100).startswith(b"HTTP/1.1 100")
+        if how == "chunked":
+            s.sendall(b"%x\r\n%s\r\n0\r\n\r\n" % (len(body), body))
+        elif how == "two-pieces":
+            s.sendall(body[:10])
+            time.sleep(0.3)
+            s.sendall(body[10:])
+        else:
+            s.sendall(body)
+        answer = _one_response(s)
+    finally:
+        s.close()
+    # the app's own answer (the validation's 422 or 200), not a timeout or a reset
+    assert answer.split(b" ", 2)[1] in (b"200", b"422"), answer[:200]
+    assert b"application/json" in answer.split(b"\r\n\r\n", 1)[0].lower()
