@@ -66,7 +66,7 @@ class Limits:
     max_header_bytes: int = 64 * 1024
     header_timeout_s: float = 10.0
     body_timeout_s: float = 10.0
-    keep_alive_s: float = 5.0
+    keep_alive_s: float = 20.0
     linger_s: float = 1.0
     stall_grace_s: float = 1.0
 
