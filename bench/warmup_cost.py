@@ -170,7 +170,7 @@ def main():
     for what in run:
         part = {"tasks": tasks, "passes": lambda: passes(case), "warmup": warmup}[what]()
         print("\n".join(part), flush=True)
-        lines += part + [""]
+        lines += [*part, ""]
     OUT.parent.mkdir(exist_ok=True)
     OUT.write_text("\n".join(lines))
 
