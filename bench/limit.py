@@ -27,10 +27,20 @@ rhs calls at the matched error (deterministic) times the lowest cost per call on
 competitor's front (Runge-Kutta competitors only). A breakdown (ns per rhs call, steps,
 the field alone) says where the time goes.
 
-    PYTHONPATH=$PWD .venv/bin/python bench/limit.py [--quick]
+    PYTHONPATH=$PWD .venv/bin/python bench/limit.py [--quick] [--cases a,b]
+        many starts (issue 19, many_starts below): ours (integrate()) against the scalar
+        limit (make_scalar_dop853) and heyoka-lean over random starts
+        -> bench/results/limit_starts.{txt,json}   (--quick: limit_starts.quick.*)
+    PYTHONPATH=$PWD .venv/bin/python bench/limit.py --gap [--case plane/ellipsoid]
+        where the gap lies on one case (gap below): steps, rhs calls and errors at equal
+        tolerances, ns per rhs call with the small kernel called directly, and
+        integrate()'s entry -> bench/results/limit_gap[.case].{txt,json}
+    PYTHONPATH=$PWD .venv/bin/python bench/limit.py --fronts [--quick]
+        the one-start fronts described above
         -> bench/results/limit.{txt,json}   (--quick: limit.quick.{txt,json})
---quick: 5 tolerances (1e-6 ... 1e-12), best of 3, no scipy-numpy and no heyoka-gen (~3 min once the
-kernels are compiled; a fresh cache first compiles the unrolled kernels, ~2 min a case).
+--fronts --quick: 5 tolerances (1e-6 ... 1e-12), best of 3, no scipy-numpy and no heyoka-gen
+(~3 min once the kernels are compiled; a fresh cache first compiles the unrolled kernels,
+~2 min a case).
 """
 
 import itertools
@@ -745,8 +755,124 @@ def _write_starts(quick, head, summary, out):
     (OUT / f"{stem}.json").write_text(json.dumps(out, indent=1))
 
 
+# --- where the gap lies (issue 19 item 4) -----------------------------------------------------
+def gap(case_id="plane/chaplygin-ball", n_starts=5, T=200.0, repeats=7):
+    """Where ours loses against the limit on one case, measured part by part, same process,
+    interleaved, best of `repeats`, on the many-start mode's first starts (same seed):
+      (a) the work at a given tolerance: accepted and rejected steps and rhs calls, and the
+          final-state error, of the limit (hand field where there is one), the limit on
+          the generated field (small.py's `fs`), and ours (the small kernel);
+      (b) the cost per rhs call of each, the small kernel called directly (its packed
+          arrays reused: no Python entry);
+      (c) integrate()'s entry (validation, allocation, dispatch, the result): the time of
+          integrate() minus the direct call of the same kernel, per run and as a fraction
+          of the run at T."""
+    from solvers.integrate.integrator import StepControl, small_module
+    from solvers.kernels import rk
+
+    sys.path.insert(0, str(Path(__file__).parent))
+    from work_precision import CASES
+
+    wp = next(w for w in CASES if w.id == case_id)
+    c = registry()[wp.id]
+    prm = {**c.example, **wp.overrides}
+    model = build(wp.id, prm)
+    p = np.asarray(model.p, dtype=float)
+    n = L.STATE_DIM[model.model]
+    fs, slots = generated_scalar_field(model.model, p)
+    lims = {"limit-gen": make_scalar_dop853(fs, n, slots)}
+    if wp.id in HAND:
+        lims["limit-hand"] = make_scalar_dop853(HAND[wp.id][0], n)
+    run = small_module(model.model, p, "dop853").run
+    t_out = np.array([0.0, T])
+    sc = StepControl()
+    Y, ys, st = np.empty((2, n)), np.empty(n), np.zeros(5, dtype=np.int64)
+
+    def packed(rt):         # rk.py's option vectors, built outside the timed call
+        fopt = np.zeros(7)
+        fopt[[rk.F_RTOL, rk.F_H, rk.F_HMAX, rk.F_SAFETY, rk.F_FACMIN, rk.F_FACMAX,
+              rk.F_BETA]] = (rt, sc.h0, sc.h_max, sc.safety, sc.fac_min, sc.fac_max, sc.beta)
+        return fopt, np.full(n, rt)
+
+    def direct(y0, fopt, atol):
+        run(p, y0, t_out, 10**7, False, fopt, atol, Y, ys, st)
+        return Y[1], st[rk.S_ACCEPTED], st[rk.S_REJECTED], st[rk.S_RHS]
+
+    load0 = os.getloadavg()
+    lines = [f"bench/limit.py --gap: {wp.id}, T = {T:g}, the first {n_starts} starts of the "
+             f"many-start mode (seed 19), rtol = atol; best of {repeats}, interleaved; "
+             f"load average at the start: {load0[0]:.2f} {load0[1]:.2f} {load0[2]:.2f}",
+             "  per rtol: steps accepted+rejected, rhs calls, final-state error (relative "
+             "max-norm), time, ns per rhs call",
+             "  ours-direct = the small kernel called directly; ours = integrate(); entry = "
+             "ours - ours-direct"]
+    out = {"case": wp.id, "T": T, "load_start": load0, "starts": []}
+    starts = random_starts(wp.id, prm, n_starts, np.random.default_rng(19))
+    for y0 in starts:
+        y0 = np.asarray(y0, dtype=float)
+        ref = Taylor(model.model, p, y0, tol=1e-18, fp="longdouble").run(y0, [0.0, T])[1][-1]
+        ref = np.asarray(ref, dtype=float)
+
+        def err(y, ref=ref):
+            return float(np.max(np.abs(np.asarray(y) - ref)) / max(1.0, np.max(np.abs(ref))))
+
+        lines.append(f"\nstart |M| = {np.linalg.norm(y0[:3]):.3g}, y0 = "
+                     f"{np.round(y0, 4).tolist()}")
+        rows = []
+        for rt in (1e-6, 1e-8, 1e-10, 1e-12):
+            fns = {k: (lambda f=f, rt=rt, y0=y0: f(y0, p, T, rt, rt)) for k, f in lims.items()}
+            opts = packed(rt)
+            fns["ours-direct"] = lambda o=opts, y0=y0: direct(y0, *o)
+            fns["ours"] = lambda rt=rt, y0=y0: integrate(model.model, p, y0, [0.0, T],
+                                                         rtol=rt, atol=rt)
+            for f in fns.values():
+                f()
+            best, res = dict.fromkeys(fns, math.inf), {}
+            for _ in range(repeats):
+                for k, f in fns.items():
+                    t0 = time.perf_counter()
+                    res[k] = f()
+                    best[k] = min(best[k], time.perf_counter() - t0)
+            row = {"rtol": rt}
+            for k, o in res.items():
+                if k == "ours":
+                    acc, rej, calls, y = o.steps, o.rejected, o.rhs_calls, o.y[-1]
+                elif k == "ours-direct":
+                    y, acc, rej, calls = o[0].copy(), int(o[1]), int(o[2]), int(o[3])
+                else:       # the limit counts 12 calls per attempt: rejected = the rest
+                    y, acc, calls = o
+                    rej = (calls - 2 - 12 * acc) // 12
+                row[k] = {"accepted": acc, "rejected": rej, "rhs_calls": calls,
+                          "error": err(y), "time_s": best[k],
+                          "ns_per_rhs": best[k] / calls * 1e9}
+            row["entry_s"] = best["ours"] - best["ours-direct"]
+            rows.append(row)
+            lines.append(f"  rtol {rt:.0e}: " + " | ".join(
+                f"{k} {v['accepted']}+{v['rejected']} st {v['rhs_calls']} calls "
+                f"err {v['error']:.1e} {v['time_s'] * 1e3:.3f} ms {v['ns_per_rhs']:.1f} ns"
+                for k, v in row.items() if isinstance(v, dict)))
+            lines.append(f"      entry {row['entry_s'] * 1e6:.1f} us = "
+                         f"{row['entry_s'] / best['ours'] * 100:.0f}% of ours; ours/limit "
+                         + ", ".join(f"{k} {best['ours'] / best[k]:.2f}" for k in lims))
+        out["starts"].append({"y0": y0.tolist(), "rows": rows})
+    load1 = os.getloadavg()
+    lines.append(f"\nload average at the end: {load1[0]:.2f} {load1[1]:.2f} {load1[2]:.2f}")
+    out["load_end"] = load1
+    text = "\n".join(lines) + "\n"
+    print(text, flush=True)
+    OUT.mkdir(exist_ok=True)
+    stem = "limit_gap" + ("" if case_id == "plane/chaplygin-ball"
+                          else "." + case_id.replace("/", "_"))
+    (OUT / f"{stem}.txt").write_text(text)
+    (OUT / f"{stem}.json").write_text(json.dumps(out, indent=1))
+
+
 def main():
     quick = "--quick" in sys.argv
+    if "--gap" in sys.argv:
+        gap(sys.argv[sys.argv.index("--case") + 1] if "--case" in sys.argv
+            else "plane/chaplygin-ball")
+        return
     if "--fronts" not in sys.argv:
         only = sys.argv[sys.argv.index("--cases") + 1].split(",") if "--cases" in sys.argv \
             else None
