@@ -799,7 +799,9 @@ def gap(case_id="plane/chaplygin-ball", n_starts=5, T=200.0, repeats=7):
     c = registry()[wp.id]
     prm = {**c.example, **wp.overrides}
     model = build(wp.id, prm)
-    p = np.asarray(model.p, dtype=float)
+    # a writable copy, as integrate() passes it: a read-only p is another numba
+    # specialization of the kernel (other machine code, a few % apart on long runs)
+    p = np.array(model.p, dtype=float)
     n = L.STATE_DIM[model.model]
     fs, slots = generated_scalar_field(model.model, p)
     lims = {"limit-gen": make_scalar_dop853(fs, n, slots)}
