@@ -27,10 +27,20 @@ rhs calls at the matched error (deterministic) times the lowest cost per call on
 competitor's front (Runge-Kutta competitors only). A breakdown (ns per rhs call, steps,
 the field alone) says where the time goes.
 
-    PYTHONPATH=$PWD .venv/bin/python bench/limit.py [--quick]
+    PYTHONPATH=$PWD .venv/bin/python bench/limit.py [--quick] [--cases a,b]
+        many starts (issue 19, many_starts below): ours (integrate()) against the scalar
+        limit (make_scalar_dop853) and heyoka-lean over random starts
+        -> bench/results/limit_starts.{txt,json}   (--quick: limit_starts.quick.*)
+    PYTHONPATH=$PWD .venv/bin/python bench/limit.py --gap [--case plane/ellipsoid]
+        where the gap lies on one case (gap below): steps, rhs calls and errors at equal
+        tolerances, ns per rhs call with the small kernel called directly, and
+        integrate()'s entry -> bench/results/limit_gap[.case].{txt,json}
+    PYTHONPATH=$PWD .venv/bin/python bench/limit.py --fronts [--quick]
+        the one-start fronts described above
         -> bench/results/limit.{txt,json}   (--quick: limit.quick.{txt,json})
---quick: 5 tolerances (1e-6 ... 1e-12), best of 3, no scipy-numpy and no heyoka-gen (~3 min once the
-kernels are compiled; a fresh cache first compiles the unrolled kernels, ~2 min a case).
+--fronts --quick: 5 tolerances (1e-6 ... 1e-12), best of 3, no scipy-numpy and no heyoka-gen
+(~3 min once the kernels are compiled; a fresh cache first compiles the unrolled kernels,
+~2 min a case).
 """
 
 import itertools
@@ -629,7 +639,8 @@ def many_starts(quick=False, only=None):
              "gamma uniform on the sphere; final-state error (max-norm / max(1, |y|)) at T "
              "against heyoka long double tol 1e-18; time at matched error 1e-6 and 1e-10 "
              "interpolated log-log on each front (rtol = atol 1e-4 ... 1e-14 every half "
-             "decade; heyoka tol 1e-4 ... 1e-15), best of 3 interleaved.",
+             "decade; heyoka tol 1e-4 ... 1e-15), best of 3 interleaved, each run timed "
+             "on the wall clock and on the process's CPU time.",
              "  ours  = integrate() by default (dop853, the small kernel of the structure)",
              "  limit = a scalar DOP853 written in bench/limit.py (state and stages in "
              "locals), its field inlined: written by hand for the ball, the disk and the "
@@ -687,33 +698,46 @@ def many_starts(quick=False, only=None):
             comp = {"ours": (ours, rtols), "limit": (lim, rtols), "heyoka": (hey, htols)}
             for fn, grid in comp.values():     # compile / warm
                 fn(grid[0])
+            # two clocks per run, the same for every competitor: the wall clock (as timed)
+            # and the process's CPU time, which a run preempted by the machine's other jobs
+            # does not count (at load 13 on 2 cores a best of 3 still caught 10x outliers
+            # on the wall clock); the CPU clock includes ~1 us of its own reading
             best = {k: [math.inf] * len(g) for k, (_, g) in comp.items()}
+            cpu = {k: [math.inf] * len(g) for k, (_, g) in comp.items()}
             errs = {k: [None] * len(g) for k, (_, g) in comp.items()}
             for _ in range(repeats):
                 for i in range(max(len(g) for _, g in comp.values())):
                     for k, (fn, grid) in comp.items():    # interleaved
                         if i >= len(grid):
                             continue
+                        c0 = time.process_time()
                         t0 = time.perf_counter()
                         y, ok = fn(grid[i])
                         w = time.perf_counter() - t0
+                        c = time.process_time() - c0
                         best[k][i] = min(best[k][i], w)
+                        cpu[k][i] = min(cpu[k][i], c)
                         errs[k][i] = err(y) if ok else math.nan
             row = {"y0": [float(x) for x in y0], "M": float(np.linalg.norm(y0[:3]))}
             for k in comp:
-                row[k] = {f"{t:.0e}": matched(list(zip(errs[k], best[k], strict=True)), t)
-                          for t in targets}
-                row[k + "_front"] = list(zip(errs[k], best[k], strict=True))
+                for suffix, times in (("", best), ("_cpu", cpu)):
+                    front_k = list(zip(errs[k], times[k], strict=True))
+                    row[k + suffix] = {f"{t:.0e}": matched(front_k, t) for t in targets}
+                    row[k + suffix + "_front"] = front_k
             rows.append(row)
         res = {}
         for t in targets:
             key = f"{t:.0e}"
-            rl = [r["ours"][key] / r["limit"][key] for r in rows
-                  if r["ours"][key] and r["limit"][key]]
-            rh = [r["ours"][key] / r["heyoka"][key] for r in rows
-                  if r["ours"][key] and r["heyoka"][key]]
-            res[key] = {"vs_limit": rl, "vs_heyoka": rh}
-            summary.append((wp.id, key, limit_kind, rl, rh, len(rows)))
+            ratios = {}
+            for suffix in ("", "_cpu"):
+                for other in ("limit", "heyoka"):
+                    a, b = "ours" + suffix, other + suffix
+                    ratios[other + suffix] = [r[a][key] / r[b][key] for r in rows
+                                              if r[a][key] and r[b][key]]
+            res[key] = {"vs_limit": ratios["limit"], "vs_heyoka": ratios["heyoka"],
+                        "vs_limit_cpu": ratios["limit_cpu"],
+                        "vs_heyoka_cpu": ratios["heyoka_cpu"]}
+            summary.append((wp.id, key, limit_kind, ratios, len(rows)))
         out["cases"][wp.id] = {"T": T, "params": prm, "limit_field": limit_kind,
                                "rows": rows, "ratios": res}
         print(f"{wp.id} done (load {os.getloadavg()[0]:.2f})", flush=True)
@@ -723,17 +747,25 @@ def many_starts(quick=False, only=None):
 def _write_starts(quick, head, summary, out):
     lines = list(head)
     lines.append("")
-    lines.append(f"{'case':28s} {'error':6s} {'limit':9s} {'ours/limit median':>17s} "
-                 f"{'worst':>6s} {'ours/heyoka median':>18s} {'worst':>6s}  starts matched")
-    for cid, key, kind, rl, rh, n in summary:
-        def fmt(v, f):
-            return f"{f(v):.2f}" if v else "-"
-        lines.append(f"{cid:28s} {key:6s} {kind:9s} {fmt(rl, np.median):>17s} "
-                     f"{fmt(rl, max):>6s} {fmt(rh, np.median):>18s} {fmt(rh, max):>6s}  "
-                     f"{len(rl)}/{n}, {len(rh)}/{n}")
+    def fmt(v, f):
+        return f"{f(v):.2f}" if v else "-"
+
+    for title, suffix in (("wall clock (as timed)", ""),
+                          ("CPU time of the process (preemption by other jobs not counted)",
+                           "_cpu")):
+        lines.append(f"{title}:")
+        lines.append(f"{'case':28s} {'error':6s} {'limit':9s} {'ours/limit median':>17s} "
+                     f"{'worst':>6s} {'ours/heyoka median':>18s} {'worst':>6s}  "
+                     "starts matched")
+        for cid, key, kind, ratios, n in summary:
+            rl, rh = ratios["limit" + suffix], ratios["heyoka" + suffix]
+            lines.append(f"{cid:28s} {key:6s} {kind:9s} {fmt(rl, np.median):>17s} "
+                         f"{fmt(rl, max):>6s} {fmt(rh, np.median):>18s} {fmt(rh, max):>6s}  "
+                         f"{len(rl)}/{n}, {len(rh)}/{n}")
+        lines.append("")
     load1 = os.getloadavg()
     ts = ", ".join(f"{k} {v['T']:g}" for k, v in out["cases"].items())
-    lines.append(f"\nA start counts where both fronts reach the error (else it is outside a "
+    lines.append(f"A start counts where both fronts reach the error (else it is outside a "
                  f"front and left out). T: {ts}"
                  f"\nload average at the end: {load1[0]:.2f} {load1[1]:.2f} {load1[2]:.2f}")
     out["load_end"] = load1
@@ -745,8 +777,134 @@ def _write_starts(quick, head, summary, out):
     (OUT / f"{stem}.json").write_text(json.dumps(out, indent=1))
 
 
+# --- where the gap lies (issue 19 item 4) -----------------------------------------------------
+def gap(case_id="plane/chaplygin-ball", n_starts=5, T=200.0, repeats=7):
+    """Where ours loses against the limit on one case, measured part by part, same process,
+    interleaved, best of `repeats`, on the many-start mode's first starts (same seed):
+      (a) the work at a given tolerance: accepted and rejected steps and rhs calls, and the
+          final-state error, of the limit (hand field where there is one), the limit on
+          the generated field (small.py's `fs`), and ours (the small kernel);
+      (b) the cost per rhs call of each, the small kernel called directly (its packed
+          arrays reused: no Python entry);
+      (c) integrate()'s entry (validation, allocation, dispatch, the result): the time of
+          integrate() minus the direct call of the same kernel, per run and as a fraction
+          of the run at T."""
+    from solvers.integrate.integrator import StepControl, small_module
+    from solvers.kernels import rk
+
+    sys.path.insert(0, str(Path(__file__).parent))
+    from work_precision import CASES
+
+    wp = next(w for w in CASES if w.id == case_id)
+    c = registry()[wp.id]
+    prm = {**c.example, **wp.overrides}
+    model = build(wp.id, prm)
+    # a writable copy, as integrate() passes it: a read-only p is another numba
+    # specialization of the kernel (other machine code, a few % apart on long runs)
+    p = np.array(model.p, dtype=float)
+    n = L.STATE_DIM[model.model]
+    fs, slots = generated_scalar_field(model.model, p)
+    lims = {"limit-gen": make_scalar_dop853(fs, n, slots)}
+    if wp.id in HAND:
+        lims["limit-hand"] = make_scalar_dop853(HAND[wp.id][0], n)
+    run = small_module(model.model, p, "dop853").run
+    t_out = np.array([0.0, T])
+    sc = StepControl()
+    Y, ys, st = np.empty((2, n)), np.empty(n), np.zeros(5, dtype=np.int64)
+
+    def packed(rt):         # rk.py's option vectors, built outside the timed call
+        fopt = np.zeros(7)
+        fopt[[rk.F_RTOL, rk.F_H, rk.F_HMAX, rk.F_SAFETY, rk.F_FACMIN, rk.F_FACMAX,
+              rk.F_BETA]] = (rt, sc.h0, sc.h_max, sc.safety, sc.fac_min, sc.fac_max, sc.beta)
+        return fopt, np.full(n, rt)
+
+    def direct(y0, fopt, atol):
+        run(p, y0, t_out, 10**7, False, fopt, atol, Y, ys, st)
+        return Y[1], st[rk.S_ACCEPTED], st[rk.S_REJECTED], st[rk.S_RHS]
+
+    load0 = os.getloadavg()
+    lines = [f"bench/limit.py --gap: {wp.id}, T = {T:g}, the first {n_starts} starts of the "
+             f"many-start mode (seed 19), rtol = atol; best of {repeats}, interleaved; "
+             f"load average at the start: {load0[0]:.2f} {load0[1]:.2f} {load0[2]:.2f}",
+             "  per rtol: steps accepted+rejected, rhs calls, final-state error (relative "
+             "max-norm), time, ns per rhs call",
+             "  ours-direct = the small kernel called directly; ours = integrate(); entry = "
+             "ours - ours-direct; (cpu ...): the same on the process's CPU time"]
+    out = {"case": wp.id, "T": T, "load_start": load0, "starts": []}
+    starts = random_starts(wp.id, prm, n_starts, np.random.default_rng(19))
+    for y0 in starts:
+        y0 = np.asarray(y0, dtype=float)
+        ref = Taylor(model.model, p, y0, tol=1e-18, fp="longdouble").run(y0, [0.0, T])[1][-1]
+        ref = np.asarray(ref, dtype=float)
+
+        def err(y, ref=ref):
+            return float(np.max(np.abs(np.asarray(y) - ref)) / max(1.0, np.max(np.abs(ref))))
+
+        lines.append(f"\nstart |M| = {np.linalg.norm(y0[:3]):.3g}, y0 = "
+                     f"{np.round(y0, 4).tolist()}")
+        rows = []
+        for rt in (1e-6, 1e-8, 1e-10, 1e-12):
+            fns = {k: (lambda f=f, rt=rt, y0=y0: f(y0, p, T, rt, rt)) for k, f in lims.items()}
+            opts = packed(rt)
+            fns["ours-direct"] = lambda o=opts, y0=y0: direct(y0, *o)
+            fns["ours"] = lambda rt=rt, y0=y0: integrate(model.model, p, y0, [0.0, T],
+                                                         rtol=rt, atol=rt)
+            for f in fns.values():
+                f()
+            best, cpu, res = dict.fromkeys(fns, math.inf), dict.fromkeys(fns, math.inf), {}
+            for _ in range(repeats):
+                for k, f in fns.items():
+                    c0 = time.process_time()
+                    t0 = time.perf_counter()
+                    res[k] = f()
+                    best[k] = min(best[k], time.perf_counter() - t0)
+                    cpu[k] = min(cpu[k], time.process_time() - c0)
+            row = {"rtol": rt}
+            for k, o in res.items():
+                if k == "ours":
+                    acc, rej, calls, y = o.steps, o.rejected, o.rhs_calls, o.y[-1]
+                elif k == "ours-direct":
+                    y, acc, rej, calls = o[0].copy(), int(o[1]), int(o[2]), int(o[3])
+                else:       # the limit counts 12 calls per attempt: rejected = the rest
+                    y, acc, calls = o
+                    rej = (calls - 2 - 12 * acc) // 12
+                row[k] = {"accepted": acc, "rejected": rej, "rhs_calls": calls,
+                          "error": err(y), "time_s": best[k], "cpu_s": cpu[k],
+                          "ns_per_rhs": best[k] / calls * 1e9,
+                          "cpu_ns_per_rhs": cpu[k] / calls * 1e9}
+            row["entry_s"] = best["ours"] - best["ours-direct"]
+            row["entry_cpu_s"] = cpu["ours"] - cpu["ours-direct"]
+            rows.append(row)
+            lines.append(f"  rtol {rt:.0e}: " + " | ".join(
+                f"{k} {v['accepted']}+{v['rejected']} st {v['rhs_calls']} calls "
+                f"err {v['error']:.1e} {v['time_s'] * 1e3:.3f} ms {v['ns_per_rhs']:.1f} ns "
+                f"(cpu {v['cpu_ns_per_rhs']:.1f} ns)"
+                for k, v in row.items() if isinstance(v, dict)))
+            lines.append(f"      entry {row['entry_s'] * 1e6:.1f} us = "
+                         f"{row['entry_s'] / best['ours'] * 100:.0f}% of ours (cpu "
+                         f"{row['entry_cpu_s'] * 1e6:.1f} us = "
+                         f"{row['entry_cpu_s'] / cpu['ours'] * 100:.0f}%); ours/limit "
+                         + ", ".join(f"{k} {best['ours'] / best[k]:.2f} (cpu "
+                                     f"{cpu['ours'] / cpu[k]:.2f})" for k in lims))
+        out["starts"].append({"y0": y0.tolist(), "rows": rows})
+    load1 = os.getloadavg()
+    lines.append(f"\nload average at the end: {load1[0]:.2f} {load1[1]:.2f} {load1[2]:.2f}")
+    out["load_end"] = load1
+    text = "\n".join(lines) + "\n"
+    print(text, flush=True)
+    OUT.mkdir(exist_ok=True)
+    stem = "limit_gap" + ("" if case_id == "plane/chaplygin-ball"
+                          else "." + case_id.replace("/", "_"))
+    (OUT / f"{stem}.txt").write_text(text)
+    (OUT / f"{stem}.json").write_text(json.dumps(out, indent=1))
+
+
 def main():
     quick = "--quick" in sys.argv
+    if "--gap" in sys.argv:
+        gap(sys.argv[sys.argv.index("--case") + 1] if "--case" in sys.argv
+            else "plane/chaplygin-ball")
+        return
     if "--fronts" not in sys.argv:
         only = sys.argv[sys.argv.index("--cases") + 1].split(",") if "--cases" in sys.argv \
             else None

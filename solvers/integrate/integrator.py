@@ -10,6 +10,7 @@ turns the kernel's status code into a message; the kernel knows nothing of it.
 """
 
 import math
+import operator
 import time
 from dataclasses import dataclass, field
 from functools import cache
@@ -135,11 +136,21 @@ def _f64(x) -> np.ndarray:
 
 def _checked_times(t_out) -> np.ndarray:
     t = _f64(t_out)
-    # strictly increasing (a NaN fails the comparison) with finite ends: all finite
-    if t.size == 0 or not (math.isfinite(t[0]) and math.isfinite(t[-1])) \
-            or not bool((t[1:] > t[:-1]).all()):
+    # strictly increasing (a NaN fails the comparison) with finite ends: all finite. A few
+    # times (a run to T: [t0, T]) are compared as Python floats: NumPy's slices, ufunc and
+    # reduction cost ~2 us, most of a short run's entry (bench/limit.py --gap)
+    if t.size <= _FEW_TIMES:
+        v = t.tolist()
+        ok = bool(v) and math.isfinite(v[0]) and math.isfinite(v[-1]) \
+            and all(map(operator.lt, v, v[1:]))
+    else:
+        ok = math.isfinite(t[0]) and math.isfinite(t[-1]) and bool((t[1:] > t[:-1]).all())
+    if not ok:
         raise ValueError("t_out must be finite and strictly increasing; t_out[0] is t0")
     return t
+
+
+_FEW_TIMES = 8
 
 
 # output times validated once: id -> (the read-only array handed out, a private writable
@@ -331,6 +342,13 @@ def integrate(model, p, y0, t_out, *, method="dop853", rtol=1e-10, atol=1e-12,
     kernel: None (default) the rule above; "rk": rk.py's kernel whatever the run (the
     tests' reference for the small kernels and the unrolled steppers).
     """
+    if (kernel is None and generated is not False and method in SMALL_METHODS
+            and h_fixed is None and section is None and dense_output
+            and project_values is None and not len(project_codes) and project_every >= 1
+            and model in generate.GENERATED_MODELS):
+        # a plain run (is_plain): the small kernel, by the short entry below
+        return _integrate_small(model, p, y0, t_out, method, rtol, atol, max_steps,
+                                compensated, control)
     t_out = _times(t_out)
     y0 = _f64(y0)
     p = np.array(p, dtype=np.float64)
@@ -411,18 +429,96 @@ def integrate(model, p, y0, t_out, *, method="dop853", rtol=1e-10, atol=1e-12,
                    used, "rk")
 
 
+_S_ORDER = (rk.S_ACCEPTED, rk.S_REJECTED, rk.S_RHS, rk.S_SAMPLES, rk.S_CROSSINGS)
+if _S_ORDER != (0, 1, 2, 3, 4):     # _result unpacks the counters in this order
+    raise ImportError(f"rk.py's stats indices changed: {_S_ORDER}")
+
+# A plain run's entry (issue 19 item 4). The same checks, options and kernel as the general
+# entry's route to the small kernel, with what a plain run does not use left out: no
+# tableau arrays, section or crossing buffers, and the option vectors memoized. A short
+# run (|M| small, T = 200: ~20-50 us in the kernel) paid ~15 us in the general entry, a
+# third of its time (bench/results/limit_gap.txt).
+_PLAIN_FOPT: dict = {}
+_PLAIN_ATOL: dict = {}
+_NO_CROSSINGS_T = np.empty(0)
+_NO_CROSSINGS_T.setflags(write=False)
+_NO_CROSSINGS_Y: dict = {}    # state dimension -> a read-only (0, n) array
+
+
+def _plain_fopt(rtol, control: StepControl) -> np.ndarray:
+    """rk.py's packed float options (F_*) of a plain run, memoized (the kernel only reads
+    them)."""
+    # keyed on the control's identity (its dataclass hash is Python code, ~1 us), the
+    # control kept in the entry so that the identity stays its own
+    key = (float(rtol), id(control))
+    hit = _PLAIN_FOPT.get(key)
+    if hit is None or hit[0] is not control:
+        if len(_PLAIN_FOPT) > _CACHE_MAX:
+            _PLAIN_FOPT.clear()
+        hit = _PLAIN_FOPT[key] = (control, np.array(
+            (key[0], float(control.h0), float(control.h_max), float(control.safety),
+             float(control.fac_min), float(control.fac_max), float(control.beta)),
+            dtype=np.float64))
+    return hit[1]
+
+
+def _plain_atol(atol, n: int) -> np.ndarray:
+    """atol as the kernel's vector (the kernel only reads it): a scalar's memoized."""
+    if isinstance(atol, float | int):
+        key = (float(atol), n)
+        hit = _PLAIN_ATOL.get(key)
+        if hit is None:
+            if len(_PLAIN_ATOL) > _CACHE_MAX:
+                _PLAIN_ATOL.clear()
+            hit = _PLAIN_ATOL[key] = np.full(n, float(atol))
+        return hit
+    return np.array(np.broadcast_to(np.asarray(atol, dtype=np.float64), (n,)))
+
+
+def _integrate_small(model, p, y0, t_out, method, rtol, atol, max_steps, compensated,
+                     control) -> IntegrationResult:
+    t_out = _times(t_out)
+    y0 = _f64(y0)
+    p = np.array(p, dtype=np.float64)
+    n = y0.size
+    if n != L.STATE_DIM[model]:
+        raise ValueError(f"model {model} has a state of dimension {L.STATE_DIM[model]}")
+    max_steps, compensated = int(max_steps), bool(compensated)
+    fopt = _plain_fopt(rtol, control)
+    atol_v = _plain_atol(atol, n)
+    Y = np.empty((t_out.size, n))
+    y_stop = np.empty(n)
+    stats = np.zeros(5, dtype=np.int64)
+    run = small_module(model, p, method).run
+    t0 = time.perf_counter()
+    status, t_stop = run(p, y0, t_out, max_steps, compensated, fopt, atol_v, Y, y_stop, stats)
+    wall = time.perf_counter() - t0
+    cross_y = _NO_CROSSINGS_Y.get(n)
+    if cross_y is None:
+        cross_y = _NO_CROSSINGS_Y[n] = np.empty((0, n))
+        cross_y.setflags(write=False)
+    return _result(t_out, Y, y_stop, stats, status, t_stop, wall, method, _NO_CROSSINGS_T,
+                   cross_y, "generated", "small", copy_crossings=False)
+
+
 def _result(t_out, Y, y_stop, stats, status, t_stop, wall, method, cross_t, cross_y, used,
-            kernel) -> IntegrationResult:
-    m, k = stats[rk.S_SAMPLES], stats[rk.S_CROSSINGS]
+            kernel, copy_crossings=True) -> IntegrationResult:
+    # the counters as Python ints in one call, the fields positional, Y whole when every
+    # sample was reached: ~3 us less than five int() of NumPy scalars, keywords and views
+    # (a short plain run's entry, bench/limit.py --gap)
+    accepted, rejected, calls, m, k = stats.tolist()      # rk.py's S_* order (_S_ORDER)
+    if copy_crossings:
+        cross_t, cross_y = cross_t[:k].copy(), cross_y[:k].copy()
     message = status_message(status)
     if status != L.OK:
         message += f" (stopped at t = {t_stop:.17g})"
+    whole = m == t_out.shape[0]
+    # IntegrationResult(t, y, status, message, t_stop, y_stop, steps, rejected, rhs_calls,
+    # wall_s, method, crossings_t, crossings_y, vector_field, kernel)
     return IntegrationResult(
-        t=t_out[:m].copy(), y=Y[:m], status=int(status), message=message,
-        t_stop=float(t_stop), y_stop=y_stop, steps=int(stats[rk.S_ACCEPTED]),
-        rejected=int(stats[rk.S_REJECTED]), rhs_calls=int(stats[rk.S_RHS]), wall_s=wall,
-        method=method, crossings_t=cross_t[:k].copy(), crossings_y=cross_y[:k].copy(),
-        vector_field=used, kernel=kernel)
+        t_out.copy() if whole else t_out[:m].copy(), Y if whole else Y[:m], int(status),
+        message, float(t_stop), y_stop, accepted, rejected, calls, wall, method, cross_t,
+        cross_y, used, kernel)
 
 
 def _integrate_symmetric(model, p, y0, t_out, method, h, max_steps, max_iter=60):
