@@ -55,7 +55,10 @@ def test_in_a_pipe_each_part_is_a_line_of_its_own():
     assert rows[2].endswith(f"{bar(2, 3)} (plane/chaplygin-ball, 3.0 s)"), rows
 
 
-def test_on_a_terminal_the_bar_is_redrawn_in_place_and_other_lines_go_above_it():
+def test_on_a_terminal_the_bar_is_redrawn_in_place_and_other_lines_go_above_it(monkeypatch):
+    # a terminal wider than the line: the bar is cut to the width (shutil reads COLUMNS,
+    # which a CI shell may set to 80)
+    monkeypatch.setenv("COLUMNS", "300")
     term = io.StringIO()
     kernels_log = _logger("test.progress.tty", term)
     server_log = _logger("test.progress.server", term)     # uvicorn's lines, say

@@ -104,7 +104,9 @@ async function animate(data, live, id) {
   try {
     const d = await data;
     if (!live()) return;
-    setStatus((d.status !== "ok" ? `${d.status}: ${d.message}. ` : "") + `${d.t.length} frames.`);
+    const note = (d.status !== "ok" ? `${d.status}: ${d.message}. ` : "") + `${d.t.length} frames.`;
+    // the second stage: the run is here, WebGL draws the body (about 1 s without a GPU)
+    setStatus(`Drawing the 3D view (${d.t.length} frames computed)…`);
     current = new Scene($("scene-plot"), d, {
       onFrame: (f, t) => {
         $("scrub").value = String(f);
@@ -112,6 +114,7 @@ async function animate(data, live, id) {
       },
     });
     await current.render();
+    setStatus(note);
     performance.mark("scene:3d-drawn");
     $("scrub").max = String(d.t.length - 1);
     current.play();
