@@ -23,6 +23,7 @@ import time
 from playwright.sync_api import sync_playwright
 
 from app.testing import live_server, wait_idle
+from bench.scene_screens import click_to_plot
 from catalogue.scenes import load_scenes
 
 CHROMIUM = os.environ.get("ROLLING_CHROMIUM", "/usr/bin/chromium")
@@ -40,16 +41,7 @@ MARKS = """() => {
 
 
 def scene_click(page, url: str, sid: str) -> dict:
-    page.goto(url + "/scenes")
-    page.locator(f'a[data-scene="{sid}"]').wait_for()
-    page.evaluate("performance.clearResourceTimings()")
-    t0 = time.perf_counter()
-    page.click(f'a[data-scene="{sid}"]')
-    page.locator("[data-testid=claim-plot] .main-svg").first.wait_for(state="attached",
-                                                                      timeout=120_000)
-    first = time.perf_counter() - t0
-    page.locator(f"body[data-playing='{sid}']").wait_for(state="attached", timeout=120_000)
-    shown = time.perf_counter() - t0
+    first, shown = click_to_plot(page, url, sid, clear_timings=True)
     m = page.evaluate(MARKS)
     out = {"first plot": first, "3D shown": shown}
     if "3d-drawn" not in m:         # a page without the marks (an older scenes.js)

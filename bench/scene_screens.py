@@ -26,9 +26,13 @@ CHROMIUM = os.environ.get("ROLLING_CHROMIUM", "/usr/bin/chromium")
 SIZES = {"1280": (1280, 720), "390": (390, 844)}
 
 
-def click_to_plot(page, url: str, sid: str) -> tuple[float, float]:
+def click_to_plot(page, url: str, sid: str, clear_timings: bool = False) -> tuple[float, float]:
+    """Seconds from the click on a scene to its first claim plot and to its 3D view playing
+    (clear_timings: empty the page's resource timings first, for bench/demos_timing.py)."""
     page.goto(url + "/scenes")
     page.locator(f'a[data-scene="{sid}"]').wait_for()
+    if clear_timings:
+        page.evaluate("performance.clearResourceTimings()")
     t0 = time.perf_counter()
     page.click(f'a[data-scene="{sid}"]')
     page.locator("[data-testid=claim-plot] .main-svg").first.wait_for(state="attached",

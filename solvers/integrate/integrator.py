@@ -349,12 +349,7 @@ def integrate(model, p, y0, t_out, *, method="dop853", rtol=1e-10, atol=1e-12,
         # a plain run (is_plain): the small kernel, by the short entry below
         return _integrate_small(model, p, y0, t_out, method, rtol, atol, max_steps,
                                 compensated, control)
-    t_out = _times(t_out)
-    y0 = _f64(y0)
-    p = np.array(p, dtype=np.float64)
-    n = y0.size
-    if n != L.STATE_DIM[model]:
-        raise ValueError(f"model {model} has a state of dimension {L.STATE_DIM[model]}")
+    t_out, y0, p, n = _inputs(model, p, y0, t_out)
     if method in collocation.METHODS:
         if project_codes or section is not None or not h_fixed or not h_fixed > 0:
             raise ValueError(f"{method} is a symmetric fixed-step method: give h_fixed > 0; "
@@ -475,14 +470,21 @@ def _plain_atol(atol, n: int) -> np.ndarray:
     return np.array(np.broadcast_to(np.asarray(atol, dtype=np.float64), (n,)))
 
 
-def _integrate_small(model, p, y0, t_out, method, rtol, atol, max_steps, compensated,
-                     control) -> IntegrationResult:
+def _inputs(model, p, y0, t_out):
+    """The output times, the start and a private float64 copy of p, checked against the
+    model's state dimension: (t_out, y0, p, n), for both entries of integrate()."""
     t_out = _times(t_out)
     y0 = _f64(y0)
     p = np.array(p, dtype=np.float64)
     n = y0.size
     if n != L.STATE_DIM[model]:
         raise ValueError(f"model {model} has a state of dimension {L.STATE_DIM[model]}")
+    return t_out, y0, p, n
+
+
+def _integrate_small(model, p, y0, t_out, method, rtol, atol, max_steps, compensated,
+                     control) -> IntegrationResult:
+    t_out, y0, p, n = _inputs(model, p, y0, t_out)
     max_steps, compensated = int(max_steps), bool(compensated)
     fopt = _plain_fopt(rtol, control)
     atol_v = _plain_atol(atol, n)
