@@ -27,6 +27,7 @@ def _general() -> None:
     from solvers.kernels.integrals import ENERGY
     from solvers.models.cases import build, registry
     from solvers.models.derivatives import field_jacobian, integral_gradient
+    from solvers.models.kinematics import scene
     from solvers.simulate import compiled_methods, simulate, symmetric_methods
 
     seen = set()
@@ -46,6 +47,10 @@ def _general() -> None:
         y = np.asarray(r.state[0])
         field_jacobian(m.model, m.p, y)
         integral_gradient(ENERGY, m.model, m.p, y)
+        # a scene (POST /api/scene, the teaching scenes): the scene model's run and the
+        # planner's kinematics on the model's read-only parameters, which no run above
+        # calls (issue 19: the first scene after the warm-up compiled them in its request)
+        scene(cid, case.example, case.state, 1e-3, frames=2)
 
 
 # Structures compiled besides the cases' examples: the work-precision benchmark's
@@ -61,10 +66,11 @@ def _targets() -> list[tuple[str, dict]]:
         [(cid, {**registry()[cid].example, **over}) for cid, over in EXTRA]
 
 
-def pending(generated: bool = False) -> dict[tuple, list[tuple[str, dict]]]:
+def pending(generated: bool = False,
+            all_structures: bool = False) -> dict[tuple, list[tuple[str, dict]]]:
     """structure -> the (case, parameters) whose small kernels (generated: the big
     generated integrators) are not compiled yet for some method: every case's example
-    parameters and EXTRA."""
+    parameters and EXTRA (all_structures: every one of them, compiled or not)."""
     from solvers.integrate.integrator import generated_ready, small_ready
     from solvers.kernels import generate
     from solvers.models.cases import build
@@ -75,7 +81,9 @@ def pending(generated: bool = False) -> dict[tuple, list[tuple[str, dict]]]:
         m = build(cid, params)
         if m.model not in generate.GENERATED_MODELS:
             continue
-        if generated:
+        if all_structures:
+            ready = False
+        elif generated:
             ready = all(generated_ready(m.model, m.p, meth) for meth in compiled_methods())
         else:
             ready = all(small_ready(m.model, m.p, meth) for meth in _small_methods())
@@ -173,20 +181,31 @@ def part_name(what) -> str:
     return f"{what[0]} ({differs})" if differs else what[0]
 
 
+def parts(generated: bool = False, only_pending: bool = True) -> list[tuple]:
+    """The warm-up's tasks, each with the cases it serves: the general kernels, one task
+    per structure whose small kernels are not compiled yet (only_pending=False: every
+    structure of _targets(), compiled or not), and the ensembles (generated: the big
+    generated integrators instead, whose ensemble twins come after them)."""
+    groups = pending(all_structures=not only_pending)
+    plan = [(GENERAL, [])]
+    for cases in groups.values():
+        plan.append((cases[0], sorted({c for c, _ in cases})))
+    if generated:
+        plan += [(("generated", cases[0]), sorted({c for c, _ in cases}))
+                 for cases in pending(generated=True,
+                                      all_structures=not only_pending).values()]
+    else:   # with generated, after them (their ensemble twins need the integrators)
+        plan.append((ENSEMBLES, []))
+    return plan
+
+
 def warm(jobs: int | None = None, generated: bool = False, progress=None) -> float:
     """Compile what is not in the caches yet, `jobs` tasks at a time. progress(event): a
     dict, first {"event": "plan", "total": n, "parts": [{"name", "cases"}]}, then
     {"event": "done", "part", "seconds", "done", "total"} as each task finishes (the
     explorer's progress bar and its pages read these: app/services/kernel_warmup.py)."""
     t0 = time.perf_counter()
-    plan = [(GENERAL, [])]
-    for cases in pending().values():
-        plan.append((cases[0], sorted({c for c, _ in cases})))
-    if generated:
-        plan += [(("generated", cases[0]), sorted({c for c, _ in cases}))
-                 for cases in pending(generated=True).values()]
-    else:   # with generated, after them (their ensemble twins need the integrators)
-        plan.append((ENSEMBLES, []))
+    plan = parts(generated)
     todo = [what for what, _ in plan]
     report = progress or (lambda event: None)
     report({"event": "plan", "total": len(todo),
@@ -240,6 +259,7 @@ def warm_ensembles(generated: bool = False) -> None:
         if (m.model,) not in seen:     # the general field: one specialization per model
             seen.add((m.model,))
             integrate_ensemble(m.model, m.p, [case.state], [0.0, 0.01], generated=False)
+            _tiny_map(cid, params)
         if not generated or m.model not in generate.GENERATED_MODELS:
             continue
         key = generate.structure(m.model, m.p)
@@ -247,6 +267,39 @@ def warm_ensembles(generated: bool = False) -> None:
             continue
         seen.add(key)
         integrate_ensemble(m.model, m.p, [case.state], [0.0, 0.01], generated=True)
+
+
+def _tiny_map(case_id: str, params: dict) -> None:
+    """One crossing of a Poincare map of the case, as POST /api/poincare runs it
+    (app/services/poincare_jobs.py): besides the ensemble, a map calls the integrals'
+    kernels on the model's read-only parameters (integral_series; model_integral, which
+    places the starts on the level), each its own numba specialization, which a bare
+    ensemble call does not compile (issue 19: a map after the warm-up compiled them in its
+    request)."""
+    from solvers.errors import InputError
+    from solvers.kernels import layout as L
+    from solvers.maps.poincare import (
+        MapSpec,
+        integral_spread,
+        map_model,
+        starts_for,
+        trace_checked_all,
+    )
+    from solvers.models.cases import registry
+
+    try:
+        model = map_model(case_id, params)
+    except InputError:          # the flat-base cases: no map
+        return
+    if model.model != L.MODEL_FULL:
+        return
+    spec = MapSpec(energy=1.0, points=1, max_steps=500)
+    try:    # sampled on the level, as the route does (on_energy_level: model_integral)
+        starts = starts_for(model, spec, trajectories=1)
+    except InputError:      # no point of this level: the case's own state
+        starts = starts_for(model, spec, states=[registry()[case_id].state])
+    for tr in trace_checked_all(model, starts, spec, workers=1):
+        integral_spread(model, tr)
 
 
 if __name__ == "__main__":
@@ -264,3 +317,4 @@ if __name__ == "__main__":
             print(json.dumps(event), flush=True)
     print(f"kernels ready in {warm(generated='--generated' in sys.argv, progress=hook):.1f} s",
           flush=True)
+

@@ -15,8 +15,10 @@ them. Then the request's job starts and its deadline counts. Keys:
   ("scene", case)                       a scene's run (the scene model, general field)
   ("scene-check", scene id)             a teaching scene's checks
 
-What the warm-up compiles (solvers/warmup.py: the general kernels, the ensembles on the
-general field, the small dop853 kernels of every case's example structure) needs no
+What the warm-up compiles (solvers/warmup.py: the general kernels, a scene and a tiny
+Poincare map per model, the ensembles on the general field, the small dop853 kernels of
+every case's example structure; tests/test_warm_covers_requests.py checks that the
+explorer's default clicks need nothing else) needs no
 prepare once it is done, or when the caches are known to be warm (Settings.kernels_warm:
 the tests, after `./dev test`'s warm-up). Anything else is prepared once per server:
 cheap when it is already in a cache (a tiny run in a worker, milliseconds). The warm-up
@@ -148,12 +150,10 @@ def needed(kernels: KernelWarmup, assumed_warm: bool, keys: list[tuple]) -> bool
         return False
     if kernels.state == "done" or (kernels.state == "off" and assumed_warm):
         # the warm-up compiled everything but the small kernels of other structures and
-        # the Taylor integrators; a Poincare map is prepared once per server all the same:
-        # a fresh-clone CI run saw a map of plane/chaplygin-ball (example parameters, one
-        # trajectory) reach its 20 s deadline after the warm-up, compiling what the
-        # warm-up's ensembles did not cover (not isolated); when it is cached the prepare
-        # is one tiny run
-        return any((k[0] == "small" and k not in _warmed()) or k[0] in ("taylor", "map")
+        # the Taylor integrators: maps, scenes and their checks included
+        # (tests/test_warm_covers_requests.py: their default requests enter no numba
+        # specialization the warm-up's tasks do not)
+        return any((k[0] == "small" and k not in _warmed()) or k[0] == "taylor"
                    for k in todo)
     return True
 

@@ -134,7 +134,11 @@ def _times(t_out, n_traj, n_out):
     """(T_out table (n_traj, N), n_out per row), every used prefix checked."""
     T = np.array(t_out, dtype=np.float64)
     if T.ndim <= 1:
-        T = np.ascontiguousarray(np.broadcast_to(T.ravel(), (n_traj, T.size)))
+        # a copy, never the broadcast view: for one trajectory that view is already
+        # contiguous, so ascontiguousarray kept it read-only, and a read-only table is
+        # another numba specialization of rk_ensemble (a Poincare map, which passes a
+        # table, compiled its own after the warm-up had compiled this one: issue 19)
+        T = np.array(np.broadcast_to(T.ravel(), (n_traj, T.size)))
     elif T.ndim != 2 or T.shape[0] != n_traj:
         raise ValueError(f"t_out: one row of output times, or one per trajectory "
                          f"({n_traj} rows); got shape {T.shape}")
@@ -190,7 +194,7 @@ def integrate_ensemble(model, p, Y0, t_out, *, method="dop853", rtol=1e-10, atol
     else:
         v = np.array(project_values, dtype=np.float64)
         if v.ndim <= 1 and v.size == codes.size:
-            vals = np.ascontiguousarray(np.broadcast_to(v.ravel(), (n_traj, codes.size)))
+            vals = np.array(np.broadcast_to(v.ravel(), (n_traj, codes.size)))
         elif v.shape == (n_traj, codes.size):
             vals = np.ascontiguousarray(v)
         else:
