@@ -1,27 +1,8 @@
-"""Browser: every teaching scene opens from the home page and plays; the 3D point maps page
-draws the paper's figures and computes a map with progress (app/static/js/scenes.js,
-app/static/js/poincare.js)."""
+"""Browser: the 3D point maps page draws the paper's figures and computes a map with
+progress (app/static/js/poincare.js); /work-precision draws every case. That every teaching
+scene opens from the home page and plays: tests/e2e/test_scenes_browser.py."""
 
-import pytest
 from playwright.sync_api import expect
-
-from catalogue.scenes import load_scenes
-
-
-@pytest.mark.parametrize("scene_id", list(load_scenes()))
-def test_every_scene_opens_from_the_home_page_and_plays(page, server, scene_id):
-    page.goto(server + "/")
-    link = page.locator(f'#scene-links a[href="/scenes#{scene_id}"]')
-    expect(link).to_be_visible()
-    link.click()
-    # body?. : the predicate may run while the scenes page is still loading (no body yet)
-    page.wait_for_url(f"**/scenes#{scene_id}")
-    page.locator(f"body[data-playing='{scene_id}']").wait_for(state="attached",
-                           timeout=90_000)
-    expect(page.locator("#scene-plot .gl-container canvas").first).to_be_visible()
-    first = page.locator("#scene-time").inner_text()
-    page.wait_for_timeout(600)
-    assert page.locator("#scene-time").inner_text() != first      # it plays
 
 
 def test_paper_figures_and_a_computed_map(page, server, artifacts):

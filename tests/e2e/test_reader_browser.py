@@ -1,6 +1,7 @@
 """The explorer as a reference (issue 11, part B) in a real browser: a run's permalink
-reproduces it, a map's too, the CSV header is unique, no page scrolls sideways at 390 px,
-and axe-core finds no serious or critical violation on any of the project's pages."""
+reproduces it, a map's too, the CSV header is unique. No page scrolls sideways at 390 px
+and axe-core finds no serious or critical violation on any of the project's pages:
+tests/e2e/test_page_sweep_browser.py, which opens every page once for all such rules."""
 
 import csv
 import io
@@ -10,20 +11,7 @@ from pathlib import Path
 import pytest
 from playwright.sync_api import expect
 
-from tests.e2e.site import project_pages
-
-AXE = Path(__file__).resolve().parents[1] / "vendor" / "axe-core" / "axe.min.js"
 CASE = "plane/chaplygin-ball"
-
-
-def settle(page, path):
-    """Open a page and wait until its scripts have drawn it (or, for the 404, loaded)."""
-    page.goto(path)
-    if path.startswith("/case/") or path == "/":
-        page.locator("body[data-ready='1']").wait_for(state="attached")
-    else:
-        page.wait_for_load_state("load")
-    page.wait_for_timeout(300)
 
 
 def last_state(page) -> list:
@@ -84,52 +72,6 @@ def test_a_maps_permalink_reproduces_it(page, server, context):
     other.close()
 
 
-@pytest.fixture
-def phone(browser):
-    # not is_mobile: a mobile viewport widens itself to fit wide content, hiding the fault
-    ctx = browser.new_context(viewport={"width": 390, "height": 844}, device_scale_factor=1,
-                              has_touch=True)
-    page = ctx.new_page()
-    errors = []
-    page.on("pageerror", lambda e: errors.append(str(e)))
-    page.set_default_timeout(30_000)
-    yield page
-    ctx.close()
-    assert not errors, f"errors in the page: {errors}"
-
-
-def test_no_page_scrolls_sideways_on_a_phone(phone, server):
-    wide = {}
-    paths = project_pages(server)          # derived from the app's routes (tests/e2e/site.py)
-    assert len(paths) > 25, paths
-    for path in paths:
-        settle(phone, server + path)
-        w = phone.evaluate("() => [document.scrollingElement.scrollWidth, innerWidth]")
-        if w[0] > w[1] or w[1] != 390:
-            culprits = phone.evaluate("""() => [...document.querySelectorAll('body *')]
-                .filter(e => e.getBoundingClientRect().right > innerWidth + 1)
-                .filter(e => !e.closest('.table-wrap, .scroll-x, .katex-display, pre'))
-                .slice(0, 5).map(e => e.tagName + '.' + e.className + '#' + e.id)""")
-            wide[path] = (w, culprits)
-    assert not wide, f"pages wider than a 390 px phone: {wide}"
-
-
-def test_axe_finds_no_serious_or_critical_violation(page, server):
-    found = {}
-    for path in project_pages(server):
-        settle(page, server + path)
-        page.add_script_tag(path=str(AXE))
-        res = page.evaluate("""async () => {
-            const r = await axe.run(document, {resultTypes: ['violations']});
-            return r.violations.filter(v => ['serious', 'critical'].includes(v.impact))
-              .map(v => ({id: v.id, impact: v.impact, n: v.nodes.length,
-                          at: v.nodes.slice(0, 3).map(n => n.target.join(' '))}));
-        }""")
-        if res:
-            found[path] = res
-    assert not found, f"axe-core violations: {found}"
-
-
 def test_a_run_is_estimated_before_it_starts_and_stale_plots_dim(page, server):
     page.goto(f"{server}/case/{CASE}")
     page.wait_for_function("document.body?.dataset.ready === '1'")
@@ -158,7 +100,7 @@ def test_a_run_is_estimated_before_it_starts_and_stale_plots_dim(page, server):
 def test_a_scene_plots_what_its_text_promises_beside_the_3d_view(page, server, scene_id,
                                                                   claimed):
     # issue 20: the scene's first claim plot (the data its check measured) replaced the one
-    # series plot; tests/e2e/test_demos_browser.py checks every scene's plots in full
+    # series plot; tests/e2e/test_scenes_browser.py checks every scene's plots in full
     page.goto(f"{server}/scenes#{scene_id}")
     page.wait_for_function(f"document.body?.dataset.playing === '{scene_id}'",
                            timeout=120_000)

@@ -1,17 +1,17 @@
 """The explorer as a reference (issue 11, part A; issue 17, items 3 and 7) in chromium:
 printed equation numbers on case pages, no internal label and no "(n.m)" that names no
-display in any page's visible text (after the scripts ran) nor in any glossary pop-up, no
-developer words on any page, search finding both Chaplygin balls, a glossary tooltip that
-opens on click/tap."""
+display in any glossary pop-up, search finding both Chaplygin balls, a glossary tooltip
+that opens on click/tap. The same rules on every page's visible text, and no developer
+words on any page: tests/e2e/test_page_sweep_browser.py (which uses the patterns and the
+reader's text defined here)."""
 
 import re
-from html import unescape
 
 import httpx
 from playwright.sync_api import expect
 
 from catalogue.numbering import printed
-from tests.e2e.site import internal_label_re, project_pages
+from tests.e2e.site import internal_label_re
 from tests.test_reader_numbers import reader_problems
 
 INTERNAL = internal_label_re()     # every label of the seed and of the catalogue's data
@@ -95,21 +95,6 @@ def test_the_developer_word_patterns_find_the_issues_examples():
                                "b_i, x_n; 0.833967 + 0.521929i")
 
 
-def test_no_developer_words_on_any_page(page, server):
-    """Every page of the derived list, as a reader sees it after the scripts ran."""
-    problems = {}
-    for path in project_pages(server):
-        page.goto(server + path)
-        if path == "/" or path.startswith("/case/"):
-            ready(page)
-        else:
-            page.wait_for_load_state("networkidle")
-        found = developer_words(page.evaluate(READER_TEXT))
-        if found:
-            problems[path] = found
-    assert not problems, problems
-
-
 def test_claim_numbers_and_glossary_popups_name_the_right_display(page, server):
     """A claim's number on its case page is its label's printed number, and every "?"
     pop-up on the page shows printed numbers only (no label, no number of no display)."""
@@ -135,29 +120,6 @@ def test_claim_numbers_and_glossary_popups_name_the_right_display(page, server):
             text = box.inner_text()
             assert not reader_problems(text), (case, sym, text)
             btn.click()
-
-
-def test_no_internal_label_visible_on_any_page(page, server):
-    paths = project_pages(server)      # derived from the app's routes (tests/e2e/site.py)
-    for path in paths:
-        # the server's HTML, as read with scripts off or by a search engine
-        html = httpx.get(server + path, timeout=60).text
-        words = unescape(re.sub(r"<[^>]+>", " ", re.sub(
-            r"<(script|style)\b.*?</\1>", " ", html, flags=re.S)))
-        assert not INTERNAL.findall(words), f"{path} (no scripts): {INTERNAL.findall(words)}"
-        page.goto(server + path)
-        if path == "/" or path.startswith("/case/"):
-            ready(page)
-        else:
-            page.wait_for_load_state("networkidle")
-        # open every details element so hidden text is checked too
-        page.evaluate("document.querySelectorAll('details').forEach(d => d.open = true)")
-        text = page.locator("body").inner_text()
-        found = INTERNAL.findall(text)
-        assert not found, f"{path}: {sorted(set(found))}"
-        # and every "(n.m)" on the page is a number the paper prints (issue 17, item 3)
-        wrong = [p for p in reader_problems(page.evaluate(READER_TEXT)) if "label" not in p]
-        assert not wrong, f"{path}: {wrong}"
 
 
 def test_search_finds_both_chaplygin_balls(page, server):
