@@ -67,22 +67,6 @@ def test_ensemble_equals_one_by_one(case_id, opts):
         assert all(len(r.crossings_t) > 0 for r in ens)
 
 
-def test_generated_ensemble_equals_generated_one_by_one():
-    m, Y0 = _case("plane/chaplygin-ball")
-    t_out = np.linspace(0.0, 30.0, 7)
-    sec = Section(coef=(0, 0, 0, 1.0, 0, 0))
-    ens = integrate_ensemble(m.model, m.p, Y0, t_out, generated=True, section=sec,
-                             max_crossings=5)
-    for y0, r in zip(Y0, ens, strict=True):
-        _same(integrate(m.model, m.p, y0, t_out, generated=True, section=sec,
-                        max_crossings=5), r)
-        assert len(r.crossings_t) > 0
-    # and the generated field is another kernel: same trajectory to the tolerance only
-    gen = integrate_ensemble(m.model, m.p, Y0, t_out, generated=False)
-    assert all(np.allclose(a.y, b.y, rtol=0, atol=1e-6) for a, b in
-               zip(ens, gen, strict=True))
-
-
 def test_workers_do_not_change_the_numbers():
     m, Y0 = _case("sphere/chaplygin-ball", n=7, seed=3)
     t_out = np.linspace(0.0, 20.0, 5)

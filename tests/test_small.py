@@ -11,7 +11,8 @@ writes the equations differently), so the samples agree to round-off, not bit fo
 Against the generated integrator (rk.py compiled against the same generated field, the
 tableaux unrolled): bit for bit, since the small kernel adds the same products in the same
 order; this is what lets integrate() run a plain request on the small kernel whatever is
-compiled, with the same answer (test_same_bits_as_the_generated_integrator)."""
+compiled, with the same answer (tests/test_generated_integrator.py::
+test_same_bits_as_the_generated_integrator, beside the other tests that compile it)."""
 
 import math
 
@@ -19,7 +20,7 @@ import numpy as np
 import pytest
 
 from solvers.integrate import integrator
-from solvers.integrate.integrator import GENERATED_UNROLLED, integrate
+from solvers.integrate.integrator import integrate
 from solvers.kernels import generate, rk
 from solvers.kernels import layout as L
 from solvers.models.cases import build, case_ids, registry
@@ -114,7 +115,7 @@ def test_singular_stops_and_budget():
     # sphere |gamma| = 1 (Hairer's first step probes y + h0 f, where the general field and
     # the generated one, which never assumes |gamma| = 1, differ): 4.27493 against
     # 4.27454. The samples up to there agree; the stop itself is compared bit for bit with
-    # the generated integrator (same field) in test_same_bits_as_the_generated_integrator
+    # the generated integrator (same field) in tests/test_generated_integrator.py
     assert (a.status, a.steps, a.rejected, a.rhs_calls) == \
         (b.status, b.steps, b.rejected, b.rhs_calls)
     np.testing.assert_allclose(b.y, a.y, rtol=1e-9, atol=1e-11)
@@ -134,38 +135,6 @@ def test_other_runs_take_the_general_kernel_by_default():
                dict(section=integrator.Section(coef=(0, 0, 0, 1.0, 0, 0)))):
         r = integrate(m.model, m.p, c.state, t, **kw)
         assert (r.kernel, r.vector_field) == ("rk", "general"), kw
-
-
-def test_same_bits_as_the_generated_integrator():
-    """The small kernel and rk.py's generated integrator (dop853 and vern9 unrolled) on the
-    same generated field: the same bits, samples inside steps included."""
-    c = registry()["plane/chaplygin-ball"]
-    m = build(c.id, c.example)
-    p = np.asarray(m.p, dtype=np.float64)
-    big = generate.generated_integrator(m.model, p, unrolled=GENERATED_UNROLLED)
-    t = np.linspace(0.0, 50.0, 101)
-    for method, comp, budget in (("dop853", 0, 10**7), ("vern9", 0, 10**7),
-                                 ("dop853", 1, 10**7), ("vern9", 1, 10**7),
-                                 ("dop853", 0, 8)):
-        A, cc, b, E, P, meth = integrator.method_arrays(method)
-        n = len(c.state)
-        Y = np.empty((t.size, n))
-        ys = np.empty(n)
-        st = np.zeros(5, dtype=np.int64)
-        fopt = np.array([1e-10, 0.0, np.inf, 0.9, 0.2, 10.0, 0.04])
-        iopt = np.array([budget, comp, 1, 0, 0, 1, 0], dtype=np.int64)
-        status, t_stop = big.rk_integrate(
-            m.model, p, np.array(c.state, dtype=float), t, A, cc, b, E, P, meth, iopt, fopt,
-            np.full(n, 1e-12), np.zeros(0, dtype=np.int64), np.zeros(0), np.zeros(n + 1), Y,
-            np.empty(1), np.empty((1, n)), ys, st)
-        r = integrate(m.model, p, c.state, t, method=method, rtol=1e-10, atol=1e-12,
-                      compensated=bool(comp), max_steps=budget)
-        assert r.kernel == "small"
-        assert (status, st[rk.S_ACCEPTED], st[rk.S_REJECTED], st[rk.S_RHS]) == \
-            (r.status, r.steps, r.rejected, r.rhs_calls)
-        assert t_stop == r.t_stop
-        np.testing.assert_array_equal(Y[:r.y.shape[0]], r.y)
-        np.testing.assert_array_equal(ys, r.y_stop)
 
 
 def test_small_kernel_is_scalar_code():

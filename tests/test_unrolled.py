@@ -7,8 +7,9 @@ output, sections, projection, compensated sums, clipped steps, fixed steps, step
 singular stops), and the extremes of tests/test_extremes.py.
 
 The 16 cases run on one module (the general field, the tableaux unrolled, the state
-dimension a run-time value); one case also runs the per-case generated module, where the
-generated field is inlined into the unrolled stages."""
+dimension a run-time value). The per-case generated module, where the generated field is
+inlined into the unrolled stages, is compared with its own loops in
+tests/test_generated_integrator.py (with the other tests that compile it)."""
 
 import math
 
@@ -16,7 +17,7 @@ import numpy as np
 import pytest
 
 from solvers.integrate import integrator
-from solvers.integrate.integrator import GENERATED_UNROLLED, Section, integrate, method_arrays
+from solvers.integrate.integrator import Section, integrate, method_arrays
 from solvers.integrate.tableaux import METHODS
 from solvers.kernels import generate, rk
 from solvers.kernels import layout as L
@@ -172,37 +173,3 @@ def test_test_models_and_grazing_sections(monkeypatch, general, method):
     assert_same(a, b)
 
 
-def test_generated_case_module_unrolled(monkeypatch):
-    """The per-case module: the generated field inlined into the unrolled dop853 stages,
-    against its own loops, with samples, a section and projection."""
-    case = "plane/chaplygin-ball"
-    c = registry()[case]
-    m = build(case, c.example)
-    mod = generate.generated_integrator(m.model, m.p, unrolled=GENERATED_UNROLLED)
-    t = np.linspace(0.0, 50.0, 101)
-    for kw in ({}, dict(section=Section(coef=(0, 0, 0, 1.0, 0, 0)), max_crossings=3),
-               dict(project_codes=(ENERGY,))):
-        a, b = pair(monkeypatch, mod, m.model, m.p, c.state, t, rtol=1e-10, atol=1e-12, **kw)
-        assert a.success, a.message
-        assert_same(a, b)
-    src = open(mod.__file__).read()
-    assert "A[i, j]" in src and "0.05260015195876773 * K[0, m]" in src
-
-
-def test_default_generated_integrator_unrolls_dop853_and_vern9():
-    """What integrate() runs by default on a compiled case: the generated module with the
-    tableaux of GENERATED_UNROLLED written out (their first coefficients as literals), the
-    same module the ensemble twin imports."""
-    from solvers.integrate import ensemble
-
-    c = registry()["plane/chaplygin-ball"]
-    m = build(c.id, c.example)
-    p = np.asarray(m.p, dtype=np.float64)
-    mod = integrator._generated_module(m.model, p, (m.model, p.tobytes()))
-    assert mod is generate.generated_integrator(m.model, p, unrolled=GENERATED_UNROLLED)
-    src = open(mod.__file__).read()
-    for name in GENERATED_UNROLLED:
-        a21 = method_arrays(name)[0][1, 0]
-        assert f"{float(a21)!r} * K[0, m]" in src, name
-    twin = open(ensemble.generated_ensemble(m.model, p).__file__).read()
-    assert f"from {mod.__name__} import rk_integrate" in twin
