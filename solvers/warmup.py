@@ -135,7 +135,8 @@ def compile_generated(target) -> str:
     from solvers.models.cases import build
 
     m = build(case_id, params)
-    integrate_ensemble(m.model, m.p, [case.state], [0.0, 0.01], generated=True)
+    integrate_ensemble(m.model, m.p, [case.state] * 2, [0.0, 0.01], generated=True,
+                       workers=2)
     return case_id
 
 
@@ -244,10 +245,11 @@ def _timed(what) -> float:
 
 
 def warm_ensembles(generated: bool = False) -> None:
-    """The compiled ensemble (solvers/kernels/ensemble.py) on the general field, one
-    specialization per model (Poincare maps, sections: integrate()'s route for a run that
-    is not plain), so that the first Poincare map of a server does not compile in a
-    request; generated: the generated twins too (compiled by compile_generated)."""
+    """The compiled parallel ensemble (solvers/kernels/ensemble.py) on the general field
+    (the CLI's Poincare maps and the dask sweeps on several threads) and a tiny map per
+    model as the explorer runs it (one thread: the serial kernel per trajectory), so that
+    the first Poincare map of a server does not compile in a request; generated: the
+    generated twins too (compiled by compile_generated)."""
     from solvers.integrate.ensemble import integrate_ensemble
     from solvers.kernels import generate
     from solvers.models.cases import build, registry
@@ -258,7 +260,10 @@ def warm_ensembles(generated: bool = False) -> None:
         m = build(cid, params)
         if (m.model,) not in seen:     # the general field: one specialization per model
             seen.add((m.model,))
-            integrate_ensemble(m.model, m.p, [case.state], [0.0, 0.01], generated=False)
+            # two trajectories on two threads: the parallel loop (the CLI's maps and the
+            # sweeps; one thread, as the explorer's map jobs, runs the serial kernel)
+            integrate_ensemble(m.model, m.p, [case.state] * 2, [0.0, 0.01], generated=False,
+                               workers=2)
             _tiny_map(cid, params)
         if not generated or m.model not in generate.GENERATED_MODELS:
             continue
@@ -266,7 +271,8 @@ def warm_ensembles(generated: bool = False) -> None:
         if key in seen:
             continue
         seen.add(key)
-        integrate_ensemble(m.model, m.p, [case.state], [0.0, 0.01], generated=True)
+        integrate_ensemble(m.model, m.p, [case.state] * 2, [0.0, 0.01], generated=True,
+                           workers=2)
 
 
 def _tiny_map(case_id: str, params: dict) -> None:

@@ -254,21 +254,33 @@ def integrate_ensemble(model, p, Y0, t_out, *, method="dop853", rtol=1e-10, atol
     if plain:
         return _small_ensemble(model, p, Y0, T, counts, steps, compensated, FOPT, atol_v,
                                method, workers)
-    kern = kernels.rk_ensemble
-    if use_gen and model in generate.GENERATED_MODELS:
-        kern = generated_ensemble(model, p).rk_ensemble
+    gen = use_gen and model in generate.GENERATED_MODELS
+    w = min(workers, numba.config.NUMBA_NUM_THREADS)
     t0 = time.perf_counter()
-    with _LAUNCH:
-        _choose_layer()
-        before = numba.get_num_threads()
-        w = min(workers, numba.config.NUMBA_NUM_THREADS)
-        numba.set_num_threads(w)
-        try:
-            kern(model, p, Y0, T, counts, A, c, b, E, Pd, meth, IOPT, FOPT, atol_v, codes,
-                 vals, sec.packed(n), Y, cross_t, cross_y, y_stop, stats, status, t_stop, w,
-                 np.zeros(1, dtype=np.int64))
-        finally:
-            numba.set_num_threads(before)
+    if w == 1 or n_traj == 1:
+        # one thread: the serial kernel row by row, which is what the parallel loop runs
+        # per trajectory (the same bits), without compiling that loop: the explorer's maps
+        # run so (one trajectory slice per worker process, app/services/poincare_jobs.py)
+        serial = (generate.generated_integrator(model, p, unrolled=GENERATED_UNROLLED)
+                  if gen else rk).rk_integrate
+        packed = sec.packed(n)
+        for i in range(n_traj):
+            status[i], t_stop[i] = serial(
+                model, p, Y0[i], T[i, :counts[i]], A, c, b, E, Pd, meth, IOPT[i], FOPT[i],
+                atol_v, codes, vals[i], packed, Y[i], cross_t[i], cross_y[i], y_stop[i],
+                stats[i])
+    else:
+        kern = generated_ensemble(model, p).rk_ensemble if gen else kernels.rk_ensemble
+        with _LAUNCH:
+            _choose_layer()
+            before = numba.get_num_threads()
+            numba.set_num_threads(w)
+            try:
+                kern(model, p, Y0, T, counts, A, c, b, E, Pd, meth, IOPT, FOPT, atol_v,
+                     codes, vals, sec.packed(n), Y, cross_t, cross_y, y_stop, stats, status,
+                     t_stop, w, np.zeros(1, dtype=np.int64))
+            finally:
+                numba.set_num_threads(before)
     wall = (time.perf_counter() - t0) / n_traj
     out = []
     for i in range(n_traj):
