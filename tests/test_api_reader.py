@@ -121,16 +121,18 @@ def test_scenes_and_check_args_show_numbers(client):
     assert "(2.24)" in args and not INTERNAL.findall(args)
 
 
-def test_errata_entries_show_printed_numbers_not_labels():
+def test_errata_entries_show_printed_numbers_not_labels(catalogue_records):
     """What the errata page shows of an entry (all but the `label` data field and the
     claim ids) carries printed numbers, never an internal label; computed on real verdicts
-    of cases with misprints, a refuted conjecture and a refuted statement."""
+    of cases with misprints, a refuted conjecture and a refuted statement (the session's
+    one full verification, tests/conftest.py: the records `verify(case=...)` gives)."""
+    from conftest import records_of
+
     from solvers.verify import errata
-    from solvers.verify.run import verify
 
     cat = load_catalogue()
-    records = [r for cid in ("plane/round-disk", "plane/spherical-inertia",
-                             "sphere/borisov-fedorov") for r in verify(case=cid)]
+    records = records_of(catalogue_records, ("plane/round-disk", "plane/spherical-inertia",
+                                             "sphere/borisov-fedorov"))
     entries = errata.errata(records, cat) + errata.findings(records, cat)
     assert len(entries) >= 4
     for e in entries:
