@@ -188,15 +188,18 @@ def parts(generated: bool = False, only_pending: bool = True) -> list[tuple]:
     structure of _targets(), compiled or not), and the ensembles (generated: the big
     generated integrators instead, whose ensemble twins come after them)."""
     groups = pending(all_structures=not only_pending)
+    # the general kernels first (~60-90 s of CPU), the ensembles next: warm() runs them in
+    # the general part's process right after it (they need its rk_integrate: compiled
+    # beside it they compiled it twice, 114-125 s in all; last in the queue they compiled
+    # alone at the end, 139 s), while the other processes take the structures
     plan = [(GENERAL, [])]
-    for cases in groups.values():
-        plan.append((cases[0], sorted({c for c, _ in cases})))
+    if not generated:   # with generated, warm() runs them after all the tasks (their
+        plan.append((ENSEMBLES, []))    # generated twins need the generated integrators)
+    plan += [(cases[0], sorted({c for c, _ in cases})) for cases in groups.values()]
     if generated:
         plan += [(("generated", cases[0]), sorted({c for c, _ in cases}))
                  for cases in pending(generated=True,
                                       all_structures=not only_pending).values()]
-    else:   # with generated, after them (their ensemble twins need the integrators)
-        plan.append((ENSEMBLES, []))
     return plan
 
 
@@ -219,7 +222,11 @@ def warm(jobs: int | None = None, generated: bool = False, progress=None) -> flo
         report({"event": "done", "part": part_name(what), "seconds": round(seconds, 1),
                 "done": done, "total": len(todo)})
 
-    jobs = min(jobs or _jobs(), len(todo))
+    # one unit of work per part, but the ensembles in the general part's unit (above)
+    units = [[what] for what in todo if what != ENSEMBLES]
+    if ENSEMBLES in todo:
+        next(u for u in units if u[0] == GENERAL).append(ENSEMBLES)
+    jobs = min(jobs or _jobs(), len(units))
     if jobs > 1:
         import multiprocessing as mp
         from concurrent.futures import ProcessPoolExecutor, as_completed
@@ -227,21 +234,27 @@ def warm(jobs: int | None = None, generated: bool = False, progress=None) -> flo
         # spawn: fresh interpreters (a forked numba/LLVM state is not safe to reuse); the
         # general kernels are one more task, so no core waits for them
         with ProcessPoolExecutor(jobs, mp_context=mp.get_context("spawn")) as ex:
-            futures = {ex.submit(_timed, what): what for what in todo}
+            futures = [ex.submit(_timed, unit) for unit in units]
             for f in as_completed(futures):
-                finished(futures[f], f.result())
+                for what, seconds in f.result():
+                    finished(what, seconds)
     else:
-        for what in todo:
-            finished(what, _timed(what))
+        for unit in units:
+            for what, seconds in _timed(unit):
+                finished(what, seconds)
     if generated:
         warm_ensembles(generated)
     return time.perf_counter() - t0
 
 
-def _timed(what) -> float:
-    t = time.perf_counter()
-    _task(what)
-    return time.perf_counter() - t
+def _timed(unit: list) -> list[tuple]:
+    """Run the unit's parts one after the other in this process: [(part, seconds)]."""
+    out = []
+    for what in unit:
+        t = time.perf_counter()
+        _task(what)
+        out.append((what, time.perf_counter() - t))
+    return out
 
 
 def warm_ensembles(generated: bool = False) -> None:
