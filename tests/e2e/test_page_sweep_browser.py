@@ -49,6 +49,16 @@ def settle(page, url: str, path: str, idle: bool = True) -> None:
     page.wait_for_timeout(300)
 
 
+def watched_page(browser, **context_args):
+    """A page of a new context, with the script errors it raises collected in a list."""
+    ctx = browser.new_context(**context_args)
+    page = ctx.new_page()
+    page.set_default_timeout(30_000)
+    errors: list[str] = []
+    page.on("pageerror", lambda e: errors.append(str(e)))
+    return ctx, page, errors
+
+
 @pytest.fixture(scope="module")
 def paths(server):
     found = project_pages(server)
@@ -60,11 +70,7 @@ def paths(server):
 def desktop(browser, browser_context_args, server, paths):
     """path -> what the desktop opening saw: the reader's text, the visible text with every
     details opened and the reader's text then, axe's findings, the page's script errors."""
-    ctx = browser.new_context(**browser_context_args)
-    page = ctx.new_page()
-    page.set_default_timeout(30_000)
-    errors: list[str] = []
-    page.on("pageerror", lambda e: errors.append(str(e)))
+    ctx, page, errors = watched_page(browser, **browser_context_args)
     seen = {}
     for path in paths:
         errors.clear()
@@ -114,12 +120,8 @@ def test_no_internal_label_visible_on_any_page(desktop, server, paths):
 
 def test_no_page_scrolls_sideways_on_a_phone(browser, server, paths):
     # not is_mobile: a mobile viewport widens itself to fit wide content, hiding the fault
-    ctx = browser.new_context(viewport={"width": 390, "height": 844}, device_scale_factor=1,
-                              has_touch=True)
-    phone = ctx.new_page()
-    phone.set_default_timeout(30_000)
-    errors: list[str] = []
-    phone.on("pageerror", lambda e: errors.append(str(e)))
+    ctx, phone, errors = watched_page(browser, viewport={"width": 390, "height": 844},
+                                      device_scale_factor=1, has_touch=True)
     wide = {}
     for path in paths:
         settle(phone, server + path, path, idle=False)
