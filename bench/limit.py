@@ -9,13 +9,14 @@ a matched final-state error interpolated (log-log) on that front:
   lean-dop853  the same hand-written DOP853 on the generated field of the case
                (solvers/kernels/generate.py): what the generated field alone buys;
   ours         the project's integrate(): general rk_integrate kernel, general field;
-  ours-generated  integrate(generated=True), what integrate() and simulate() run by default
-               once the warm-up compiled the case: rk.py compiled against the case's
-               generated field, inlined, DOP853 (and Vern9) unrolled (unroll.py;
-               integrator.GENERATED_UNROLLED), through the Python entry;
-  gen-loops    rk.py's loop kernel on the generated field (no tableau unrolled), called
-               directly (packed arrays reused: no entry);
-  gen-unrolled the default kernel (DOP853 and Vern9 unrolled) called directly;
+  ours-generated  integrate(generated=True): on these plain runs the small kernel
+               (solvers/kernels/small.py), what integrate() and simulate() run by default,
+               through the Python entry;
+  gen-loops    rk.py compiled against the case's generated field, inlined
+               (generate.generated_integrator: what generated=True runs with a section or
+               a projection), called directly (packed arrays reused: no entry);
+  (gen-unrolled, the same with the DOP853 and Vern9 stages written out, was dropped with
+  solvers/kernels/unroll.py on 2026-11-27: its last figures stay in bench/results/limit.txt)
   heyoka-lean  heyoka's Taylor integrator on the generated lean expressions;
   heyoka-gen   heyoka on the general expression system (solvers/integrate/taylor.py);
   scipy-scalar scipy DOP853 on the best plain-Python scalar field (math.sqrt, tuples);
@@ -39,7 +40,7 @@ the field alone) says where the time goes.
         the one-start fronts described above
         -> bench/results/limit.{txt,json}   (--quick: limit.quick.{txt,json})
 --fronts --quick: 5 tolerances (1e-6 ... 1e-12), best of 3, no scipy-numpy and no heyoka-gen
-(~3 min once the kernels are compiled; a fresh cache first compiles the unrolled kernels,
+(~3 min once the kernels are compiled; a fresh cache first compiles the generated kernels,
 ~2 min a case).
 """
 
@@ -56,7 +57,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.integrate._ivp import dop853_coefficients as DC
 
-from solvers.integrate.integrator import GENERATED_UNROLLED, integrate, method_arrays
+from solvers.integrate.integrator import integrate, method_arrays
 from solvers.integrate.taylor import Taylor
 from solvers.kernels import layout as L
 from solvers.kernels.generate import generated, generated_integrator, heyoka_system
@@ -375,9 +376,7 @@ def front(case, params, y0, T, targets, limit_field, quick=False):
     runners["ours"] = ours(False)
     runners["ours-generated"] = ours(True)
     loops = generated_integrator(model.model, p)
-    unrolled = generated_integrator(model.model, p, unrolled=GENERATED_UNROLLED)
     runners["gen-loops"] = kernel_runner(loops.rk_integrate, model.model, p, y0, T)
-    runners["gen-unrolled"] = kernel_runner(unrolled.rk_integrate, model.model, p, y0, T)
     compile_s = {}
     for name, run in runners.items():
         t0 = time.perf_counter()

@@ -39,16 +39,16 @@ def before_module(rev: str):
 def kernel(small, model, p, method, tag):
     import hashlib
 
-    from solvers.kernels import generate, unroll
+    from solvers.kernels import baked, generate
 
-    tab = unroll.baked_tableaux((method,))[method]
+    tab = baked.baked_tableaux((method,))[method]
     text = small.kernel_source(model, p, method, tab)
     name = f"side_{tag}_{hashlib.sha256(text.encode()).hexdigest()[:16]}"
     return generate.cached_module(name, lambda: text).run
 
 
 def main():
-    import solvers.integrate.integrator  # noqa: F401 (provides the tableaux to unroll.py)
+    import solvers.integrate.integrator  # noqa: F401 (provides the tableaux to baked.py)
     from solvers.kernels import rk
     from solvers.kernels import small as after
     from solvers.models.cases import build, registry

@@ -13,7 +13,7 @@ deadline starts: app/api/routes/simulate.py), or here with --all. They are compi
 parallel processes (ROLLING_WARMUP_JOBS, default the number of CPUs, at most 4): the
 general kernels are one task, each structure another; a structure whose small kernels are
 already in the cache is skipped. The big generated integrators (rk.py on a generated field,
-~37 s a structure, and their ensemble twins) are no longer compiled here: no default route
+~32 s a structure, and their ensemble twins) are no longer compiled here: no default route
 needs them (`python -m solvers.warmup --generated` still compiles them).
 """
 

@@ -1,30 +1,26 @@
 """integrate(generated=True) and everything else that runs rk.py compiled against a case's
-generated field (solvers/kernels/generate.py generated_integrator: the tableaux of
-integrator.GENERATED_UNROLLED unrolled, and its ensemble twin). These are the project's
-biggest kernels (37 s and more a structure to compile, on 2 cores), which no default route
-runs: they are all tested here, in one module, so that under pytest-xdist (--dist loadfile)
-each compiles once per test session instead of once in every module that needs it
-(issue 19, CI time).
+generated field (solvers/kernels/generate.py generated_integrator, and its ensemble twin).
+These are the project's biggest kernels (~32 s a structure to compile on 2 cores), which
+no default route runs: they are all tested here, in one module, so that under
+pytest-xdist (--dist loadfile) each compiles once per test session instead of once in
+every module that needs it (issue 19, CI time).
 
   * the kernels follow the general kernel's trajectory (same tableau, same controller,
     fields equal to round-off), with the same step counts, on a ball and a flat base: rk.py's
     generated integrator (kernel="rk") and the small kernel a plain run takes by default;
   * the small kernel gives the generated integrator's bits (tests/test_small.py's rule);
-  * the per-case module's unrolled stepper gives its own loops' bits, with samples, a
-    section and projection (tests/test_unrolled.py's rule, there on the general field);
-  * the generated ensemble twin gives the generated integrator's bits one by one."""
+  * integrate(generated=True) and the ensemble twin run the same module, and the twin
+    gives the generated integrator's bits one by one."""
 
 import numpy as np
 import pytest
 
 from solvers.integrate import integrator
 from solvers.integrate.ensemble import integrate_ensemble
-from solvers.integrate.integrator import GENERATED_UNROLLED, Section, integrate, method_arrays
+from solvers.integrate.integrator import Section, integrate
 from solvers.kernels import generate
-from solvers.kernels.integrals import ENERGY
 from solvers.models.cases import build, registry
 from tests.test_ensemble import _case, _same
-from tests.test_unrolled import assert_same, pair
 
 
 @pytest.mark.parametrize("kernel", ["rk", None])
@@ -44,7 +40,7 @@ def test_generated_kernel_follows_general_kernel(case, kernel):
 
 
 def test_same_bits_as_the_generated_integrator():
-    """The small kernel and rk.py's generated integrator (dop853 and vern9 unrolled) on the
+    """The small kernel and rk.py's generated integrator (its tableau loops) on the
     same generated field: the same bits, samples inside steps included. Both through
     integrate(), so the generated integrator runs the specialization integrate() compiles
     (a direct call with the model's read-only p compiled a second one: ~100 s)."""
@@ -66,38 +62,22 @@ def test_same_bits_as_the_generated_integrator():
         np.testing.assert_array_equal(big.y_stop, r.y_stop)
 
 
-def test_generated_case_module_unrolled(monkeypatch):
-    """The per-case module: the generated field inlined into the unrolled dop853 stages,
-    against its own loops, with samples, a section and projection."""
-    case = "plane/chaplygin-ball"
-    c = registry()[case]
-    m = build(case, c.example)
-    mod = generate.generated_integrator(m.model, m.p, unrolled=GENERATED_UNROLLED)
-    t = np.linspace(0.0, 50.0, 101)
-    for kw in ({}, dict(section=Section(coef=(0, 0, 0, 1.0, 0, 0)), max_crossings=3),
-               dict(project_codes=(ENERGY,))):
-        a, b = pair(monkeypatch, mod, m.model, m.p, c.state, t, rtol=1e-10, atol=1e-12, **kw)
-        assert a.success, a.message
-        assert_same(a, b)
-    src = open(mod.__file__).read()
-    assert "A[i, j]" in src and "0.05260015195876773 * K[0, m]" in src
-
-
-def test_default_generated_integrator_unrolls_dop853_and_vern9():
-    """What integrate() runs by default on a compiled case: the generated module with the
-    tableaux of GENERATED_UNROLLED written out (their first coefficients as literals), the
-    same module the ensemble twin imports."""
+def test_integrate_and_the_ensemble_twin_run_one_module():
+    """What integrate(generated=True) runs on a case: rk.py's own source with only its
+    field import changed (its tableau loops, nothing written out), the same module the
+    ensemble twin imports."""
     from solvers.integrate import ensemble
+    from solvers.kernels import rk
 
     c = registry()["plane/chaplygin-ball"]
     m = build(c.id, c.example)
     p = np.asarray(m.p, dtype=np.float64)
     mod = integrator._generated_module(m.model, p, (m.model, p.tobytes()))
-    assert mod is generate.generated_integrator(m.model, p, unrolled=GENERATED_UNROLLED)
-    src = open(mod.__file__).read()
-    for name in GENERATED_UNROLLED:
-        a21 = method_arrays(name)[0][1, 0]
-        assert f"{float(a21)!r} * K[0, m]" in src, name
+    assert mod is generate.generated_integrator(m.model, p)
+    field = generate.generated(m.model, p)
+    rk_src = open(rk.__file__).read().replace(
+        "from solvers.kernels.fields import rhs\n", f"from {field.__name__} import rhs\n")
+    assert open(mod.__file__).read() == rk_src
     twin = open(ensemble.generated_ensemble(m.model, p).__file__).read()
     assert f"from {mod.__name__} import rk_integrate" in twin
 

@@ -8,11 +8,12 @@ inertia, a fast start; a disk falling flat stops with SING_EDGE at the same plac
 budget runs out at the same attempt). The fields differ in their last bits (generate.py
 writes the equations differently), so the samples agree to round-off, not bit for bit.
 
-Against the generated integrator (rk.py compiled against the same generated field, the
-tableaux unrolled): bit for bit, since the small kernel adds the same products in the same
-order; this is what lets integrate() run a plain request on the small kernel whatever is
-compiled, with the same answer (tests/test_generated_integrator.py::
-test_same_bits_as_the_generated_integrator, beside the other tests that compile it)."""
+Against the generated integrator (rk.py compiled against the same generated field, its
+tableau loops): bit for bit, since the small kernel adds the same nonzero products in the
+same order (a term it drops is an exact zero in the loops); this is what lets integrate()
+run a plain request on the small kernel whatever is compiled, with the same answer
+(tests/test_generated_integrator.py::test_same_bits_as_the_generated_integrator, beside
+the other tests that compile it)."""
 
 import math
 
@@ -24,7 +25,6 @@ from solvers.integrate.integrator import integrate
 from solvers.kernels import generate, rk
 from solvers.kernels import layout as L
 from solvers.models.cases import build, case_ids, registry
-from tests import test_unrolled
 
 GENERATED_CASES = [c for c in case_ids()
                    if build(c, registry()[c].example).model in generate.GENERATED_MODELS]
@@ -72,7 +72,18 @@ def test_small_vern9_and_options_of_a_plain_run(method):
         assert_follows(a, b)
 
 
-EXTREMES = test_unrolled.EXTREMES   # (tests/test_extremes.py, test_generated.py)
+EXTREMES = [   # tests/test_extremes.py and tests/test_generated.py::test_extremes_agree
+    ("plane/round-disk", {}, [0.0, 0.3, 3.0, 1e-2, 0.0, math.sqrt(1 - 1e-4)], 10.0, {}),
+    ("plane/round-disk", {}, [0.0, 0.3, 3.0, 1e-6, 0.0, math.sqrt(1 - 1e-12)], 10.0, {}),
+    ("plane/round-disk", {}, [10.0, 0.0, 5e3, math.cos(1e-3), 0.0, math.sin(1e-3)], 0.02, {}),
+    ("sphere/chaplygin-ball", {"k": 1.0 - 1e-4}, None, 1e-3, {}),
+    ("sphere/chaplygin-ball", {"k": 1.0 - 1e-8}, None, 1e-7, {"max_steps": 3000}),
+    ("plane/chaplygin-ball", {"I2": 1.0 + 1e-12, "I3": 1.5}, None, 10.0, {}),
+    ("plane/chaplygin-ball", {"I1": 1e-6, "I2": 2e-6, "I3": 2.5e-6}, None, 1e-4, {}),
+    ("plane/chaplygin-ball", {"I1": 1e6, "I2": 2e6, "I3": 2.5e6}, None, 10.0, {}),
+    ("plane/chaplygin-ball", {}, [0.5e4, -0.3e4, 0.8e4, 0.3, 0.4, 0.8660254037844386], 0.01,
+     {}),
+]
 
 
 @pytest.mark.parametrize(("case", "params", "state", "t_end", "kw"), EXTREMES)

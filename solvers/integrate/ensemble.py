@@ -33,7 +33,6 @@ import numpy as np
 
 from solvers.integrate import collocation, tableaux
 from solvers.integrate.integrator import (
-    GENERATED_UNROLLED,
     IntegrationResult,
     Section,
     StepControl,
@@ -109,7 +108,7 @@ def generated_ensemble(model: int, p):
     (generate.generated_integrator): solvers/kernels/ensemble.py written next to it in
     generate.cache_dir() with only its import line changed. Its name follows the
     integrator module's, which already hashes the structure and every kernel source."""
-    rk_mod = generate.generated_integrator(model, p, unrolled=GENERATED_UNROLLED)
+    rk_mod = generate.generated_integrator(model, p)
 
     def source():
         src = Path(kernels.__file__).read_text()
@@ -261,7 +260,7 @@ def integrate_ensemble(model, p, Y0, t_out, *, method="dop853", rtol=1e-10, atol
         # one thread: the serial kernel row by row, which is what the parallel loop runs
         # per trajectory (the same bits), without compiling that loop: the explorer's maps
         # run so (one trajectory slice per worker process, app/services/poincare_jobs.py)
-        serial = (generate.generated_integrator(model, p, unrolled=GENERATED_UNROLLED)
+        serial = (generate.generated_integrator(model, p)
                   if gen else rk).rk_integrate
         packed = sec.packed(n)
         for i in range(n_traj):

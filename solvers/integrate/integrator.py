@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from solvers.integrate import collocation, tableaux
-from solvers.kernels import gauss, generate, rk, small, unroll
+from solvers.kernels import baked, gauss, generate, rk, small
 from solvers.kernels import layout as L
 from solvers.kernels.fields import rhs
 
@@ -106,8 +106,8 @@ def method_arrays(name: str):
             np.ascontiguousarray(tab.b), E, P, meth)
 
 
-# the generated kernels unroll these tableaux (the kernels layer cannot import this one)
-unroll.set_provider(lambda: {name: method_arrays(name) for name in tableaux.METHODS})
+# the small kernels bake these tableaux in (the kernels layer cannot import this one)
+baked.set_provider(lambda: {name: method_arrays(name) for name in tableaux.METHODS})
 
 
 def initial_integrals(model, p, y0, codes) -> np.ndarray:
@@ -201,15 +201,9 @@ def _option_arrays(iopt: tuple, fopt: tuple):
 
 # generated integrators: (model, p bytes) -> module, and whether a structure's compiled
 # code is ready (True), or not (the monotonic time until which that answer stands)
-# The tableaux the generated integrators run unrolled (solvers/kernels/unroll.py): the
-# default method's and vern9, auto's other Runge-Kutta candidate. ~1.1-1.2x less time per
-# rhs call (bench/limit.py, gen-unrolled vs gen-loops). A tableau left to rk.py's loops in
-# an unrolled module runs ~10% slower than in the loop kernel (vern9 with only dop853
-# unrolled, measured), so both are unrolled: one case structure compiles in 37 s against
-# 18 s for the loop kernel (27 s with dop853 alone; one process, load 1). rk45 and any
-# other tableau run the loops. The unrolled stages equal the loops bit for bit
-# (tests/test_unrolled.py).
-GENERATED_UNROLLED = ("dop853", "vern9")
+# (rk.py's tableau loops on the generated field: the dop853 and vern9 stages written out
+# took ~1.1-1.2x less time per rhs call on this opt-in path and twice the compile, 66 s
+# against 32 s for the Chaplygin ball; they were dropped on 2026-11-27, README)
 _GEN_MODULES: dict = {}
 _GEN_READY: dict = {}
 NOT_READY_RECHECK_S = 30.0
@@ -220,8 +214,7 @@ def _generated_module(model: int, p: np.ndarray, key):
     if mod is None:
         if len(_GEN_MODULES) > _CACHE_MAX:
             _GEN_MODULES.clear()
-        mod = _GEN_MODULES[key] = generate.generated_integrator(
-            model, p, unrolled=GENERATED_UNROLLED)
+        mod = _GEN_MODULES[key] = generate.generated_integrator(model, p)
     return mod
 
 
@@ -337,10 +330,10 @@ def integrate(model, p, y0, t_out, *, method="dop853", rtol=1e-10, atol=1e-12,
     the same bits whatever the cache holds (the small kernel equals the generated rk.py
     kernel bit for bit: tests/test_small.py). True: the generated field, by the small
     kernel for a plain run, else by rk.py's generated integrator (compiled on first use
-    of a structure, ~37 s); False: the general support-function field, the reference.
+    of a structure, ~32 s); False: the general support-function field, the reference.
     The result's `vector_field` says which field ran, `kernel` which compiled form.
     kernel: None (default) the rule above; "rk": rk.py's kernel whatever the run (the
-    tests' reference for the small kernels and the unrolled steppers).
+    tests' reference for the small kernels).
     """
     if (kernel is None and generated is not False and method in SMALL_METHODS
             and h_fixed is None and section is None and dense_output

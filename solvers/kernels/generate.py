@@ -499,49 +499,22 @@ def cached_module(name: str, source):
     return mod
 
 
-def generated_integrator(model: int, p, fold: bool = False, unrolled=()):
+def generated_integrator(model: int, p, fold: bool = False):
     """solvers/kernels/rk.py compiled against the case's generated field instead of the
     general `fields.rhs`: the same source (tableau as data, dense output, projection,
     sections, statuses), written next to the generated field with only its `rhs` import
     changed, so every stage call is the lean field, inlined. `rk_integrate` has rk.py's
-    signature; `rk_integrate_generic` is the same loop kernel (the tests' reference).
-
-    unrolled: names of tableaux (those the integrate layer provides, unroll.set_provider)
-    written out as straight-line code (solvers/kernels/unroll.py); `rk_integrate` then
-    runs them unrolled, and any other tableau with rk.py's loops. On the generated fields
-    it takes ~1.1-1.2x less time per rhs call (bench/results/limit.txt, gen-unrolled vs
-    gen-loops) and compiles longer (one process at load 1: 27 s with dop853 unrolled,
-    37 s with dop853 and vern9, against 18 s for the loop kernel); the integrate layer
-    names the tableaux (integrator.GENERATED_UNROLLED).
-    One numba compile per structure (and unrolled set), then numba's on-disk cache."""
-    from solvers.kernels import unroll
-
+    signature. One numba compile per structure (~32 s for the Chaplygin ball on 2 cores),
+    then numba's on-disk cache."""
     field_mod = generated(model, p, fold)
-    names = (unrolled,) if isinstance(unrolled, str) else tuple(sorted(unrolled))
-    tabs = unroll.baked_tableaux(names)
-    stamp = unroll.tableaux_stamp(tabs) if tabs else "loops"
 
     def source():
         src = (Path(__file__).resolve().parent / "rk.py").read_text()
         old = "from solvers.kernels.fields import rhs\n"
         assert old in src
-        src = src.replace(old, f"from {field_mod.__name__} import rhs\n")
-        return unroll.integrator_source(src, tabs, L.STATE_DIM[model])
+        return src.replace(old, f"from {field_mod.__name__} import rhs\n")
 
-    return cached_module(f"rk{field_mod.__name__[3:]}_{stamp}", source)
-
-
-def unrolled_general(unrolled):
-    """rk.py on the general field (`fields.rhs`, every model) with the named tableaux
-    unrolled: one compile serves the tests' comparison of the unrolled steppers with the
-    loops on all cases (the state dimension stays a run-time value)."""
-    from solvers.kernels import unroll
-
-    names = (unrolled,) if isinstance(unrolled, str) else tuple(sorted(unrolled))
-    tabs = unroll.baked_tableaux(names)
-    name = f"rkgeneral_{unroll.tableaux_stamp(tabs)}_{_sources_stamp()}"
-    rk_src = Path(__file__).resolve().parent / "rk.py"
-    return cached_module(name, lambda: unroll.integrator_source(rk_src.read_text(), tabs))
+    return cached_module(f"rk{field_mod.__name__[3:]}_loops", source)
 
 
 # --- heyoka ------------------------------------------------------------------------------------

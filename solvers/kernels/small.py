@@ -3,7 +3,7 @@ run needs (issue 19).
 
 The generated integrator (generate.generated_integrator) is the general rk.py kernel
 specialised per structure: sections, projection, Henon steps, compensated sums, clipped
-and fixed steps, all compiled for every structure (~37 s each on one core). A plain run
+and fixed steps, all compiled for every structure (~32 s each on 2 cores). A plain run
 (samples at the output times by dense output, the step budget, the statuses) needs none
 of that. Here that run is written out as straight-line numba code for one structure and
 one tableau:
@@ -13,17 +13,17 @@ one tableau:
     order, as the array field `field(p, y, dydt)`), as a function of scalars returning
     (status, d0, d1, ...), inlined by LLVM at each stage (forceinline);
   - the tableau's coefficients are literals with the zero terms dropped, every sum in
-    rk.py's order (as unroll.py writes them).
+    rk.py's order (the order of its tableau loops).
 The step is rk.py's step, line for line, for the plain case (no section, no projection,
 not fixed, dense output on; compensated sums are a run-time flag): Hairer's starting step,
 the stages (a stage with a singular status rejects the step and shrinks h by 4), the error
 norm (Hairer's DOP853 norm for dop853), the PI controller and its clamps, the FSAL stage,
 the extra dense stages only for steps that hold a sample, Clenshaw on the Chebyshev
 weights, the step budget (max_steps attempts) and the statuses. So a small kernel gives
-the same states, bit for bit, as the generated integrator on the same field with the same
-tableau unrolled (tests/test_small.py checks it, and agreement with the general kernel on
-every case and the extremes): which compiled form runs a plain run does not change its
-answer.
+the same states, bit for bit, as the generated integrator (rk.py's loops on the same
+field; tests/test_generated_integrator.py checks it, tests/test_small.py the agreement with
+the general kernel on every case and the extremes): which compiled form runs a plain run
+does not change its answer.
 
 What it costs: numba's front end, not LLVM (bench/warmup_cost.py passes: of the first call
 of plane/chaplygin-ball's dop853 kernel, type inference, lowering and SSA reconstruction
@@ -256,7 +256,7 @@ def kernel_source(model: int, p, method: str, tab) -> str:
         o += [f"{i2}dd{m} = {c}",
               f"{i2}if compensated:", f"{i2}    dd{m} += cm{m}",
               f"{i2}yn{m} = y_{m} + dd{m}", f"{i2}cn{m} = dd{m} - (yn{m} - y_{m})"]
-    # 3. the error norm (rk._error; unroll._error_body), each sum one expression in rk.py's
+    # 3. the error norm (rk._error), each sum one expression in rk.py's
     # order (0.0 + t_0 + t_1 + ...)
     for m in R:
         names = [f"k{j}_{m}" for j in range(E.shape[1])]
@@ -330,22 +330,22 @@ def kernel_source(model: int, p, method: str, tab) -> str:
 def module_name(model: int, p, method: str) -> str:
     """small_<structure and sources hash>_<tableau hash>: any edit of solvers/kernels or of
     the tableau regenerates it."""
-    from solvers.kernels import unroll
+    from solvers.kernels import baked
 
-    tabs = unroll.baked_tableaux((method,))
+    tabs = baked.baked_tableaux((method,))
     return (f"small_{generate.module_name(model, p)[4:]}_{method}_"
-            f"{unroll.tableaux_stamp(tabs)[:10]}_v{SMALL_VERSION}")
+            f"{baked.tableaux_stamp(tabs)[:10]}_v{SMALL_VERSION}")
 
 
 def small_kernel(model: int, p, method: str = "dop853"):
     """The small kernel module of the case's structure and the tableau `method` (one of
-    those the integrate layer provides: unroll.set_provider), written on first use and
+    those the integrate layer provides: baked.set_provider), written on first use and
     compiled on its first call (then numba's on-disk cache)."""
-    from solvers.kernels import unroll
+    from solvers.kernels import baked
 
     if model not in generate.GENERATED_MODELS:
         raise ValueError(f"no small kernel for model {model}")
-    tab = unroll.baked_tableaux((method,))[method]
+    tab = baked.baked_tableaux((method,))[method]
     ops_module()      # imported by name by the kernel's text, which may be on disk already
     return generate.cached_module(module_name(model, p, method),
                                   lambda: kernel_source(model, p, method, tab))
