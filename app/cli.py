@@ -78,12 +78,15 @@ def _check_timeout(seconds: float | None) -> None:
 
 
 @contextlib.contextmanager
-def _timeout(seconds: float | None, graceful: bool = False):
+def _timeout(seconds: float | None, graceful: threading.Event | None = None):
     """Stop the whole process when `seconds` have passed: the compiled kernels run without
     returning to Python, so a watchdog thread ends the process (exit 3) from outside.
-    `graceful` (sweep): first interrupt the main thread, so that the dask cluster is shut
-    down by its own `finally` (a process that exits under it leaves its semaphores to the
-    resource tracker, which complains on stderr); the hard exit follows 15 s later."""
+    `graceful` (sweep): set once the dask cluster is up; then first interrupt the main
+    thread, so that the cluster is shut down by its own `finally` (a process that exits
+    under it leaves its semaphores to the resource tracker, which complains on stderr),
+    but not before the event (an interrupt inside LocalCluster's start leaves its half-made
+    cluster to the tracker: seen once under load with --timeout 2); the hard exit follows
+    15 s after the interrupt, or 15 s after the timeout if the cluster never came up."""
     if seconds is None:
         yield
         return
@@ -94,13 +97,15 @@ def _timeout(seconds: float | None, graceful: bool = False):
     def watch():
         if done.wait(seconds):
             return
-        if graceful:
+        if graceful is not None and graceful.wait(15.0) and not done.is_set():
             fired.set()
             import _thread
 
             _thread.interrupt_main()
             if done.wait(15.0):
                 return
+        if done.is_set():
+            return
         sys.stdout.flush()
         sys.stderr.write(f"error: {message}\n")
         sys.stderr.flush()
@@ -468,6 +473,7 @@ def serve(
     host, port = host or s.host, port or s.port
     typer.echo(f"rolling-hierarchy explorer on http://{host}:{port}/  (API docs: /docs)")
     from app.core.server import run  # uvicorn with the bounds of issue 21
+    from app.main import STOP_SIGNALS_SEEN
 
     try:
         run(host, port, log_level=s.log_level)
@@ -476,10 +482,18 @@ def serve(
         # workers and the warm-up (app/main.py), nothing is left to clean up, and the
         # interpreter's own teardown (numba's and LLVM's compiled code) took 2-4 s more
         # here (issue 19: stop within 1-2 s). SIGTERM ends the process the same way.
-        sys.stderr.write("error: interrupted\n")
-        sys.stderr.flush()
-        sys.stdout.flush()
-        os._exit(130)
+        _interrupted(130)
+    if STOP_SIGNALS_SEEN:
+        # stopped by a signal whose re-raise did nothing: the process started with SIGINT
+        # ignored (a background job of a shell), which uvicorn restores before re-raising
+        _interrupted(128 + STOP_SIGNALS_SEEN[0])
+
+
+def _interrupted(code: int):
+    sys.stderr.write("error: interrupted\n")
+    sys.stderr.flush()
+    sys.stdout.flush()
+    os._exit(code)
 
 
 def _parse_section(text: str) -> float:
@@ -614,13 +628,15 @@ def sweep(
                                            {"workers": workers, "scheduler": scheduler}.items()
                                            if v is not None})
         validate(seeded(tasks, seed))     # bad input: one line, before a bar is drawn
-        with _timeout(timeout, graceful=True), Progress(
+        up = threading.Event()
+        with _timeout(timeout, graceful=up), Progress(
                 "[progress.description]{task.description}", BarColumn(),
                 MofNCompleteColumn(), TimeElapsedColumn(),
                 console=_stderr_console(), transient=True) as bar:
             task = bar.add_task("maps", total=len(tasks))
             res = run(tasks, seed=seed, settings=settings,
-                      progress=lambda done, total: bar.update(task, completed=done))
+                      progress=lambda done, total: (up.set(),
+                                                    bar.update(task, completed=done)))
     except (InputError, ValueError) as e:
         _fail(str(e))
     if as_json:

@@ -102,6 +102,10 @@ def _stop_now(pool: WorkerPool, kernels: KernelWarmup) -> None:
 
 
 STOP_SIGNALS = (signal.SIGINT, signal.SIGTERM)
+# the stop signals this process received while serving (app/cli.py's serve exits 128 + the
+# first one: uvicorn's re-raise of it does nothing where the process was started with
+# SIGINT ignored, as a shell's background job is, and the server then exited 0)
+STOP_SIGNALS_SEEN: list[int] = []
 
 
 def _on_stop_signal(stop: Callable[[], None]) -> Callable[[], None]:
@@ -116,6 +120,7 @@ def _on_stop_signal(stop: Callable[[], None]) -> Callable[[], None]:
 
     def make(prev):
         def handler(signum, frame):
+            STOP_SIGNALS_SEEN.append(signum)
             if callable(prev):
                 loop.call_soon_threadsafe(stop)
                 prev(signum, frame)

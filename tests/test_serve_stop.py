@@ -64,9 +64,10 @@ def _alive(pids: set[int]) -> set[int]:
     return {p for p in pids if p in procs and procs[p][2] != "Z"}
 
 
-def _serve(tmp_path, src: Path | None):
+def _serve(tmp_path, src: Path | None, extra: dict | None = None, preexec_fn=None):
     """`rolling serve` on a free port with empty kernel caches (src: a fresh copy of the
-    sources, whose numba caches are empty too; None: this checkout's, warm)."""
+    sources, whose numba caches are empty too; None: this checkout's, warm); extra: more
+    environment; preexec_fn: run in the child before the server starts."""
     port = free_port()
     root = src or Path(__file__).resolve().parents[1]
     env = {**os.environ, "PYTHONPATH": str(root),
@@ -78,10 +79,12 @@ def _serve(tmp_path, src: Path | None):
            "ROLLING_WARMUP_JOBS": "2"}      # compile processes, whatever the CPU count
     if src is not None:
         env["NUMBA_CACHE_DIR"] = str(tmp_path / "numba")
+    env.update(extra or {})
     log = open(tmp_path / "serve.log", "wb")     # closed by _stop
     server = subprocess.Popen(
         [sys.executable, "-c", "from app.cli import main; main()", "serve",
-         "--port", str(port)], cwd=root, env=env, stdout=log, stderr=log)
+         "--port", str(port)], cwd=root, env=env, stdout=log, stderr=log,
+        preexec_fn=preexec_fn)
     server.log = log
     return server, f"http://127.0.0.1:{port}"
 
@@ -171,3 +174,31 @@ def test_ctrl_c_while_the_warm_up_compiles_stops_in_seconds(tmp_path):
     assert server.returncode == 130, text[-3000:]
     assert took < BOUND_S, (took, text[-3000:])
     assert not left, (left, text[-3000:])
+
+
+def test_ctrl_c_exits_130_when_started_with_sigint_ignored(tmp_path):
+    """A shell's background job starts with SIGINT ignored; uvicorn still stops on it, then
+    restores that disposition before re-raising the signal, which then did nothing: the
+    server exited 0 (seen once in a full run, test above). It exits 130, as on a terminal."""
+    server, url = _serve(tmp_path, None, extra={"ROLLING_WARM_KERNELS": "false"},
+                         preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_IGN))
+    try:
+        deadline = time.monotonic() + 120
+        while True:
+            assert server.poll() is None, (tmp_path / "serve.log").read_text()[-2000:]
+            try:
+                if httpx.get(f"{url}/api/health", timeout=2.0).status_code == 200:
+                    break
+            except httpx.TransportError:
+                pass
+            assert time.monotonic() < deadline
+            time.sleep(0.1)
+        server.send_signal(signal.SIGINT)
+        server.wait(60)
+    finally:
+        if server.poll() is None:
+            server.kill()
+        server.log.close()
+    text = (tmp_path / "serve.log").read_text()
+    assert server.returncode == 130, text[-3000:]
+    assert "error: interrupted" in text

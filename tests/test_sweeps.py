@@ -42,7 +42,7 @@ def test_local_cluster_results_match_serial_and_do_not_depend_on_workers():
     one = sweep(tasks(), seed=11, settings=DaskSettings(workers=1, **THREADS))
     assert strip(two.results) == strip(one.results) == strip(serial)
     assert [r["label"] for r in two.results] == ["lambda=0", "lambda=0.5", "lambda=1"]
-    assert calls == [(1, 3), (2, 3), (3, 3)]
+    assert calls == [(0, 3), (1, 3), (2, 3), (3, 3)]     # 0: the cluster is up
     assert two.workers == 2 and "LocalCluster" in two.scheduler
     for r in two.results:
         for t in r["trajectories"]:

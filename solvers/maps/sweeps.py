@@ -17,7 +17,8 @@ Where it runs (a setting, environment variables ROLLING_DASK_*):
     `dask worker tcp://head:8786 --nthreads 1` on every node of a cluster (each node needs
     this package installed: `pip install -e .` and its numba cache warmed with
     `python -m solvers.warmup`), or by dask-jobqueue / dask-kubernetes.
-Progress: `progress(done, total)` after every finished task (the CLI draws a bar).
+Progress: `progress(done, total)` with done = 0 once the cluster is up, then after every
+finished task (the CLI draws a bar; its --timeout interrupts only from the first call on).
 """
 
 from __future__ import annotations
@@ -178,6 +179,8 @@ def sweep(tasks: Sequence[MapTask], *, seed: int = 0, settings: DaskSettings | N
     if own:
         client, cluster = _client(settings)
     try:
+        if progress is not None:    # 0 done: the cluster is up (the CLI's --timeout may
+            progress(0, len(tasks))  # interrupt from here on: this `finally` closes it)
         n_workers = len(client.scheduler_info()["workers"])
         t0 = time.perf_counter()
         client.run(warm)      # every worker loads the kernels before the clock starts
