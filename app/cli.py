@@ -8,6 +8,7 @@ strict JSON: a non-finite number is written as null (as the API does).
 
 import contextlib
 import os
+import signal
 import sys
 import threading
 from typing import Annotated
@@ -77,6 +78,17 @@ def _check_timeout(seconds: float | None) -> None:
               f"{MAX_TIMEOUT_S:g} (a week)")
 
 
+class _TimedOut(BaseException):
+    """Raised in the main thread by --timeout's watchdog (graceful mode), through SIGUSR1:
+    not SIGINT, which a process started as a shell's background job ignores, and then
+    `_thread.interrupt_main()` does nothing (the sweep then ran its 15 s grace and exited
+    hard, leaving the cluster's semaphores to the resource tracker's warning)."""
+
+
+def _raise_timed_out(signum, frame):
+    raise _TimedOut
+
+
 @contextlib.contextmanager
 def _timeout(seconds: float | None, graceful: threading.Event | None = None):
     """Stop the whole process when `seconds` have passed: the compiled kernels run without
@@ -84,24 +96,24 @@ def _timeout(seconds: float | None, graceful: threading.Event | None = None):
     `graceful` (sweep): set once the dask cluster is up; then first interrupt the main
     thread, so that the cluster is shut down by its own `finally` (a process that exits
     under it leaves its semaphores to the resource tracker, which complains on stderr),
-    but not before the event (an interrupt inside LocalCluster's start leaves its half-made
-    cluster to the tracker: seen once under load with --timeout 2); the hard exit follows
-    15 s after the interrupt, or 15 s after the timeout if the cluster never came up."""
+    but not before the event (an interrupt inside LocalCluster's start would leave its
+    half-made cluster to the tracker); the interrupt is SIGUSR1 (_TimedOut); the hard exit
+    follows 15 s after it, or 15 s after the timeout if the cluster never came up."""
     if seconds is None:
         yield
         return
     _check_timeout(seconds)
-    done, fired = threading.Event(), threading.Event()
+    done = threading.Event()
     message = f"stopped by --timeout after {seconds:g} s"
+    old = signal.signal(signal.SIGUSR1, _raise_timed_out) if graceful is not None else None
 
     def watch():
         if done.wait(seconds):
             return
         if graceful is not None and graceful.wait(15.0) and not done.is_set():
-            fired.set()
             import _thread
 
-            _thread.interrupt_main()
+            _thread.interrupt_main(signal.SIGUSR1)
             if done.wait(15.0):
                 return
         if done.is_set():
@@ -114,13 +126,13 @@ def _timeout(seconds: float | None, graceful: threading.Event | None = None):
     threading.Thread(target=watch, daemon=True).start()
     try:
         yield
-    except KeyboardInterrupt:
-        if not fired.is_set():
-            raise
+    except _TimedOut:
         done.set()
         _fail(message, EXIT_SINGULAR)
     finally:
         done.set()
+        if old is not None:
+            signal.signal(signal.SIGUSR1, old)
 
 
 def _parse_sets(items: list[str]) -> dict[str, str]:
