@@ -40,7 +40,10 @@ def crossing_spread(P, p, y0, T=T_LONG):
     """(spread, crossings) of A = (M, gamma), B = M3 at the upward crossings of the median
     level of gamma3 along a run of the full field with parameters p from y0; None if the
     run is singular, comes near a pole or crosses too rarely."""
-    pre = integrate(P.model.model, p, y0, np.linspace(0.0, T, N_PRE), rtol=1e-12, atol=1e-12)
+    # generated=False: the general field, as the section run below (a drawn structure's
+    # small kernel would cost ~15 s of compile: solvers/verify/checks/ode.py _good_run)
+    pre = integrate(P.model.model, p, y0, np.linspace(0.0, T, N_PRE), rtol=1e-12, atol=1e-12,
+                    generated=False)
     if not pre.success or len(pre.t) < N_PRE or np.max(np.abs(pre.y[:, 5])) > POLE:
         return None
     level = float(np.median(pre.y[:, 5]))
