@@ -12,7 +12,7 @@ import subprocess
 import sys
 import tempfile
 import time
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from pathlib import Path
 
 import httpx
@@ -65,21 +65,13 @@ def live_server(timeout: float = 60.0, plain_uvicorn: bool = False,
          "--port", str(port), "--log-level", "warning"],
         env=env, stdout=subprocess.DEVNULL, stderr=log, cwd=cwd)
     url = f"http://127.0.0.1:{port}"
+
+    def log_text() -> str:
+        log.seek(0)
+        return log.read().decode()
+
     try:
-        deadline = time.monotonic() + timeout
-        while True:
-            if proc.poll() is not None:
-                log.seek(0)
-                raise RuntimeError(f"uvicorn exited with {proc.returncode}: "
-                                   f"{log.read().decode()[-2000:]}")
-            try:
-                if httpx.get(f"{url}/api/health", timeout=1.0).status_code == 200:
-                    break
-            except httpx.TransportError:
-                pass
-            if time.monotonic() > deadline:
-                raise RuntimeError("uvicorn did not answer /api/health in time")
-            time.sleep(0.1)
+        wait_answering(url, proc, timeout, log_text)
         yield url
     finally:
         proc.terminate()
@@ -89,6 +81,24 @@ def live_server(timeout: float = 60.0, plain_uvicorn: bool = False,
             proc.kill()
             proc.wait(5)
         log.close()
+
+
+def wait_answering(url: str, proc: subprocess.Popen, timeout: float,
+                   log_text: Callable[[], str] = lambda: "") -> None:
+    """Until the server process `proc` answers GET /api/health with 200; RuntimeError (with
+    the end of log_text()) if it exits first or `timeout` seconds pass."""
+    deadline = time.monotonic() + timeout
+    while True:
+        if proc.poll() is not None:
+            raise RuntimeError(f"uvicorn exited with {proc.returncode}: {log_text()[-2000:]}")
+        try:
+            if httpx.get(f"{url}/api/health", timeout=1.0).status_code == 200:
+                return
+        except httpx.TransportError:
+            pass
+        if time.monotonic() > deadline:
+            raise RuntimeError("uvicorn did not answer /api/health in time")
+        time.sleep(0.1)
 
 
 def wait_idle(url: str, timeout: float = 30.0) -> dict:

@@ -23,7 +23,7 @@ from pathlib import Path
 import httpx
 import pytest
 
-from app.testing import free_port
+from app.testing import free_port, wait_answering
 
 pytestmark = pytest.mark.slow
 
@@ -183,16 +183,7 @@ def test_ctrl_c_exits_130_when_started_with_sigint_ignored(tmp_path):
     server, url = _serve(tmp_path, None, extra={"ROLLING_WARM_KERNELS": "false"},
                          preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_IGN))
     try:
-        deadline = time.monotonic() + 120
-        while True:
-            assert server.poll() is None, (tmp_path / "serve.log").read_text()[-2000:]
-            try:
-                if httpx.get(f"{url}/api/health", timeout=2.0).status_code == 200:
-                    break
-            except httpx.TransportError:
-                pass
-            assert time.monotonic() < deadline
-            time.sleep(0.1)
+        wait_answering(url, server, 120, (tmp_path / "serve.log").read_text)
         server.send_signal(signal.SIGINT)
         server.wait(60)
     finally:
