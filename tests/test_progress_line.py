@@ -7,6 +7,7 @@ import logging
 import os
 import pty
 import select
+import time
 
 from app.services.kernel_warmup import KernelWarmup, bar
 from app.services.progress_line import ERASE, ProgressLine
@@ -97,8 +98,14 @@ def test_a_real_terminal_is_detected_and_gets_the_redraw():
         line.update("compiling kernels: 1 of 2 parts")
         line.close()
         stream.close()
-        ready, _, _ = select.select([master], [], [], 5.0)     # never block the suite
-        raw = os.read(master, 4096).decode() if ready else ""
+        # until the closing newline has come (one read may return before it: seen once in
+        # a full run) or 5 s pass: never block the suite
+        raw, deadline = "", time.monotonic() + 5.0
+        while not raw.endswith("\n") and time.monotonic() < deadline:
+            ready, _, _ = select.select([master], [], [], max(0.0, deadline - time.monotonic()))
+            if not ready:
+                break
+            raw += os.read(master, 4096).decode()
     finally:
         os.close(master)
         os.close(slave)
