@@ -647,13 +647,21 @@ def many_starts(quick=False, only=None):
              "  heyoka = heyoka's Taylor integrator on the lean generated equations",
              f"load average at the start: {load0[0]:.2f} {load0[1]:.2f} {load0[2]:.2f} "
              f"({os.cpu_count()} cores)"]
-    out = {"quick": quick, "starts": n_starts, "load_start": load0, "cases": {}}
+    out = {"quick": quick, "starts": n_starts, "load_start": load0, "cases": {},
+           "date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())}
     summary = []
+    kept = _kept_cases(quick, only)
     for wp in CASES:
-        if only and wp.id not in only:
-            continue
         c = registry()[wp.id]
         prm = {**c.example, **wp.overrides}
+        if only and wp.id not in only:
+            # the same starts as a whole run: draw this case's starts all the same; its
+            # rows are the last whole run's (limit_starts.json), if any
+            random_starts(wp.id, prm, n_starts, rng)
+            if wp.id in kept:
+                out["cases"][wp.id] = kept[wp.id]
+                summary += _summary_of(wp.id, kept[wp.id])
+            continue
         model = build(wp.id, prm)
         p = np.asarray(model.p, dtype=float)
         T = min(wp.t_end, 200.0) if quick else wp.t_end
@@ -738,9 +746,28 @@ def many_starts(quick=False, only=None):
                         "vs_heyoka_cpu": ratios["heyoka_cpu"]}
             summary.append((wp.id, key, limit_kind, ratios, len(rows)))
         out["cases"][wp.id] = {"T": T, "params": prm, "limit_field": limit_kind,
-                               "rows": rows, "ratios": res}
+                               "rows": rows, "ratios": res, "measured": out["date"]}
         print(f"{wp.id} done (load {os.getloadavg()[0]:.2f})", flush=True)
         _write_starts(quick, lines, summary, out)
+    _write_starts(quick, lines, summary, out)   # and the kept cases after the last one run
+
+
+def _kept_cases(quick, only) -> dict:
+    """--cases: the other cases' results of the stored run, to write back beside the new."""
+    path = OUT / ("limit_starts.quick.json" if quick else "limit_starts.json")
+    if not only or not path.exists():
+        return {}
+    stored = json.loads(path.read_text())
+    before = stored.get("date", "2026-11-25 (the whole run of commit 3523ecd)")
+    return {cid: {**c, "measured": c.get("measured", before)}
+            for cid, c in stored["cases"].items()}
+
+
+def _summary_of(cid, case) -> list:
+    return [(cid, key, case["limit_field"],
+             {"limit": r["vs_limit"], "heyoka": r["vs_heyoka"],
+              "limit_cpu": r["vs_limit_cpu"], "heyoka_cpu": r["vs_heyoka_cpu"]},
+             len(case["rows"])) for key, r in case["ratios"].items()]
 
 
 def _write_starts(quick, head, summary, out):
@@ -764,6 +791,11 @@ def _write_starts(quick, head, summary, out):
         lines.append("")
     load1 = os.getloadavg()
     ts = ", ".join(f"{k} {v['T']:g}" for k, v in out["cases"].items())
+    dates = sorted({v.get("measured", "?") for v in out["cases"].values()})
+    if len(dates) > 1:   # a --cases run: which rows were measured when
+        for d in dates:
+            lines.append(f"measured {d}: " + ", ".join(
+                k for k, v in out["cases"].items() if v.get("measured", "?") == d))
     lines.append(f"A start counts where both fronts reach the error (else it is outside a "
                  f"front and left out). T: {ts}"
                  f"\nload average at the end: {load1[0]:.2f} {load1[1]:.2f} {load1[2]:.2f}")

@@ -141,19 +141,23 @@ def test_zero_terms_are_dropped():
 def test_ball_needs_no_hessian_and_no_solve():
     """A ball's support c |gamma| (+ (a, gamma)) has J = lam (E - gamma gamma^T / |gamma|^2):
     the generator writes J dgamma/dt = lam dgamma/dt and solves (E - k J) dgamma/dt =
-    gamma x omega by one division. The centred Chaplygin ball on the plane takes no square
-    root and two divisions (1/|gamma|^2 and 1/det I_Q); in a sphere one square root (lam)
-    and one division more (1/(1 - k lam)), where the general 3x3 solve with refinement
-    took a dozen; with an offset centre (the unbalanced ball) r = lam gamma + a needs lam."""
+    gamma x omega by one division. The centred Chaplygin ball: I_Q = D - (m c^2 /
+    |gamma|^2) gamma gamma^T, D = diag(I_i + m c^2), solved by Sherman-Morrison: on the
+    plane no square root and five divisions, two that depend on the state (1/|gamma|^2
+    and 1/q) and three on the parameters only (1/D_i, the same at every stage); in a
+    sphere one square root (lam) and one division more (1/(1 - k lam)), where the
+    general 3x3 solve with refinement took a dozen; with an offset centre (the
+    unbalanced ball) r = lam gamma + a needs lam."""
     def src(case, **kw):
         c = registry()[case]
         m = build(case, {**c.example, **kw})
         return numba_source(m.model, m.p).split("def rhs")[0]
 
     plane = src("plane/chaplygin-ball")
-    assert "np.sqrt" not in plane and plane.count("1.0/(") == 2
+    assert "np.sqrt" not in plane and plane.count("1.0/(") == 5
+    assert plane.count("(I1 + (m*(c*c)))") == 1    # D_1, once
     sphere = src("sphere/chaplygin-ball")
-    assert sphere.count("np.sqrt") == 1 and sphere.count("1.0/(") == 3
+    assert sphere.count("np.sqrt") == 1 and sphere.count("1.0/(") == 6
     assert src("plane/unbalanced-ball").count("np.sqrt") == 1
     # the disk: the flat-disk check and gravity's d/s; none on the way to omega
     disk = src("plane/round-disk")

@@ -47,10 +47,18 @@ def test_same_bits_as_the_generated_integrator():
     c = registry()["plane/chaplygin-ball"]
     m = build(c.id, c.example)
     t = np.linspace(0.0, 50.0, 101)
-    for method, comp, budget in (("dop853", False, 10**7), ("vern9", False, 10**7),
-                                 ("dop853", True, 10**7), ("vern9", True, 10**7),
-                                 ("dop853", False, 8)):
+    control = integrator.StepControl(h0=0.01, h_max=0.5)
+    atol_v = [1e-12, 1e-12, 1e-12, 1e-10, 1e-10, 1e-10]
+    for method, comp, budget, more in (
+            ("dop853", False, 10**7, {}), ("vern9", False, 10**7, {}),
+            ("dop853", True, 10**7, {}), ("vern9", True, 10**7, {}),
+            ("dop853", False, 8, {}),
+            # a given first step and a maximal step, a vector atol (tests/test_small.py)
+            ("vern9", False, 10**7, {"control": control}),
+            ("dop853", False, 10**7, {"control": control}),
+            ("vern9", False, 10**7, {"atol": atol_v})):
         kw = dict(method=method, rtol=1e-10, atol=1e-12, compensated=comp, max_steps=budget)
+        kw.update(more)
         big = integrate(m.model, m.p, c.state, t, generated=True, kernel="rk", **kw)
         r = integrate(m.model, m.p, c.state, t, **kw)
         assert (big.kernel, big.vector_field) == ("rk", "generated")

@@ -22,7 +22,9 @@ What is derived here, not copied from fields.py:
             (E - k J) dgamma/dt = gamma x omega is dgamma/dt = gamma x omega / (1 - k lam)
             (det(E - k J) = (1 - k lam)^2): no Hessian, no solve; gamma x dU loses r's
             part lam gamma. A centred ball (a = 0) needs no square root on the way to
-            omega: m (r^2 E - r r^T) = (m c^2 / |gamma|^2) (|gamma|^2 E - gamma gamma^T).
+            omega: m (r^2 E - r r^T) = (m c^2 / |gamma|^2) (|gamma|^2 E - gamma gamma^T),
+            so I_Q = diag(I_i + m c^2) - (m c^2 / |gamma|^2) gamma gamma^T, a rank-one
+            change of a constant diagonal: omega by Sherman-Morrison, not a 3x3 solve.
             All of it holds for any gamma (complex ones too): |gamma| = 1 is not assumed;
   a disk    (h = d |(g1, g2)|, centred, on the plane): r = (d/s) rho, rho = (g1, g2, 0),
             J = (d/s^3) t t^T with the edge's tangent t = (-g2, g1, 0); as for the ball,
@@ -216,21 +218,38 @@ def equations(model: int, p, fold: bool = False):
               Iv[2] + m * P[L.DISK_D] ** 2)
     elif model == L.MODEL_FULL and centred:
         # r = lam gamma: m (r^2 E - r r^T) = s (|gamma|^2 E - gamma gamma^T), s = m lam^2 =
-        # m c^2 / |gamma|^2, no square root on the way to omega; the diagonal as
-        # s (g_j^2 + g_k^2), so gamma stays its null vector to round-off (a tiny I, a
-        # heavy ball: omega's component along gamma rests on it)
+        # m c^2 / |gamma|^2, and s |gamma|^2 = m c^2, so I_Q = D - s gamma gamma^T with the
+        # constant D = diag(I_i + m c^2): a rank-one change of a diagonal, solved by
+        # Sherman-Morrison instead of a 3x3 adjugate (issue 19: the plane's Chaplygin ball
+        # was 1.46x the scalar limit, whose field has this form). Exact for any gamma
+        # (complex ones too), no square root:
+        #   omega = u + (m c^2 (gamma, u) / q) v,   u = D^-1 M,   v = D^-1 gamma,
+        #   q = sum_i I_i gamma_i v_i = |gamma|^2 (1 - s (gamma, v)),
+        # det I_Q = D_1 D_2 D_3 q / |gamma|^2. q is a sum of terms of one sign, not
+        # 1 - (nearly 1): a tiny I under a heavy ball, where omega's component along
+        # gamma rests on q, keeps its digits
         sg = prog.let(m * P[L.BALL_C] ** 2 * ig)
-        mr = [prog.let(sg * gi) for gi in g]
-        sq = [prog.let(gi * gi) for gi in g]
-        IQ = (Iv[0] + sg * (sq[1] + sq[2]), -mr[0] * g[1], -mr[0] * g[2],
-              Iv[1] + sg * (sq[0] + sq[2]), -mr[1] * g[2], Iv[2] + sg * (sq[0] + sq[1]))
+        mc2 = m * P[L.BALL_C] ** 2
+        dinv = [prog.let(1 / prog.let(Iv[i] + mc2)) for i in range(3)]
+        uD = [prog.let(dinv[i] * M[i]) for i in range(3)]
+        vD = [prog.let(dinv[i] * g[i]) for i in range(3)]
+        q = prog.let(Iv[0] * g[0] * vD[0] + Iv[1] * g[1] * vD[1] + Iv[2] * g[2] * vD[2])
+        # times 1 / q, not divided by q: a quotient by a complex number (the checks'
+        # complex steps) is not the real quotient even for a zero imaginary part
+        # (NumPy's complex division scales by a reciprocal), a reciprocal is
+        coef = prog.let(mc2 * (g[0] * uD[0] + g[1] * uD[1] + g[2] * uD[2])
+                        * prog.let(1 / q))
+        w = [prog.let(uD[i] + coef * vD[i]) for i in range(3)]
+        checks["iq"] = q
+        IQ = None
         r = g
     else:
         mr = [prog.let(m * ri) for ri in r]
         rr = prog.let(mr[0] * r[0] + mr[1] * r[1] + mr[2] * r[2])
         IQ = (Iv[0] + rr - mr[0] * r[0], -mr[0] * r[1], -mr[0] * r[2],
               Iv[1] + rr - mr[1] * r[1], -mr[1] * r[2], Iv[2] + rr - mr[2] * r[2])
-    checks["iq"], w = _solve_sym(prog, [prog.let(a) for a in IQ], M)   # eq1.6
+    if IQ is not None:
+        checks["iq"], w = _solve_sym(prog, [prog.let(a) for a in IQ], M)   # eq1.6
     a = [M[i] + S[i] for i in range(3)]
     if model == L.MODEL_FLAT:
         ik = prog.let(1 / k)
@@ -267,7 +286,10 @@ def equations(model: int, p, fold: bool = False):
     if not sphere and not disk:
         rd = [prog.let(J[i][0] * gd[0] + J[i][1] * gd[1] + J[i][2] * gd[2])
               for i in range(3)]
-    wr = [prog.let(e) for e in _cross(w, r)]
+    if sphere and centred:   # r = gamma: omega x r = -(gamma x omega) = -u, bit for bit
+        wr = [-ui for ui in u]
+    else:
+        wr = [prog.let(e) for e in _cross(w, r)]
     mrd = 1 if (sphere and centred) or disk else m
     Md = [x + mrd * y for x, y in zip(_cross(a, w), _cross(rd, wr), strict=True)]
     mg, eps = m * P[L.GRAV], P[L.BRUN]
