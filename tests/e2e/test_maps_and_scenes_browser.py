@@ -7,10 +7,20 @@ from playwright.sync_api import expect
 
 def test_paper_figures_and_a_computed_map(page, server, artifacts):
     page.goto(server + "/poincare")
+    # a figure is drawn when it comes near the screen (app/static/js/poincare.js): the
+    # first row on load, the second, below the fold of 1500x950, once scrolled to
+    expect(page.locator("[data-testid=plot-ris-1] .main-svg").first).to_be_attached(
+        timeout=60_000)
+    page.wait_for_load_state("networkidle")
+    page.wait_for_timeout(500)
+    assert page.locator("[data-testid=plot-ris-4]").get_attribute("data-drawn") is None
+    assert page.locator("[data-testid=plot-ris-4] .main-svg").count() == 0
     for key in ("ris-1", "ris-2", "ris-3", "ris-4"):
+        plot = page.locator(f"[data-testid=plot-{key}]")
+        plot.scroll_into_view_if_needed()
         # four 3D scatters of ~800 KB of points, rendered without a GPU: give them time
-        expect(page.locator(f"[data-testid=plot-{key}] .main-svg").first).to_be_attached(
-            timeout=60_000)
+        expect(plot.locator(".main-svg").first).to_be_attached(timeout=60_000)
+        expect(plot).to_have_attribute("data-drawn", "1", timeout=60_000)
     page.fill("input[name=trajectories]", "3")
     page.fill("input[name=points]", "60")
     page.click("#run")

@@ -62,8 +62,13 @@ def scenes(page, server, sid):
 
 def poincare(page, server):
     page.goto(server + "/poincare")
-    page.locator("[data-testid=plot-ris-4] .main-svg").first.wait_for(state="attached",
-                                                                      timeout=90_000)
+    # every figure, each drawn when it comes near the screen (app/static/js/poincare.js)
+    for key in ("ris-1", "ris-2", "ris-3", "ris-4"):
+        plot = page.locator(f"[data-testid=plot-{key}]")
+        plot.wait_for(state="attached", timeout=90_000)
+        plot.scroll_into_view_if_needed()
+        page.locator(f"[data-testid=plot-{key}][data-drawn='1']").wait_for(
+            state="attached", timeout=90_000)
     page.fill("input[name=trajectories]", "2")
     page.fill("input[name=points]", "40")
     page.click("#run")

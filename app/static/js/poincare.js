@@ -77,11 +77,36 @@ async function figures() {
       <div class="plot3d" data-testid="plot-${key}"></div>
       <ul class="notes">${f.notes.map((n) => `<li>${escapeHtml(cite(n))}</li>`).join("")}</ul>`;
     grid.appendChild(card);
-    const el = card.querySelector(".plot3d");
-    await window.Plotly.newPlot(el, traces(f.trajectories), layout3d(""), CONFIG);
-    window.Plotly.Plots.resize(el);
+    later(card.querySelector(".plot3d"), f);
   }
 }
+
+// A figure is drawn when it comes near the screen, not on load: each is a 3D scatter of
+// ~800 KB of points, and drawing the four one after the other kept a browser without a
+// GPU (WebGL in software) busy ~5 s after the page had loaded, for figures below the fold
+// (issue 19: the same page opened by a dozen browser tests). Printing draws them all.
+const PENDING = new Map();    // plot element -> its figure, not drawn yet
+const NEAR = "IntersectionObserver" in window ? new IntersectionObserver((entries) => {
+  for (const e of entries) if (e.isIntersecting) draw(e.target);
+}, { rootMargin: "100px 0px" }) : null;
+
+function later(el, f) {
+  PENDING.set(el, f);
+  if (NEAR) NEAR.observe(el);
+  else draw(el);
+}
+
+async function draw(el) {
+  const f = PENDING.get(el);
+  if (!f) return;
+  PENDING.delete(el);
+  if (NEAR) NEAR.unobserve(el);
+  await window.Plotly.newPlot(el, traces(f.trajectories), layout3d(""), CONFIG);
+  window.Plotly.Plots.resize(el);
+  el.dataset.drawn = "1";
+}
+
+window.addEventListener("beforeprint", () => { for (const el of [...PENDING.keys()]) draw(el); });
 
 function parseParams(text) {
   const out = {};
