@@ -744,12 +744,13 @@ def many_starts(quick=False, only=None):
             res[key] = {"vs_limit": ratios["limit"], "vs_heyoka": ratios["heyoka"],
                         "vs_limit_cpu": ratios["limit_cpu"],
                         "vs_heyoka_cpu": ratios["heyoka_cpu"]}
-            summary.append((wp.id, key, limit_kind, ratios, len(rows)))
         out["cases"][wp.id] = {"T": T, "params": prm, "limit_field": limit_kind,
                                "rows": rows, "ratios": res, "measured": out["date"]}
+        summary += _summary_of(wp.id, out["cases"][wp.id])
         print(f"{wp.id} done (load {os.getloadavg()[0]:.2f})", flush=True)
         _write_starts(quick, lines, summary, out)
-    _write_starts(quick, lines, summary, out)   # and the kept cases after the last one run
+    if only:     # the kept cases after the last one run
+        _write_starts(quick, lines, summary, out)
 
 
 def _kept_cases(quick, only) -> dict:
@@ -764,6 +765,7 @@ def _kept_cases(quick, only) -> dict:
 
 
 def _summary_of(cid, case) -> list:
+    """The table's rows of a case (one per matched error) from its stored results."""
     return [(cid, key, case["limit_field"],
              {"limit": r["vs_limit"], "heyoka": r["vs_heyoka"],
               "limit_cpu": r["vs_limit_cpu"], "heyoka_cpu": r["vs_heyoka_cpu"]},

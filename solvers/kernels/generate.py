@@ -228,8 +228,8 @@ def equations(model: int, p, fold: bool = False):
         # det I_Q = D_1 D_2 D_3 q / |gamma|^2. q is a sum of terms of one sign, not
         # 1 - (nearly 1): a tiny I under a heavy ball, where omega's component along
         # gamma rests on q, keeps its digits
-        sg = prog.let(m * P[L.BALL_C] ** 2 * ig)
         mc2 = m * P[L.BALL_C] ** 2
+        sg = prog.let(mc2 * ig)
         dinv = [prog.let(1 / prog.let(Iv[i] + mc2)) for i in range(3)]
         uD = [prog.let(dinv[i] * M[i]) for i in range(3)]
         vD = [prog.let(dinv[i] * g[i]) for i in range(3)]

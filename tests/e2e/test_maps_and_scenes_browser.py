@@ -4,6 +4,19 @@ scene opens from the home page and plays: tests/e2e/test_scenes_browser.py."""
 
 from playwright.sync_api import expect
 
+FIGURES = ("ris-1", "ris-2", "ris-3", "ris-4")
+
+
+def draw_every_figure(page, timeout=60_000):
+    """Scroll to each of the paper's figures on /poincare and wait until it is drawn: a
+    figure is drawn when it comes near the screen (app/static/js/poincare.js). Each is a
+    3D scatter of ~800 KB of points, rendered without a GPU: give them time."""
+    for key in FIGURES:
+        plot = page.locator(f"[data-testid=plot-{key}]")
+        plot.wait_for(state="attached", timeout=timeout)
+        plot.scroll_into_view_if_needed()
+        expect(plot).to_have_attribute("data-drawn", "1", timeout=timeout)
+
 
 def test_paper_figures_and_a_computed_map(page, server, artifacts):
     page.goto(server + "/poincare")
@@ -15,12 +28,9 @@ def test_paper_figures_and_a_computed_map(page, server, artifacts):
     page.wait_for_timeout(500)
     assert page.locator("[data-testid=plot-ris-4]").get_attribute("data-drawn") is None
     assert page.locator("[data-testid=plot-ris-4] .main-svg").count() == 0
-    for key in ("ris-1", "ris-2", "ris-3", "ris-4"):
-        plot = page.locator(f"[data-testid=plot-{key}]")
-        plot.scroll_into_view_if_needed()
-        # four 3D scatters of ~800 KB of points, rendered without a GPU: give them time
-        expect(plot.locator(".main-svg").first).to_be_attached(timeout=60_000)
-        expect(plot).to_have_attribute("data-drawn", "1", timeout=60_000)
+    draw_every_figure(page)
+    for key in FIGURES:
+        expect(page.locator(f"[data-testid=plot-{key}] .main-svg").first).to_be_attached()
     page.fill("input[name=trajectories]", "3")
     page.fill("input[name=points]", "60")
     page.click("#run")

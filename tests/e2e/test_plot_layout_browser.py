@@ -9,6 +9,7 @@ from functools import partial
 import pytest
 
 from catalogue.scenes import load_scenes
+from tests.e2e.test_maps_and_scenes_browser import draw_every_figure
 
 # the parts of a plot a reader must be able to read, by Plotly's class names
 BOXES = """(root) => [...document.querySelectorAll('.js-plotly-plot')].map((p) => {
@@ -62,13 +63,7 @@ def scenes(page, server, sid):
 
 def poincare(page, server):
     page.goto(server + "/poincare")
-    # every figure, each drawn when it comes near the screen (app/static/js/poincare.js)
-    for key in ("ris-1", "ris-2", "ris-3", "ris-4"):
-        plot = page.locator(f"[data-testid=plot-{key}]")
-        plot.wait_for(state="attached", timeout=90_000)
-        plot.scroll_into_view_if_needed()
-        page.locator(f"[data-testid=plot-{key}][data-drawn='1']").wait_for(
-            state="attached", timeout=90_000)
+    draw_every_figure(page, timeout=90_000)
     page.fill("input[name=trajectories]", "2")
     page.fill("input[name=points]", "40")
     page.click("#run")
