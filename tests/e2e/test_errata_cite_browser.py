@@ -6,41 +6,22 @@ claim. The server here verifies on start and finds every case's verdicts in a st
 filled from the session's full verification."""
 
 import re
-import time
 from datetime import date
 
 import httpx
 import pytest
 from playwright.sync_api import expect
 
-from app.services.jobs import _finite
-from app.services.verdicts import VerdictStore
-from app.testing import live_server
-from solvers.models.cases import table_case_ids
+from tests.e2e.servers import stored_verdicts_server
 
 SCREEN = 950
 
 
 @pytest.fixture(scope="module")
 def verified(catalogue_records, tmp_path_factory):
-    """A server that verifies on start and finds every case's verdicts in its store. The
-    store is filled from this session's full verification (the `catalogue_records`
-    fixture), as an earlier run of the server would have left it: computing them in the
-    server and serving them after a restart is what tests/e2e/test_checking_browser.py
-    and tests/test_verdict_store.py check."""
-    cache = tmp_path_factory.mktemp("verdicts")
-    store = VerdictStore(table_case_ids(), cache)
-    for cid in store.case_ids:
-        store.put(cid, [_finite(dict(r)) for r in catalogue_records if r["case"] == cid])
-    with live_server(max_steps=10**9, deadline_s=60.0, verify_on_start=True,
-                     use_verdict_cache=True, cache_dir=str(cache)) as url:
-        deadline = time.monotonic() + 1800
-        while True:
-            v = httpx.get(f"{url}/api/health", timeout=5).json()["verification"]
-            if v["state"] == "done":
-                break
-            assert time.monotonic() < deadline, f"verification did not finish: {v}"
-            time.sleep(0.5)
+    """A server that verifies on start and finds every case's verdicts in its store
+    (tests/e2e/conftest.py: stored_verdicts_server)."""
+    with stored_verdicts_server(catalogue_records, tmp_path_factory.mktemp("verdicts")) as url:
         yield url
 
 

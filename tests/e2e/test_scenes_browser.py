@@ -29,7 +29,13 @@ SCENES = load_scenes()
 # are not the white background. Returns that box and the plot's size, in px.
 BODY_BOX = """async (sel) => {
   const el = document.querySelector(sel);
-  document.getElementById('play').click();            // pause: no frame drawn meanwhile
+  // the first frame, paused (the scrubber's own input): the same pose on every run.
+  // Paused wherever the animation happened to be, the spinning rattleback was measured
+  // end-on in some runs (0.14 x 0.30 of the view, under the 0.35 asked) and side-on in
+  // others; at the first frame it spans 0.38 x 0.20
+  const scrub = document.getElementById('scrub');
+  scrub.value = '0';
+  scrub.dispatchEvent(new Event('input'));
   const body = el.data.findIndex((t) => t.type === 'mesh3d' && t.name === 'body');
   await Plotly.restyle(el, { visible: el.data.map((_, i) => i === body) });
   await Plotly.relayout(el, { showlegend: false, 'scene.xaxis.visible': false,

@@ -8,6 +8,8 @@ import httpx
 import pytest
 from playwright.sync_api import expect
 
+from tests.e2e.servers import stored_verdicts_server
+
 CASES = ["plane/chaplygin-ball", "plane/routh-ball", "plane/spherical-inertia",
          "sphere/body-of-revolution", "sphere/round-disk", "sphere/routh-ball",
          "sphere/flat-base-axisymmetric", "sphere/borisov-fedorov"]
@@ -18,13 +20,14 @@ def ready(page):
 
 
 @pytest.fixture(scope="module")
-def verified(server):
-    """The session's server, once it has checked CASES (POST /api/verify: once per
-    module, both tests read the same verdicts)."""
-    for cid in CASES:
-        r = httpx.post(f"{server}/api/verify/{cid}", timeout=600)
-        assert r.status_code == 200, r.text
-    return server
+def verified(catalogue_records, tmp_path_factory):
+    """A server whose store holds every case's verdicts, from the session's full
+    verification (tests/e2e/conftest.py: stored_verdicts_server); CASES are among them."""
+    with stored_verdicts_server(catalogue_records, tmp_path_factory.mktemp("verdicts")) as url:
+        for cid in CASES:
+            assert httpx.get(f"{url}/api/cases/{cid}", timeout=30).json()[
+                "verification"] == "done", cid
+        yield url
 
 
 def test_cells_over_misprints_show_no_cross(page, verified, artifacts):
