@@ -28,6 +28,7 @@ sys.path[:0] = [str(ROOT)]
 from playwright.sync_api import sync_playwright  # noqa: E402
 
 from app.testing import live_server, wait_idle  # noqa: E402
+from bench.cpu_by_process import snapshot  # noqa: E402
 from tests.e2e.conftest import ARGS, CHROMIUM  # noqa: E402
 
 OUT = ROOT / "bench" / "results" / "browser_tab_cost.txt"
@@ -39,31 +40,16 @@ VIEW = {"viewport": {"width": 1500, "height": 950}, "device_scale_factor": 1,
         "bypass_csp": True}
 
 
-def chromium_cpu() -> dict:
-    """(pid, start time) -> CPU seconds (user + system) of every chromium process alive."""
-    tick = os.sysconf("SC_CLK_TCK")
-    out = {}
-    for pid in filter(str.isdigit, os.listdir("/proc")):
-        try:
-            if "chrom" not in Path(f"/proc/{pid}/comm").read_text():
-                continue
-            f = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
-            out[pid, f[19]] = (int(f[11]) + int(f[12])) / tick
-        except (OSError, IndexError, ValueError):
-            continue
-    return out
-
-
 def opening(page, url: str) -> float:
     """Chromium's CPU over one opening: the processes alive at its end, each counted from
     its value at the start (or from 0 if it started since). A process that exits meanwhile
     (a closed tab's renderer) is left out, not subtracted."""
     time.sleep(0.5)                 # the previous tab's processes exit first
-    c0 = chromium_cpu()
+    c0 = snapshot("chrom")
     page.goto(url)
     page.wait_for_load_state("networkidle")
     page.wait_for_timeout(300)
-    return sum(v - c0.get(k, 0.0) for k, v in chromium_cpu().items())
+    return sum(v - c0.get(k, 0.0) for k, v in snapshot("chrom").items())
 
 
 def main() -> None:

@@ -43,12 +43,15 @@ def kind(pid: str) -> str | None:
     return next((k for key, k in KINDS if key in cmd), "other: " + cmd[:60])
 
 
-def snapshot() -> dict:
-    """(pid, start time) -> CPU seconds (user + system)."""
+def snapshot(comm: str | None = None) -> dict:
+    """(pid, start time) -> CPU seconds (user + system) of every process alive (comm: only
+    those whose /proc/<pid>/comm holds it, e.g. "chrom")."""
     tick = os.sysconf("SC_CLK_TCK")
     out = {}
     for pid in filter(str.isdigit, os.listdir("/proc")):
         try:
+            if comm is not None and comm not in Path(f"/proc/{pid}/comm").read_text():
+                continue
             f = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
         except (OSError, IndexError):
             continue
@@ -68,7 +71,7 @@ def main() -> int:
     a = ap.parse_args()
     cmd = a.command[1:] if a.command[:1] == ["--"] else a.command
     before = snapshot()
-    last, kinds, per = dict(before), {}, Counter()
+    last, kinds, per = before, {}, Counter()
     b0, t0 = busy(), time.monotonic()
     proc = subprocess.Popen(cmd)
     while proc.poll() is None:
@@ -79,7 +82,7 @@ def main() -> int:
                 kinds[key] = kind(key[0])
             if kinds[key] is not None:
                 per[kinds[key]] += cpu - last.get(key, 0.0)
-        last = {**last, **now}
+        last = now
     wall, machine = time.monotonic() - t0, busy() - b0
     lines = [f"{' '.join(cmd)}: exit {proc.returncode}, {wall:.0f} s wall, the machine "
              f"busy {machine:.0f} CPU s ({machine / wall / (os.cpu_count() or 1):.0%} "

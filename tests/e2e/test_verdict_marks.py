@@ -22,7 +22,7 @@ def ready(page):
 @pytest.fixture(scope="module")
 def verified(catalogue_records, tmp_path_factory):
     """A server whose store holds every case's verdicts, from the session's full
-    verification (tests/e2e/conftest.py: stored_verdicts_server); CASES are among them."""
+    verification (tests/e2e/servers.py: stored_verdicts_server); CASES are among them."""
     with stored_verdicts_server(catalogue_records, tmp_path_factory.mktemp("verdicts")) as url:
         for cid in CASES:
             assert httpx.get(f"{url}/api/cases/{cid}", timeout=30).json()[
