@@ -50,6 +50,7 @@ import math
 import os
 import sys
 import time
+import timeit
 from pathlib import Path
 
 import numba
@@ -57,7 +58,13 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.integrate._ivp import dop853_coefficients as DC
 
-from solvers.integrate.integrator import integrate, method_arrays
+from solvers.integrate.integrator import (
+    _plain_atol,
+    _plain_fopt,
+    integrate,
+    method_arrays,
+    small_module,
+)
 from solvers.integrate.taylor import Taylor
 from solvers.kernels import layout as L
 from solvers.kernels.generate import generated, generated_integrator, heyoka_system
@@ -570,7 +577,6 @@ def make_scalar_dop853(field, n, params=None):
 def generated_scalar_field(model, p):
     """The project's generated field on scalars (small.py's `fs`, forceinline), for the
     cases without a hand-written field, and the parameter slots it takes."""
-    from solvers.integrate.integrator import small_module
     from solvers.kernels.generate import SLOT_NAMES, field_body
 
     params = [SLOT_NAMES.index(x.name) for x in field_body(model, p)[0]]
@@ -641,6 +647,9 @@ def many_starts(quick=False, only=None):
              "decade; heyoka tol 1e-4 ... 1e-15), best of 3 interleaved, each run timed "
              "on the wall clock and on the process's CPU time.",
              "  ours  = integrate() by default (dop853, the small kernel of the structure)",
+             "  kernel = that small kernel called directly, its option arrays built before "
+             "the timed call (ours without integrate()'s Python entry: the same steps and "
+             "bits)",
              "  limit = a scalar DOP853 written in bench/limit.py (state and stages in "
              "locals), its field inlined: written by hand for the ball, the disk and the "
              "flat base, the project's generated scalar field for the others",
@@ -673,6 +682,15 @@ def many_starts(quick=False, only=None):
             fs, slots = generated_scalar_field(model.model, p)
             limit = make_scalar_dop853(fs, L.STATE_DIM[model.model], slots)
             limit_kind = "generated"
+        # the small kernel as integrate() calls it: a writable p (a read-only one is another
+        # numba specialization), the option arrays integrate() memoizes for its default
+        # step control
+        p_w = np.array(p)
+        small_run = small_module(model.model, p_w, "dop853").run
+        control = integrate.__kwdefaults__["control"]
+        small_opts = {rt: (_plain_fopt(rt, control), _plain_atol(rt, L.STATE_DIM[model.model]))
+                      for rt in rtols}
+        t_end = np.array([0.0, T])
         v, f, _ = heyoka_system(model.model, p, fold=True)
         sys_h = list(zip(v, f, strict=True))
         # one compiled Taylor integrator per tolerance, reused for every start
@@ -695,6 +713,14 @@ def many_starts(quick=False, only=None):
                 y, _, _ = limit(y0, p, T, rt, rt)
                 return y, True
 
+            def kern(rt, y0=y0, run=small_run, opts=small_opts, t_out=t_end, p_w=p_w):
+                fopt, atol_v = opts[rt]
+                n = y0.size
+                Y, y_stop, stats = np.empty((2, n)), np.empty(n), np.zeros(5, dtype=np.int64)
+                status, _ = run(p_w, y0, t_out, 10_000_000, False, fopt, atol_v, Y, y_stop,
+                                stats)
+                return Y[1], status == L.OK
+
             def hey(tol, y0=y0, tas=tas, T=T):
                 ta = tas[tol]
                 ta.time = 0.0
@@ -702,7 +728,8 @@ def many_starts(quick=False, only=None):
                 o = ta.propagate_until(T)
                 return ta.state.copy(), str(o[0]).endswith("time_limit")
 
-            comp = {"ours": (ours, rtols), "limit": (lim, rtols), "heyoka": (hey, htols)}
+            comp = {"ours": (ours, rtols), "limit": (lim, rtols), "heyoka": (hey, htols),
+                    "kernel": (kern, rtols)}
             for fn, grid in comp.values():     # compile / warm
                 fn(grid[0])
             # two clocks per run, the same for every competitor: the wall clock (as timed)
@@ -737,13 +764,16 @@ def many_starts(quick=False, only=None):
             key = f"{t:.0e}"
             ratios = {}
             for suffix in ("", "_cpu"):
-                for other in ("limit", "heyoka"):
-                    a, b = "ours" + suffix, other + suffix
-                    ratios[other + suffix] = [r[a][key] / r[b][key] for r in rows
-                                              if r[a][key] and r[b][key]]
-            res[key] = {"vs_limit": ratios["limit"], "vs_heyoka": ratios["heyoka"],
-                        "vs_limit_cpu": ratios["limit_cpu"],
-                        "vs_heyoka_cpu": ratios["heyoka_cpu"]}
+                for mine, other in (("ours", "limit"), ("ours", "heyoka"),
+                                    ("kernel", "limit")):
+                    a, b = mine + suffix, other + suffix
+                    ratios[mine + other + suffix] = [r[a][key] / r[b][key] for r in rows
+                                                     if r[a][key] and r[b][key]]
+            res[key] = {"vs_limit": ratios["ourslimit"], "vs_heyoka": ratios["oursheyoka"],
+                        "vs_limit_cpu": ratios["ourslimit_cpu"],
+                        "vs_heyoka_cpu": ratios["oursheyoka_cpu"],
+                        "kernel_vs_limit": ratios["kernellimit"],
+                        "kernel_vs_limit_cpu": ratios["kernellimit_cpu"]}
         out["cases"][wp.id] = {"T": T, "params": prm, "limit_field": limit_kind,
                                "rows": rows, "ratios": res, "measured": out["date"]}
         summary += _summary_of(wp.id, out["cases"][wp.id])
@@ -768,7 +798,9 @@ def _summary_of(cid, case) -> list:
     """The table's rows of a case (one per matched error) from its stored results."""
     return [(cid, key, case["limit_field"],
              {"limit": r["vs_limit"], "heyoka": r["vs_heyoka"],
-              "limit_cpu": r["vs_limit_cpu"], "heyoka_cpu": r["vs_heyoka_cpu"]},
+              "limit_cpu": r["vs_limit_cpu"], "heyoka_cpu": r["vs_heyoka_cpu"],
+              # the kernel alone (rows kept from a run before this column have none)
+              "kernel": r.get("kernel_vs_limit"), "kernel_cpu": r.get("kernel_vs_limit_cpu")},
              len(case["rows"])) for key, r in case["ratios"].items()]
 
 
@@ -784,11 +816,13 @@ def _write_starts(quick, head, summary, out):
         lines.append(f"{title}:")
         lines.append(f"{'case':28s} {'error':6s} {'limit':9s} {'ours/limit median':>17s} "
                      f"{'worst':>6s} {'ours/heyoka median':>18s} {'worst':>6s}  "
-                     "starts matched")
+                     f"{'kernel/limit median':>19s} {'worst':>6s}  starts matched")
         for cid, key, kind, ratios, n in summary:
             rl, rh = ratios["limit" + suffix], ratios["heyoka" + suffix]
+            rk_ = ratios["kernel" + suffix]
             lines.append(f"{cid:28s} {key:6s} {kind:9s} {fmt(rl, np.median):>17s} "
                          f"{fmt(rl, max):>6s} {fmt(rh, np.median):>18s} {fmt(rh, max):>6s}  "
+                         f"{fmt(rk_, np.median):>19s} {fmt(rk_, max):>6s}  "
                          f"{len(rl)}/{n}, {len(rh)}/{n}")
         lines.append("")
     load1 = os.getloadavg()
@@ -810,6 +844,94 @@ def _write_starts(quick, head, summary, out):
     (OUT / f"{stem}.json").write_text(json.dumps(out, indent=1))
 
 
+# --- the order of the competitors (issue 19 item 4) ---------------------------------------------
+def order_effect(case_ids=("plane/chaplygin-ball", "sphere/chaplygin-ball"), n_starts=5,
+                 repeats=3):
+    """Whether the order of the competitors in many_starts' interleaved rounds changes
+    ours / limit: on the many-start mode's first starts of each case (same seed), the
+    same rounds as there (per repeat, every tolerance of the grid in turn, at each one
+    ours, the limit and heyoka one after the other; CPU time, best of `repeats`), timed
+    once with ours always first (right after the previous tolerance's heyoka run, as
+    many_starts runs them) and once with the order rotated between the repeats (each
+    competitor first once). Printed: ours / limit at the same rtol, the median and the
+    90th percentile over starts x tolerances, for either order, and at rtol 1e-4 ... 1e-6
+    (the shortest runs). Measured on 2026-11-27 (bench/results/limit_order.txt): the
+    order changes neither, so many_starts keeps its fixed order."""
+    import heyoka as hy
+
+    sys.path.insert(0, str(Path(__file__).parent))
+    from work_precision import CASES
+
+    rng = np.random.default_rng(19)
+    rtols = [10.0 ** (-k / 2) for k in range(8, 29)]
+    htols = [10.0 ** -k for k in range(4, 16)]
+    lines = ["bench/limit.py --order: ours / limit at the same rtol (CPU time, best of "
+             f"{repeats}), {n_starts} starts per case (the many-start mode's first), the "
+             "rounds of the many-start mode with ours always first or the order rotated.",
+             f"load average at the start: {' '.join(f'{x:.2f}' for x in os.getloadavg())}",
+             "case                   order          median   p90   median at rtol >= 1e-6"]
+    for wp in CASES:
+        c = registry()[wp.id]
+        prm = {**c.example, **wp.overrides}
+        starts = random_starts(wp.id, prm, 20, rng)     # the draws of many_starts
+        if wp.id not in case_ids:
+            continue
+        model = build(wp.id, prm)
+        p = np.asarray(model.p, dtype=float)
+        n = L.STATE_DIM[model.model]
+        if wp.id in HAND:
+            limit = make_scalar_dop853(HAND[wp.id][0], n)
+        else:
+            fs, slots = generated_scalar_field(model.model, p)
+            limit = make_scalar_dop853(fs, n, slots)
+        v, f, _ = heyoka_system(model.model, p, fold=True)
+        tas = {tol: hy.taylor_adaptive(list(zip(v, f, strict=True)), starts[0], tol=tol)
+               for tol in htols}
+        T = wp.t_end
+        ratios = {"ours first": [], "rotated": []}
+        for y0 in starts[:n_starts]:
+            def ours(rt, y0=y0, m=model.model, p=p, T=T):
+                integrate(m, p, y0, [0.0, T], rtol=rt, atol=rt)
+
+            def lim(rt, y0=y0, limit=limit, p=p, T=T):
+                limit(y0, p, T, rt, rt)
+
+            def hey(tol, y0=y0, tas=tas, T=T):
+                ta = tas[tol]
+                ta.time = 0.0
+                ta.state[:] = y0
+                ta.propagate_until(T)
+
+            comp = {"ours": (ours, rtols), "limit": (lim, rtols), "heyoka": (hey, htols)}
+            for fn, grid in comp.values():
+                fn(grid[0])
+            for kind in ratios:
+                cpu = {k: [math.inf] * len(g) for k, (_, g) in comp.items()}
+                for rep in range(repeats):
+                    r = rep % len(comp) if kind == "rotated" else 0
+                    order = [*comp][r:] + [*comp][:r]
+                    for i in range(len(rtols)):
+                        for k in order:
+                            fn, grid = comp[k]
+                            if i >= len(grid):
+                                continue
+                            c0 = time.process_time()
+                            fn(grid[i])
+                            cpu[k][i] = min(cpu[k][i], time.process_time() - c0)
+                ratios[kind].append([a / b for a, b in zip(cpu["ours"], cpu["limit"],
+                                                            strict=True)])
+        for kind, rows in ratios.items():
+            a = np.asarray(rows)
+            lines.append(f"{wp.id:22s} {kind:12s} {np.median(a):8.2f} "
+                         f"{np.percentile(a, 90):5.2f} {np.median(a[:, :5]):10.2f}")
+            print(lines[-1], flush=True)
+    lines.append(f"load average at the end: {' '.join(f'{x:.2f}' for x in os.getloadavg())}")
+    text = "\n".join(lines) + "\n"
+    print(text)
+    OUT.mkdir(exist_ok=True)
+    (OUT / "limit_order.txt").write_text(text)
+
+
 # --- where the gap lies (issue 19 item 4) -----------------------------------------------------
 def gap(case_id="plane/chaplygin-ball", n_starts=5, T=200.0, repeats=7):
     """Where ours loses against the limit on one case, measured part by part, same process,
@@ -821,7 +943,8 @@ def gap(case_id="plane/chaplygin-ball", n_starts=5, T=200.0, repeats=7):
           arrays reused: no Python entry);
       (c) integrate()'s entry (validation, allocation, dispatch, the result): the time of
           integrate() minus the direct call of the same kernel, per run and as a fraction
-          of the run at T."""
+          of the run at T;
+      (d) the entry in a tight loop (a one-step run, caches warm): its floor."""
     from solvers.integrate.integrator import StepControl, small_module
     from solvers.kernels import rk
 
@@ -920,6 +1043,34 @@ def gap(case_id="plane/chaplygin-ball", n_starts=5, T=200.0, repeats=7):
                          + ", ".join(f"{k} {best['ours'] / best[k]:.2f} (cpu "
                                      f"{cpu['ours'] / cpu[k]:.2f})" for k in lims))
         out["starts"].append({"y0": y0.tolist(), "rows": rows})
+    # (d) the entry in a tight loop: a run of one step (t = 0 ... 1e-3 from the first
+    # start, rtol 1e-4), integrate() against the direct call, each timed by timeit over
+    # 20000 calls, best of 5 rounds of 5 (caches warm: the entry's floor)
+    y0 = np.asarray(starts[0], dtype=float)
+    t_short = np.array([0.0, 1e-3])
+    opts = packed(1e-4)
+
+    def one_direct(y0=y0, fopt=opts[0], atol=opts[1]):
+        run(p, y0, t_short, 10**7, False, fopt, atol, np.empty((2, n)), np.empty(n),
+            np.zeros(5, dtype=np.int64))
+
+    def one_ours(y0=y0):
+        integrate(model.model, p, y0, [0.0, 1e-3], rtol=1e-4, atol=1e-4)
+
+    tight = {}
+    for name, fn in (("ours", one_ours), ("direct", one_direct)):
+        fn()
+        tight[name] = min(min(timeit.repeat(fn, number=20000, repeat=5)) / 20000
+                          for _ in range(5))
+    out["tight_loop"] = {"ours_s": tight["ours"], "direct_s": tight["direct"],
+                         "entry_s": tight["ours"] - tight["direct"],
+                         "steps": integrate(model.model, p, y0, [0.0, 1e-3], rtol=1e-4,
+                                            atol=1e-4).steps}
+    lines.append(f"\nentry in a tight loop (a one-step run, t = 0 ... 1e-3, timeit, best "
+                 f"of 25 x 20000 calls): integrate() {tight['ours'] * 1e6:.2f} us, the "
+                 f"kernel called directly (its three output arrays allocated) "
+                 f"{tight['direct'] * 1e6:.2f} us: entry "
+                 f"{(tight['ours'] - tight['direct']) * 1e6:.2f} us")
     load1 = os.getloadavg()
     lines.append(f"\nload average at the end: {load1[0]:.2f} {load1[1]:.2f} {load1[2]:.2f}")
     out["load_end"] = load1
@@ -934,6 +1085,9 @@ def gap(case_id="plane/chaplygin-ball", n_starts=5, T=200.0, repeats=7):
 
 def main():
     quick = "--quick" in sys.argv
+    if "--order" in sys.argv:
+        order_effect()
+        return
     if "--gap" in sys.argv:
         gap(sys.argv[sys.argv.index("--case") + 1] if "--case" in sys.argv
             else "plane/chaplygin-ball")

@@ -92,6 +92,9 @@ def status_message(status: int) -> str:
     return _INTEGRATOR_STATUS_TEXT.get(status, f"unknown status {status}")
 
 
+_OK_TEXT = L.STATUS_TEXT[L.OK]
+
+
 def method_arrays(name: str):
     """The kernel's view of a tableau: (A, c, b, E, P, meth); P holds the dense-output
     weights in Chebyshev form (rows: stages), shape (0, 1) if there is none."""
@@ -475,23 +478,60 @@ def _inputs(model, p, y0, t_out):
     return t_out, y0, p, n
 
 
-def _integrate_small(model, p, y0, t_out, method, rtol, atol, max_steps, compensated,
-                     control) -> IntegrationResult:
-    t_out, y0, p, n = _inputs(model, p, y0, t_out)
-    max_steps, compensated = int(max_steps), bool(compensated)
-    fopt = _plain_fopt(rtol, control)
-    atol_v = _plain_atol(atol, n)
-    Y = np.empty((t_out.size, n))
-    y_stop = np.empty(n)
-    stats = np.zeros(5, dtype=np.int64)
-    run = small_module(model, p, method).run
-    t0 = time.perf_counter()
-    status, t_stop = run(p, y0, t_out, max_steps, compensated, fopt, atol_v, Y, y_stop, stats)
-    wall = time.perf_counter() - t0
+# A plain run's plan: what the kernel needs besides the run's own arrays, memoized on the
+# request's values (model, tableau, parameter bytes, rtol, a scalar atol and the step
+# control's identity): the kernel, its option vectors, the state dimension and the empty
+# crossings. One dictionary lookup in place of four (the kernel, fopt, atol, the empty
+# crossings), ~1 us of a short run's entry (bench/limit.py --gap).
+_PLANS: dict = {}
+
+
+def _plain_plan(model, p, method, rtol, atol, control) -> tuple:
+    n = L.STATE_DIM[model]
     cross_y = _NO_CROSSINGS_Y.get(n)
     if cross_y is None:
         cross_y = _NO_CROSSINGS_Y[n] = np.empty((0, n))
         cross_y.setflags(write=False)
+    return (control, small_module(model, p, method).run, _plain_fopt(rtol, control),
+            _plain_atol(atol, n), n, cross_y)
+
+
+def _integrate_small(model, p, y0, t_out, method, rtol, atol, max_steps, compensated,
+                     control) -> IntegrationResult:
+    hit = _TRUSTED_TIMES.get(id(t_out))
+    if hit is not None and hit[0] is t_out:
+        t_out, private = hit[1], False      # the shared twin: copied for the result
+    else:
+        t_out, private = _checked_times(t_out), True     # a fresh array of this call
+    y0 = _f64(y0)
+    p = np.array(p, dtype=np.float64)
+    n = y0.size
+    if type(atol) is float or type(atol) is int:
+        key = (model, method, p.tobytes(), rtol, atol, id(control))
+        plan = _PLANS.get(key)
+        if plan is None or plan[0] is not control:
+            if len(_PLANS) > _CACHE_MAX:
+                _PLANS.clear()
+            plan = _PLANS[key] = _plain_plan(model, p, method, rtol, atol, control)
+        _, run, fopt, atol_v, n_model, cross_y = plan
+    else:       # a vector atol: no plan memoized
+        _, run, fopt, _, n_model, cross_y = _plain_plan(model, p, method, rtol, 0.0, control)
+        atol_v = _plain_atol(atol, n_model)
+    if n != n_model:
+        raise ValueError(f"model {model} has a state of dimension {n_model}")
+    N = t_out.shape[0]
+    Y = np.empty((N, n))
+    y_stop = np.empty(n)
+    stats = np.empty(5, dtype=np.int64)     # the kernel zeroes its counters first
+    t0 = time.perf_counter()
+    status, t_stop = run(p, y0, t_out, int(max_steps), bool(compensated), fopt, atol_v, Y,
+                         y_stop, stats)
+    wall = time.perf_counter() - t0
+    accepted, rejected, calls, m, _ = stats.tolist()   # rk.py's S_* order (_S_ORDER)
+    if status == L.OK and m == N:       # every sample reached: the result as it stands
+        return IntegrationResult(t_out if private else t_out.copy(), Y, 0, _OK_TEXT,
+                                 float(t_stop), y_stop, accepted, rejected, calls, wall,
+                                 method, _NO_CROSSINGS_T, cross_y, "generated", "small")
     return _result(t_out, Y, y_stop, stats, status, t_stop, wall, method, _NO_CROSSINGS_T,
                    cross_y, "generated", "small", copy_crossings=False)
 
