@@ -20,8 +20,9 @@ from app.testing import live_server
 from tests.test_server_limits import _one_response
 
 CAP = 20
+# warm_workers off: no test here runs a job (tests/test_server_limits.py's LIMITS)
 LIMITS = {"max_connections": CAP, "header_timeout_s": 60.0, "body_timeout_s": 60.0,
-          "keep_alive_s": 60.0, "linger_s": 0.5}
+          "keep_alive_s": 60.0, "linger_s": 0.5, "warm_workers": False}
 GRACE = 1.0           # the server's default stall_grace_s
 
 HALF_HEAD = b"GET /api/health HTTP/1.1\r\nHost: 127.0.0.1\r\nX-Stalled: "

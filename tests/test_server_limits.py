@@ -12,8 +12,10 @@ import pytest
 
 from app.testing import live_server
 
+# warm_workers off: no test here runs a job, and warming two workers (a short run of
+# every case in each) cost ~7 s of CPU per server start (issue 19: CI time)
 LIMITS = {"header_timeout_s": 1.0, "body_timeout_s": 1.0, "max_connections": 24,
-          "linger_s": 0.5, "max_headers": 50}
+          "linger_s": 0.5, "max_headers": 50, "warm_workers": False}
 
 
 @pytest.fixture(scope="module")
