@@ -182,9 +182,11 @@ def simulate(
     allow_any_inertia: Annotated[bool, typer.Option("--allow-any-inertia", help="accept "
                                  "moments violating the triangle inequality")] = False,
     field: Annotated[str, typer.Option(help="vector field of the compiled Runge-Kutta "
-                                       "methods: auto (the case's generated field when "
-                                       "compiled), generated (compiles a new structure, "
-                                       "~15 s once), general (the reference)")] = "auto",
+                                       "methods: auto (the case's generated field for a "
+                                       "plain run, else the general one: the same numbers "
+                                       "whatever is compiled), generated (also with "
+                                       "--project, which compiles rk.py on it, ~40 s once "
+                                       "per structure), general (the reference)")] = "auto",
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
     timeout: TimeoutOpt = None,
 ):

@@ -6,11 +6,13 @@ independent NumPy field of solvers/models/reference.py, and reports the drift of
 invariant the case carries. A run that meets a singularity returns what it computed up to
 there, with status "singular" and a message saying where: never NaN as a result.
 
-The compiled kernels run the case's generated field (solvers/kernels/generate.py) where it
-is compiled, else the general one (`field`, FIELDS). A repeated run of the same case is
-thin (issue 12): the model, the initial state, the options and the output times are
-validated once and memoized, and the invariants and their drift come from one compiled
-call (bench/entry_overhead.py).
+A plain run of a compiled Runge-Kutta method (dop853 or vern9, no projection) runs the
+case's generated field (solvers/kernels/generate.py) in its small kernel, any other run the
+general field (`field`, FIELDS): the route depends on the request, never on what happens
+to be compiled, so the same request gives the same numbers (issue 19). A repeated run of
+the same case is thin (issue 12): the model, the initial state, the options and the output
+times are validated once and memoized, and the invariants and their drift come from one
+compiled call (bench/entry_overhead.py).
 """
 
 import math
@@ -29,9 +31,10 @@ SCIPY_METHODS = {"scipy-dop853": "DOP853", "scipy-rk45": "RK45", "scipy-lsoda": 
 DEFAULT_METHOD = "dop853"
 MAX_SAMPLES = 200_000
 # which vector field the compiled Runge-Kutta kernels run (solvers/integrate/integrator.py):
-# auto: the case's generated field when compiled (solvers/warmup.py), else the general one;
-# generated: the generated field, compiled on first use of a structure (~15 s);
-# general: the general support-function field, the reference
+# auto: integrate()'s rule: the generated field in the small kernel for a plain run, else
+# the general one; generated: the generated field for every compiled run (a projected run
+# compiles rk.py on it, ~40 s on first use of a structure); general: the general
+# support-function field, the reference
 FIELDS = {"auto": None, "generated": True, "general": False}
 
 
@@ -254,10 +257,11 @@ def simulate(case: str, params: dict | None, state0, t_end: float, *,
              field: str = "auto", precision: str | None = None) -> SimulationResult:
     """Integrate `case` from `state0` over [0, t_end]; see the module docstring.
 
-    field: the vector field of the compiled Runge-Kutta methods (FIELDS): "auto" the
-    case's generated field when it is compiled, "generated", or "general" (the reference).
-    stats["field"] says which ran. precision (method "taylor" only): "double",
-    "long double" or "quad"; None chooses (solvers/integrate/taylor_backend.py)."""
+    field: the vector field of the compiled Runge-Kutta methods (FIELDS): "auto" (the
+    generated field for a plain run, else the general one), "generated", or "general" (the
+    reference). stats["field"] and stats["kernel"] say which ran. precision (method
+    "taylor" only): "double", "long double" or "quad"; None chooses
+    (solvers/integrate/taylor_backend.py)."""
     model, codes, key = _model(case, params, allow_any_inertia)
     y0 = _initial(model, key, state0)
     auto = None
