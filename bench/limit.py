@@ -932,6 +932,103 @@ def order_effect(case_ids=("plane/chaplygin-ball", "sphere/chaplygin-ball"), n_s
     (OUT / "limit_order.txt").write_text(text)
 
 
+# --- the entry after a heyoka run (issue 19 item 4) -------------------------------------------
+def cold_entry(case_id="plane/chaplygin-ball", rounds=300):
+    """What integrate()'s entry and its parts cost right after a heyoka run (as in the
+    many-start mode's rounds, where the short runs set the worst starts): on the many-start
+    mode's start of |M| nearest 0.134 (its worst at 1e-6 in the run of 2026-11-27), rtol
+    1e-6, each callable timed alone (perf_counter_ns) right after heyoka's run of the same
+    start, `rounds` times; medians. The parts are timed on their own: the output times'
+    check of a list [0, T], the copies of y0 and p with p's bytes (the plan's key), the
+    result's construction, three empty arrays, and an empty call (the clock's own cost)."""
+    import heyoka as hy
+
+    from solvers.integrate import integrator as I
+
+    sys.path.insert(0, str(Path(__file__).parent))
+    from work_precision import CASES
+
+    wp = next(w for w in CASES if w.id == case_id)
+    c = registry()[wp.id]
+    prm = {**c.example, **wp.overrides}
+    model = build(wp.id, prm)
+    p = np.asarray(model.p, dtype=float)
+    n = L.STATE_DIM[model.model]
+    T = wp.t_end
+    starts = random_starts(wp.id, prm, 20, np.random.default_rng(19))
+    y0 = min(starts, key=lambda y: abs(float(np.linalg.norm(y[:3])) - 0.134))
+    v, f, _ = heyoka_system(model.model, p, fold=True)
+    ta = hy.taylor_adaptive(list(zip(v, f, strict=True)), y0, tol=1e-8)
+    rt = 1e-6
+    control = integrate.__kwdefaults__["control"]
+    p_w = np.array(p)
+    run = small_module(model.model, p_w, "dop853").run
+    fopt, atol_v, t_end = _plain_fopt(rt, control), _plain_atol(rt, n), np.array([0.0, T])
+
+    def hey():
+        ta.time = 0.0
+        ta.state[:] = y0
+        ta.propagate_until(T)
+
+    def kernel():
+        run(p_w, y0, t_end, 10_000_000, False, fopt, atol_v, np.empty((2, n)), np.empty(n),
+            np.zeros(5, dtype=np.int64))
+
+    def ours():
+        integrate(model.model, p, y0, [0.0, T], rtol=rt, atol=rt)
+
+    def times():
+        I._checked_times([0.0, T])
+
+    def copies():
+        np.array(y0, dtype=np.float64).ravel()
+        np.array(p, dtype=np.float64).tobytes()
+
+    def result():
+        I.IntegrationResult(t_end, t_end, 0, "ok", 1.0, t_end, 1, 2, 3, 1e-5, "dop853",
+                            t_end, t_end, "generated", "small")
+
+    def empties():
+        np.empty((2, n))
+        np.empty(n)
+        np.empty(5, dtype=np.int64)
+
+    def nothing():
+        pass
+
+    fns = {"integrate()": ours, "the kernel called directly": kernel,
+           "check of the output times [0, T]": times, "copies of y0 and p, p's bytes": copies,
+           "the result's construction": result, "three empty arrays": empties,
+           "an empty call": nothing}
+    for fn in fns.values():
+        fn()
+    took = {k: [] for k in fns}
+    clock = time.perf_counter_ns
+    for _ in range(rounds):
+        for k, fn in fns.items():
+            hey()
+            t0 = clock()
+            fn()
+            took[k].append(clock() - t0)
+    lines = [f"bench/limit.py --cold: {case_id}, T = {T:g}, the start of |M| = "
+             f"{np.linalg.norm(y0[:3]):.3f}, rtol 1e-6; each callable timed alone right after "
+             f"a heyoka run of that start, {rounds} rounds, medians (wall clock); load average "
+             f"at the start {' '.join(f'{x:.2f}' for x in os.getloadavg())}"]
+    for k, v in took.items():
+        lines.append(f"  {k:34s} {np.median(v) / 1e3:8.2f} us   (p25 "
+                     f"{np.percentile(v, 25) / 1e3:.2f})")
+    hot = {}
+    for k in ("integrate()", "the kernel called directly"):
+        hot[k] = min(timeit.repeat(fns[k], number=200, repeat=7)) / 200
+    lines.append(f"  the same two in a tight loop (timeit, best of 7 x 200): integrate() "
+                 f"{hot['integrate()'] * 1e6:.2f} us, the kernel "
+                 f"{hot['the kernel called directly'] * 1e6:.2f} us")
+    text = "\n".join(lines) + "\n"
+    print(text)
+    OUT.mkdir(exist_ok=True)
+    (OUT / "limit_cold_entry.txt").write_text(text)
+
+
 # --- where the gap lies (issue 19 item 4) -----------------------------------------------------
 def gap(case_id="plane/chaplygin-ball", n_starts=5, T=200.0, repeats=7):
     """Where ours loses against the limit on one case, measured part by part, same process,
@@ -1085,6 +1182,9 @@ def gap(case_id="plane/chaplygin-ball", n_starts=5, T=200.0, repeats=7):
 
 def main():
     quick = "--quick" in sys.argv
+    if "--cold" in sys.argv:
+        cold_entry()
+        return
     if "--order" in sys.argv:
         order_effect()
         return
