@@ -588,6 +588,27 @@ HAND = {"plane/chaplygin-ball": (ball_s, 6), "plane/round-disk": (disk_s, 6),
         "sphere/flat-base": (flat_s, 5)}
 
 
+def scalar_limit(case_id, model, p):
+    """The limit of a case and which field it runs: the scalar DOP853 on the case's
+    hand-written field where there is one ("hand"), else on the project's generated scalar
+    field ("generated")."""
+    n = L.STATE_DIM[model.model]
+    if case_id in HAND:
+        return make_scalar_dop853(HAND[case_id][0], n), "hand"
+    fs, slots = generated_scalar_field(model.model, p)
+    return make_scalar_dop853(fs, n, slots), "generated"
+
+
+def work_precision_case(case_id):
+    """A case of bench/work_precision.py: (its entry in CASES, its parameters, the model)."""
+    sys.path.insert(0, str(Path(__file__).parent))
+    from work_precision import CASES
+
+    wp = next(w for w in CASES if w.id == case_id)
+    prm = {**registry()[wp.id].example, **wp.overrides}
+    return wp, prm, build(wp.id, prm)
+
+
 def random_starts(case_id, params, k, rng):
     """k starts of the case: M in a uniformly random direction with |M| spread
     log-uniformly over two decades around the example's |M| (x 0.1 ... x 10); gamma a
@@ -674,14 +695,7 @@ def many_starts(quick=False, only=None):
         model = build(wp.id, prm)
         p = np.asarray(model.p, dtype=float)
         T = min(wp.t_end, 200.0) if quick else wp.t_end
-        if wp.id in HAND:
-            fld, _ = HAND[wp.id]
-            limit = make_scalar_dop853(fld, L.STATE_DIM[model.model])
-            limit_kind = "hand"
-        else:
-            fs, slots = generated_scalar_field(model.model, p)
-            limit = make_scalar_dop853(fs, L.STATE_DIM[model.model], slots)
-            limit_kind = "generated"
+        limit, limit_kind = scalar_limit(wp.id, model, p)
         # the small kernel as integrate() calls it: a writable p (a read-only one is another
         # numba specialization), the option arrays integrate() memoizes for its default
         # step control
@@ -878,12 +892,7 @@ def order_effect(case_ids=("plane/chaplygin-ball", "sphere/chaplygin-ball"), n_s
             continue
         model = build(wp.id, prm)
         p = np.asarray(model.p, dtype=float)
-        n = L.STATE_DIM[model.model]
-        if wp.id in HAND:
-            limit = make_scalar_dop853(HAND[wp.id][0], n)
-        else:
-            fs, slots = generated_scalar_field(model.model, p)
-            limit = make_scalar_dop853(fs, n, slots)
+        limit, _ = scalar_limit(wp.id, model, p)
         v, f, _ = heyoka_system(model.model, p, fold=True)
         tas = {tol: hy.taylor_adaptive(list(zip(v, f, strict=True)), starts[0], tol=tol)
                for tol in htols}
@@ -945,13 +954,7 @@ def cold_entry(case_id="plane/chaplygin-ball", rounds=300):
 
     from solvers.integrate import integrator as I
 
-    sys.path.insert(0, str(Path(__file__).parent))
-    from work_precision import CASES
-
-    wp = next(w for w in CASES if w.id == case_id)
-    c = registry()[wp.id]
-    prm = {**c.example, **wp.overrides}
-    model = build(wp.id, prm)
+    wp, prm, model = work_precision_case(case_id)
     p = np.asarray(model.p, dtype=float)
     n = L.STATE_DIM[model.model]
     T = wp.t_end
@@ -1045,13 +1048,7 @@ def gap(case_id="plane/chaplygin-ball", n_starts=5, T=200.0, repeats=7):
     from solvers.integrate.integrator import StepControl, small_module
     from solvers.kernels import rk
 
-    sys.path.insert(0, str(Path(__file__).parent))
-    from work_precision import CASES
-
-    wp = next(w for w in CASES if w.id == case_id)
-    c = registry()[wp.id]
-    prm = {**c.example, **wp.overrides}
-    model = build(wp.id, prm)
+    wp, prm, model = work_precision_case(case_id)
     # a writable copy, as integrate() passes it: a read-only p is another numba
     # specialization of the kernel (other machine code, a few % apart on long runs)
     p = np.array(model.p, dtype=float)

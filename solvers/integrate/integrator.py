@@ -513,10 +513,9 @@ def _integrate_small(model, p, y0, t_out, method, rtol, atol, max_steps, compens
             if len(_PLANS) > _CACHE_MAX:
                 _PLANS.clear()
             plan = _PLANS[key] = _plain_plan(model, p, method, rtol, atol, control)
-        _, run, fopt, atol_v, n_model, cross_y = plan
-    else:       # a vector atol: no plan memoized
-        _, run, fopt, _, n_model, cross_y = _plain_plan(model, p, method, rtol, 0.0, control)
-        atol_v = _plain_atol(atol, n_model)
+    else:       # a vector atol: the plan is not memoized (_plain_atol copies the vector)
+        plan = _plain_plan(model, p, method, rtol, atol, control)
+    _, run, fopt, atol_v, n_model, cross_y = plan
     if n != n_model:
         raise ValueError(f"model {model} has a state of dimension {n_model}")
     N = t_out.shape[0]
