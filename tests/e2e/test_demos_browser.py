@@ -2,6 +2,8 @@
 is broken inside a table cell. Every scene's claim plot, drawn before the 3D view and
 inside a projector's 1280x720, is checked in tests/e2e/test_scenes_browser.py."""
 
+from playwright.sync_api import expect
+
 # Every tap target in the page's main part, links included (WCAG 2.5.8); a link inside a
 # sentence is exempt (the criterion's "inline" exception): one displayed inline whose
 # parent holds more text than the link itself.
@@ -55,3 +57,35 @@ def test_no_word_broken_in_a_table_on_a_wide_screen(page, server):
         page.locator(ready).first.wait_for(state="attached")
         broken = page.evaluate(BROKEN_WORDS)
         assert broken == [], (path, broken)
+
+
+def test_a_scene_waits_for_play_under_reduced_motion_and_draws_only_when_seen(page, server):
+    """The /scenes page plays a scene at once, except where the reader's system asks for
+    reduced motion (WCAG 2.3.3): the first frame stands until Play. A playing scene draws
+    only while it is in view (app/static/js/scene.js): scrolled away it holds its frame,
+    scrolled back it goes on."""
+    page.emulate_media(reduced_motion="reduce")
+    page.set_viewport_size({"width": 390, "height": 844})
+    page.goto(f"{server}/scenes#rolling-disk-stays-up")
+    page.locator("body[data-drawn='rolling-disk-stays-up']").wait_for(
+        state="attached", timeout=90_000)
+    expect(page.locator("#play")).to_have_text("Play")
+    expect(page.locator("#scene-status")).to_contain_text("reduced motion")
+    clock = page.locator("#scene-time")
+    first = clock.inner_text()
+    page.wait_for_timeout(600)
+    assert clock.inner_text() == first and page.evaluate("!document.body.dataset.playing")
+    page.click("#play")
+    expect(page.locator("#play")).to_have_text("Pause")
+    expect(clock).not_to_have_text(first)
+    assert page.evaluate("document.body.dataset.playing") == "rolling-disk-stays-up"
+    # scrolled out of view: the frame holds; back in view: it goes on
+    page.evaluate("window.scrollTo(0, document.body.scrollHeight)")
+    page.wait_for_function("""() => { const r = document.getElementById('scene-plot')
+        .getBoundingClientRect(); return r.bottom < 0 || r.top > innerHeight; }""")
+    page.wait_for_timeout(400)              # the frame in flight, and the observer's note
+    held = clock.inner_text()
+    page.wait_for_timeout(800)
+    assert clock.inner_text() == held
+    page.locator("#scene-plot").scroll_into_view_if_needed()
+    expect(clock).not_to_have_text(held)

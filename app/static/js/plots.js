@@ -3,7 +3,13 @@
 // the unit sphere (for the flat-base bodies: the contact point on the flat face).
 "use strict";
 
-const CONFIG = { responsive: true, displaylogo: false, toImageButtonOptions: { scale: 2 } };
+// plotGlPixelRatio: the WebGL plots (the 3D scenes, the 3D maps) drawn at the screen's own
+// pixel density. Plotly's default, 2, draws them at twice the width and height of a
+// 1x screen (a projector, most laptops): four times the pixels, which a browser without
+// a GPU rasterizes in software at every frame of an animation, for a picture the screen
+// then shrinks back (bench/scene_frame_cost.py)
+const CONFIG = { responsive: true, displaylogo: false, toImageButtonOptions: { scale: 2 },
+  plotGlPixelRatio: Math.min(4, Math.max(1, window.devicePixelRatio || 1)) };
 // Where the parts of a plot go so that none covers another (tests/e2e/
 // test_plot_layout_browser.py): the title top left, the toolbar standing upright at the
 // right edge (lying flat it ran over the title on a phone), the legend at the very

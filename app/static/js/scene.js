@@ -73,6 +73,13 @@ export class Scene {
     this.frame = 0;
     this.playing = false;
     this.timer = null;
+    // a playing scene draws only while it can be seen: not in a hidden tab, nor scrolled
+    // out of view (without a GPU a frame costs the browser 80-130 ms of CPU: bench/
+    // results/scene_frame_cost.txt); it goes on from the same frame when seen again
+    this.inView = true;
+    this.seen = typeof IntersectionObserver === "function" ? new IntersectionObserver(
+      (entries) => { this.inView = entries[entries.length - 1].isIntersecting; }) : null;
+    if (this.seen) this.seen.observe(el);
     const V = this.mesh.vertices;
     this.size = Math.max(...V.map((v) => Math.hypot(v[0], v[1], v[2])));
     // each body axis drawn a little beyond the body along it (a long stone's e1 longer
@@ -278,6 +285,10 @@ export class Scene {
     this.playing = true;
     const step = () => {
       if (!this.playing) return;
+      if (document.hidden || !this.inView) {     // unseen: look again in a quarter second
+        this.timer = setTimeout(step, 250);
+        return;
+      }
       const next = this.frame + 1 >= this.d.t.length ? 0 : this.frame + 1;
       this.show(next);
       this.timer = setTimeout(() => requestAnimationFrame(step), 40);
@@ -293,6 +304,7 @@ export class Scene {
 
   destroy() {
     this.pause();
+    if (this.seen) this.seen.disconnect();
     if (window.Plotly) window.Plotly.purge(this.el);
   }
 }

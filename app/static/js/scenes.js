@@ -47,6 +47,7 @@ async function play(id) {
   if (current) current.destroy();
   current = null;
   delete document.body.dataset.playing;
+  delete document.body.dataset.drawn;
   delete document.body.dataset.claimed;
   const box = $("scene-checks");
   box.querySelectorAll(".claim-plot").forEach((el) => purge(el));
@@ -117,6 +118,14 @@ async function animate(data, live, id) {
     setStatus(note);
     performance.mark("scene:3d-drawn");
     $("scrub").max = String(d.t.length - 1);
+    document.body.dataset.drawn = id;
+    // it plays at once, unless the reader's system asks for reduced motion (WCAG 2.3.3):
+    // then the first frame stands until Play
+    if (matchMedia("(prefers-reduced-motion: reduce)").matches) {
+      $("play").textContent = "Play";
+      setStatus(`${note} Paused at the start (your system asks for reduced motion): Play runs it.`);
+      return;
+    }
     current.play();
     $("play").textContent = "Pause";
     performance.mark("scene:3d-playing");
@@ -144,7 +153,11 @@ async function main() {
   $("play").addEventListener("click", () => {
     if (!current) return;
     if (current.playing) { current.pause(); $("play").textContent = "Play"; }
-    else { current.play(); $("play").textContent = "Pause"; }
+    else {
+      current.play();
+      $("play").textContent = "Pause";
+      document.body.dataset.playing = document.body.dataset.drawn;
+    }
   });
   $("scrub").addEventListener("input", () => {
     if (!current) return;
