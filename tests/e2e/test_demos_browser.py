@@ -61,7 +61,8 @@ def test_no_word_broken_in_a_table_on_a_wide_screen(page, server):
 
 def test_a_scene_waits_for_play_under_reduced_motion_and_draws_only_when_seen(page, server):
     """The /scenes page plays a scene at once, except where the reader's system asks for
-    reduced motion (WCAG 2.3.3): the first frame stands until Play. A playing scene draws
+    reduced motion (WCAG 2.3.3): the first frame stands until Play. Its WebGL view has as
+    many pixels as the screen shows, not plotly's default twice as many. A playing scene draws
     only while it is in view (app/static/js/scene.js): scrolled away it holds its frame,
     scrolled back it goes on."""
     page.emulate_media(reduced_motion="reduce")
@@ -71,6 +72,13 @@ def test_a_scene_waits_for_play_under_reduced_motion_and_draws_only_when_seen(pa
         state="attached", timeout=90_000)
     expect(page.locator("#play")).to_have_text("Play")
     expect(page.locator("#scene-status")).to_contain_text("reduced motion")
+    # the WebGL view is drawn at the screen's pixel ratio, 1 here (plotly's default, 2,
+    # drew 4x the pixels: bench/results/scene_frame_cost.txt)
+    sizes = page.evaluate("""[...document.querySelectorAll('#scene-plot canvas')]
+        .filter((c) => c.clientWidth > 0)
+        .map((c) => [c.width, c.height, c.clientWidth, c.clientHeight, devicePixelRatio])""")
+    assert sizes and all(w <= cw + 1 and h <= ch + 1 and r == 1 for w, h, cw, ch, r in sizes), \
+        sizes
     clock = page.locator("#scene-time")
     first = clock.inner_text()
     page.wait_for_timeout(600)
