@@ -91,8 +91,16 @@ def test_a_scene_waits_for_play_under_reduced_motion_and_draws_only_when_seen(pa
     page.evaluate("window.scrollTo(0, document.body.scrollHeight)")
     page.wait_for_function("""() => { const r = document.getElementById('scene-plot')
         .getBoundingClientRect(); return r.bottom < 0 || r.top > innerHeight; }""")
-    page.wait_for_timeout(400)              # the frame in flight, and the observer's note
-    held = clock.inner_text()
+    # the frame in flight and the observer's note take a moment (longer on a busy
+    # machine): the clock must come to rest within a few seconds, and then stay
+    held, rest = clock.inner_text(), False
+    for _ in range(8):
+        page.wait_for_timeout(500)
+        now = clock.inner_text()
+        rest, held = now == held, now
+        if rest:
+            break
+    assert rest, f"the clock still runs out of view ({held})"
     page.wait_for_timeout(800)
     assert clock.inner_text() == held
     page.locator("#scene-plot").scroll_into_view_if_needed()
