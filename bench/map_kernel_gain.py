@@ -16,10 +16,9 @@ crossing) from the same start:
 So general+section -> generated+section is what the field gains, generated+section -> small
 plain what the kernel's shape gains (and the section's cost, which a small kernel with
 sections would keep). A small kernel with sections would take at least the small plain
-run's steps and calls:
-small plain / general+section bounds what it could gain on the integration, and small
-plain / map trace on the whole trajectory. Best of 3 timings each, after a warm call; 5
-sampled starts per case (starts_for, seed 0).
+run's steps and calls, so small plain / general+section bounds what it could gain on the
+integration, and small plain / map trace what it could gain on the whole trajectory.
+Best of 3 timings each, after a warm call; 5 sampled starts per case (starts_for, seed 0).
 
     PYTHONPATH=$PWD .venv/bin/python bench/map_kernel_gain.py
         -> bench/results/map_kernel_gain.txt
@@ -29,11 +28,13 @@ import os
 import statistics
 import sys
 import time
+from functools import partial
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path[:0] = [str(ROOT)]
 
+from bench.limit import best_of  # noqa: E402
 from solvers.integrate.integrator import integrate  # noqa: E402
 from solvers.maps.poincare import MapSpec, map_model, starts_for, trace  # noqa: E402
 from solvers.models.cases import get_case  # noqa: E402
@@ -43,14 +44,11 @@ CASES = ["plane/chaplygin-ball", "sphere/routh-ball", "sphere/chaplygin-ball"]
 STARTS = 5
 
 
-def best(f, *args, n: int = 3, **kw):
-    f(*args, **kw)
-    out, dt = None, float("inf")
-    for _ in range(n):
-        t = time.perf_counter()
-        out = f(*args, **kw)
-        dt = min(dt, time.perf_counter() - t)
-    return dt, out
+def best(f, *args, **kw):
+    """(best wall time of 3, the last result) after a warm call: bench/limit.py's best_of."""
+    run = partial(f, *args, **kw)
+    run()
+    return best_of(run, 3)
 
 
 def main() -> None:
