@@ -1,24 +1,24 @@
-"""What a small kernel with sections could gain a Poincare map (issue 19, item 1: not built).
+"""What the small kernel with sections gains a Poincare map (issue 19, item 1).
 
-A map's trajectory runs the general kernel (rk.py on the general field) with the section
-g = g0, its step control near the section, dense samples and the check. A small kernel
-(solvers/kernels/small.py: the generated field inlined, state and stages in locals) exists
-for plain runs only. For one trajectory of the default map (E = 1, 200 crossings, rtol
-1e-10, atol 1e-12) this times, over the same span [0, T] (T: the trajectory's last
-crossing) from the same start:
-  map trace       the whole trajectory as maps run it (solvers.maps.poincare.trace: the
-                  section, 32 dense samples per crossing, the crossings' check);
-  general+section the general kernel with the section only (no samples);
-  generated+section rk.py's kernel on the case's generated field with the section (the
-                  generated integrator: ~32 s of compile per structure on first use);
-  general plain   the general kernel, no section (integrate(kernel="rk"));
-  small plain     the small kernel, no section (integrate's default for a plain run).
-So general+section -> generated+section is what the field gains, generated+section -> small
-plain what the kernel's shape gains (and the section's cost, which a small kernel with
-sections would keep). A small kernel with sections would take at least the small plain
-run's steps and calls, so small plain / general+section bounds what it could gain on the
-integration, and small plain / map trace what it could gain on the whole trajectory.
-Best of 3 timings each, after a warm call; 5 sampled starts per case (starts_for, seed 0).
+A map's trajectory runs, by its size (solvers/maps/poincare.py map_kernel), the general
+kernel (rk.py on the general field) or the small kernel with sections (solvers/kernels/
+small.py: the generated field inlined, state and stages in locals, rk.py's section code;
+integrate(kernel="small")). For one trajectory of the default map (E = 1, 200 crossings,
+rtol 1e-10, atol 1e-12), from the same start, this times:
+  map general / map small   the whole trajectory as maps run it (solvers.maps.poincare.
+                  trace: the section, 32 dense samples per crossing, the crossings' check)
+                  on either kernel;
+and over the same span [0, T] (T: the trajectory's last crossing), the section only (no
+samples):
+  general+section   rk.py's kernel on the general field;
+  generated+section rk.py's kernel on the case's generated field (the generated
+                    integrator, ~32 s of compile per structure, opt-in);
+  small+section     the small kernel with sections (same steps as generated+section).
+Best of 3 timings each, after a warm call; 5 sampled starts per case (starts_for, seed 0):
+milliseconds (steps), median over the starts; the ratios per start, median (max).
+The compile is not in these times: the small kernel with sections compiles once per case
+structure (10-14 s of CPU on 2 cores, then numba's disk cache), which is why only maps of
+at least SMALL_MAP_CROSSINGS crossings take it.
 
     PYTHONPATH=$PWD .venv/bin/python bench/map_kernel_gain.py
         -> bench/results/map_kernel_gain.txt
@@ -52,42 +52,47 @@ def best(f, *args, **kw):
 
 
 def main() -> None:
+    from dataclasses import replace
+
     spec = MapSpec(energy=1.0, points=200)
     lines = [f"map kernel gain, {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}, load "
              f"average {' '.join(f'{x:.2f}' for x in os.getloadavg())}",
              "per trajectory of the default map (E = 1, 200 crossings, rtol 1e-10): ms "
              "(steps), median over the starts; ratios per start, median (max)",
-             f"{'case':24s} {'map trace':>12s} {'general+section':>18s} {'generated+section':>19s} "
-             f"{'general plain':>18s} "
-             f"{'small plain':>16s}  {'small/gen+sec':>14s} {'small/map':>12s}"]
+             f"{'case':24s} {'map general':>12s} {'map small':>10s} {'small/gen':>12s}  "
+             f"{'general+section':>17s} {'generated+section':>18s} {'small+section':>15s}"
+             f" {'small/general':>14s}"]
     for case in CASES:
         m = map_model(case, get_case(case).example)
         rows = []
         for y0 in starts_for(m, spec, trajectories=STARTS, seed=0):
-            t_map, tr = best(trace, m, y0, spec)
+            t_gen, tr = best(trace, m, y0, replace(spec, kernel="general"))
+            t_small, tr_small = best(trace, m, y0, replace(spec, kernel="small"))
+            assert len(tr.t) == len(tr_small.t) == spec.points
             T = float(tr.t[-1])
-            opts = {"rtol": spec.rtol, "atol": spec.atol}
+            opts = {"rtol": spec.rtol, "atol": spec.atol, "section": spec.section(),
+                    "max_crossings": 10**6}
             runs = {}
-            sec = {"section": spec.section(), "max_crossings": 10**6}
-            for label, kw in (("sec", sec), ("gsec", {**sec, "generated": True}),
-                              ("gen", {"kernel": "rk"}), ("small", {})):
+            for label, kw in (("sec", {}), ("gsec", {"generated": True}),
+                              ("ssec", {"kernel": "small"})):
                 dt, r = best(integrate, m.model, m.p, y0, [0.0, T], **opts, **kw)
                 runs[label] = (dt, r.steps, r.kernel, r.vector_field)
-            assert runs["small"][2:] == ("small", "generated"), runs["small"]
-            assert runs["gen"][2:] == runs["sec"][2:] == ("rk", "general"), runs
+            assert runs["sec"][2:] == ("rk", "general"), runs
             assert runs["gsec"][2:] == ("rk", "generated"), runs["gsec"]
-            rows.append((t_map, runs))
-        med = {k: statistics.median(r[1][k][0] for r in rows) * 1e3 for k in runs}
-        steps = {k: int(statistics.median(r[1][k][1] for r in rows)) for k in runs}
-        t_map = statistics.median(r[0] for r in rows) * 1e3
-        r_sec = [r[1]["small"][0] / r[1]["sec"][0] for r in rows]
-        r_map = [r[1]["small"][0] / r[0] for r in rows]
+            assert runs["ssec"][2:] == ("small-sections", "generated"), runs["ssec"]
+            assert runs["ssec"][1] == runs["gsec"][1], runs
+            rows.append((t_gen, t_small, runs))
+        med = {k: statistics.median(r[2][k][0] for r in rows) * 1e3 for k in runs}
+        steps = {k: int(statistics.median(r[2][k][1] for r in rows)) for k in runs}
+        m_gen = statistics.median(r[0] for r in rows) * 1e3
+        m_small = statistics.median(r[1] for r in rows) * 1e3
+        r_map = [r[1] / r[0] for r in rows]
+        r_sec = [r[2]["ssec"][0] / r[2]["sec"][0] for r in rows]
         lines.append(
-            f"{case:24s} {t_map:12.1f} {med['sec']:9.1f} ({steps['sec']:5d}) "
-            f"{med['gsec']:10.1f} ({steps['gsec']:5d}) "
-            f"{med['gen']:9.1f} ({steps['gen']:5d}) {med['small']:7.1f} ({steps['small']:5d})  "
-            f"{statistics.median(r_sec):6.2f} ({max(r_sec):.2f}) "
-            f"{statistics.median(r_map):5.2f} ({max(r_map):.2f})")
+            f"{case:24s} {m_gen:12.1f} {m_small:10.1f} {statistics.median(r_map):6.2f} "
+            f"({max(r_map):.2f})  {med['sec']:8.1f} ({steps['sec']:5d}) "
+            f"{med['gsec']:9.1f} ({steps['gsec']:5d}) {med['ssec']:6.1f} ({steps['ssec']:5d})"
+            f" {statistics.median(r_sec):6.2f} ({max(r_sec):.2f})")
     text = "\n".join(lines) + "\n"
     print(text, end="")
     OUT.write_text(text)

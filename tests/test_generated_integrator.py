@@ -20,6 +20,7 @@ from solvers.integrate import integrator
 from solvers.integrate.ensemble import integrate_ensemble
 from solvers.integrate.integrator import Section, integrate
 from solvers.kernels import generate
+from solvers.kernels.rk import CROSSINGS_DONE
 from solvers.models.cases import build, registry
 from tests.test_ensemble import _case, _same
 
@@ -112,3 +113,47 @@ def test_generated_ensemble_equals_generated_one_by_one():
     gen = integrate_ensemble(m.model, m.p, Y0, t_out, generated=False)
     assert all(np.allclose(a.y, b.y, rtol=0, atol=1e-6) for a, b in
                zip(ens, gen, strict=True))
+
+
+def test_small_kernel_with_sections_takes_the_generated_integrators_steps():
+    """The small kernel with sections (integrate(kernel="small") with a section: a large
+    Poincare map's runs) against rk.py's generated integrator on the same field: the same
+    steps, rejections, field calls, status and samples, bit for bit (its step is rk.py's,
+    the step control near the Andoyer section and the halving of grazing steps included);
+    the crossings, which rk.py's own Henon and Newton code locates on the general field
+    (one compile for every structure), agree to a few units of round-off. Both sections:
+    the map's g = g0 in Andoyer-Deprit variables, one way, and a plane gamma_1 = 0.2 both
+    ways; a plane gamma_1 = 0.8722176 that the trajectory grazes (its gamma_1 peaks at
+    0.87221864: steps there are halved until their ends read the section right, 4 more
+    rejected steps than without the section); and a run stopped by its number of
+    crossings."""
+    from solvers.maps.poincare import MapSpec, starts_for
+
+    c = registry()["plane/chaplygin-ball"]
+    m = build(c.id, c.example)
+    spec = MapSpec(energy=1.0)
+    eps = np.finfo(float).eps
+    runs = [(y0, spec.section(), 60) for y0 in starts_for(m, spec, trajectories=2)]
+    graze = Section(coef=(0, 0, 0, 1.0, 0, 0), offset=0.8722176, direction=0)
+    runs += [(c.state, Section(coef=(0, 0, 0, 1.0, 0, 0), offset=0.2, direction=0), 25),
+             (c.state, graze, 1000), (c.state, spec.section(), 3)]
+    for y0, sec, n_cross in runs:
+        t = np.linspace(0.0, 300.0, 3001)
+        big = integrate(m.model, m.p, y0, t, generated=True, kernel="rk", section=sec,
+                        max_crossings=n_cross)
+        r = integrate(m.model, m.p, y0, t, kernel="small", section=sec,
+                      max_crossings=n_cross)
+        assert (big.kernel, r.kernel, r.vector_field) == ("rk", "small-sections", "generated")
+        assert (big.status, big.steps, big.rejected, big.rhs_calls, big.t_stop) == \
+            (r.status, r.steps, r.rejected, r.rhs_calls, r.t_stop), (big.message, r.message)
+        np.testing.assert_array_equal(big.y, r.y)
+        np.testing.assert_array_equal(big.y_stop, r.y_stop)
+        assert len(r.crossings_t) == len(big.crossings_t) >= 2
+        assert np.all(np.abs(r.crossings_t - big.crossings_t)
+                      <= 16 * eps * np.maximum(1.0, np.abs(big.crossings_t)))
+        assert np.max(np.abs(r.crossings_y - big.crossings_y)) <= \
+            16 * eps * max(1.0, float(np.max(np.abs(big.crossings_y))))
+        if sec is graze:
+            plain = integrate(m.model, m.p, y0, t)
+            assert r.rejected > plain.rejected + 2, (r.rejected, plain.rejected)
+    assert big.status == CROSSINGS_DONE and len(big.crossings_t) == 3

@@ -84,4 +84,7 @@ class PoincarePublic(BaseModel):
     method: str
     rtol: float
     atol: float
+    kernel: str = Field(description="which kernel ran the trajectories: small (the case's "
+                        "generated field, for a map of at least 100000 crossings in all) "
+                        "or general")
     trajectories: list[TrajectoryPublic]

@@ -11,7 +11,10 @@ them. Then the request's job starts and its deadline counts. Keys:
   ("taylor", structure, k > 0, precision, tol)   heyoka's integrator of a "taylor" run, or
                                         of a rung of an "auto" run (solvers/integrate/
                                         run_plan.py: the rungs the request fixes)
-  ("map", case, method)                 a Poincare map's compiled ensemble (sections)
+  ("map", case, method)                 a Poincare map's general kernel (sections)
+  ("small-sections", case, params, method)   a large map's small kernel with sections
+                                        (solvers/maps/poincare.py map_kernel: compiled on
+                                        first use, never by the warm-up)
   ("scene", case)                       a scene's run (the scene model, general field)
   ("scene-check", scene id)             a teaching scene's checks
 
@@ -137,6 +140,15 @@ def prepare_run(req: dict) -> int:
     return done
 
 
+def map_key(job: dict) -> tuple:
+    """The key of a Poincare map's job (app/api/routes/poincare.py resolve)."""
+    spec = job["spec"]
+    if spec["kernel"] == "small":
+        return ("small-sections", job["case"], tuple(sorted(job["params"].items())),
+                spec["method"])
+    return ("map", job["case"], spec["method"])
+
+
 def _has_generated(model_code: int) -> bool:
     from solvers.kernels import generate
 
@@ -149,12 +161,13 @@ def needed(kernels: KernelWarmup, assumed_warm: bool, keys: list[tuple]) -> bool
     if not todo:
         return False
     if kernels.state == "done" or (kernels.state == "off" and assumed_warm):
-        # the warm-up compiled everything but the small kernels of other structures and
-        # the Taylor integrators: maps, scenes and their checks included
+        # the warm-up compiled everything but the small kernels of other structures, the
+        # small kernels with sections (large maps) and the Taylor integrators: maps,
+        # scenes and their checks included
         # (tests/test_warm_covers_requests.py: their default requests enter no numba
         # specialization the warm-up's tasks do not)
-        return any((k[0] == "small" and k not in _warmed()) or k[0] == "taylor"
-                   for k in todo)
+        return any((k[0] == "small" and k not in _warmed())
+                   or k[0] in ("taylor", "small-sections") for k in todo)
     return True
 
 

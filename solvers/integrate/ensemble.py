@@ -40,6 +40,7 @@ from solvers.integrate.integrator import (
     is_plain,
     method_arrays,
     small_module,
+    small_sections,
     status_message,
 )
 from solvers.kernels import ensemble as kernels
@@ -71,30 +72,44 @@ def _choose_layer():
 
 
 def _small_ensemble(model, p, Y0, T, counts, steps, compensated, FOPT, atol_v, method,
-                    workers) -> list[IntegrationResult]:
+                    workers, sec=None, cross=None) -> list[IntegrationResult]:
     """integrate()'s route for a plain run (generated=None): the small kernel of the
     structure (solvers/kernels/small.py) per trajectory, on a pool of threads (the kernel
-    is nogil): the same bits as integrate(model, p, Y0[i], ...) one by one."""
+    is nogil): the same bits as integrate(model, p, Y0[i], ...) one by one. sec (a
+    Section) and cross (the crossings per trajectory): the small kernel with sections
+    (a Poincare map's runs), as integrate() runs them."""
     from concurrent.futures import ThreadPoolExecutor
 
-    from solvers.integrate.integrator import _result
+    from solvers.integrate.integrator import SMALL_SECTIONS, _result
 
-    run = small_module(model, p, method).run
+    run = small_module(model, p, method, sections=sec is not None).run
     n = Y0.shape[1]
     empty_t, empty_y = np.empty(0), np.empty((0, n))
+    if sec is not None:
+        A, c, b, _, _, meth = method_arrays(method)
+        code, direction, coef = sec.code, int(np.sign(sec.direction)), sec.packed(n)
 
     def one(i):
         t_out = np.ascontiguousarray(T[i, :counts[i]])
         Y = np.empty((t_out.size, n))
         y_stop = np.empty(n)
         stats = np.zeros(5, dtype=np.int64)
+        fopt = np.ascontiguousarray(FOPT[i])
         t0 = time.perf_counter()
-        status, t_stop = run(p, np.ascontiguousarray(Y0[i]), t_out, int(steps[i]),
-                             bool(compensated), np.ascontiguousarray(FOPT[i]), atol_v, Y,
-                             y_stop, stats)
+        if sec is None:
+            status, t_stop = run(p, np.ascontiguousarray(Y0[i]), t_out, int(steps[i]),
+                                 bool(compensated), fopt, atol_v, Y, y_stop, stats)
+            cross_t, cross_y, kind = empty_t, empty_y, "small"
+        else:
+            cross_t, cross_y = np.empty(int(cross[i])), np.empty((int(cross[i]), n))
+            status, t_stop = run(p, np.ascontiguousarray(Y0[i]), t_out, int(steps[i]),
+                                 bool(compensated), fopt, atol_v, Y, y_stop, stats, model,
+                                 code, direction, int(cross[i]), coef, A, c, b, meth,
+                                 cross_t, cross_y)
+            kind = SMALL_SECTIONS
         wall = time.perf_counter() - t0
-        return _result(t_out, Y, y_stop, stats, status, t_stop, wall, method, empty_t,
-                       empty_y, "generated", "small")
+        return _result(t_out, Y, y_stop, stats, status, t_stop, wall, method, cross_t,
+                       cross_y, "generated", kind)
 
     idx = range(Y0.shape[0])
     if workers == 1 or Y0.shape[0] == 1:
@@ -159,10 +174,12 @@ def integrate_ensemble(model, p, Y0, t_out, *, method="dop853", rtol=1e-10, atol
                        project_values=None, project_every=1, section=None,
                        max_crossings=100_000, h_fixed=None, dense_output=True,
                        control=_CONTROL, generated=None, n_out=None, h_max=None,
-                       workers=None) -> list[IntegrationResult]:
+                       workers=None, kernel=None) -> list[IntegrationResult]:
     """`integrate(model, p, Y0[i], t_out, **options)` for every row of Y0 in one compiled
     parallel call (module docstring); generated=None: integrate()'s default (a plain run:
-    the small kernel per trajectory on threads; any other: the general field). Bad input
+    the small kernel per trajectory on threads; any other: the general field); kernel=
+    "small": a run with a section too runs the small kernel with sections, per trajectory
+    on threads (integrate's kernel="small"). Bad input
     raises ValueError before anything runs. wall_s of each result is its share of the call
     (the call's wall time / the number of trajectories)."""
     model = int(model)
@@ -224,6 +241,14 @@ def integrate_ensemble(model, p, Y0, t_out, *, method="dop853", rtol=1e-10, atol
         model, method, project=bool(codes.size), section=section, compensated=compensated,
         fixed=fixed, dense_output=dense_output)
     use_gen = bool(generated)
+    small_sec = kernel == "small" and section is not None
+    if kernel not in (None, "small"):
+        raise ValueError(f"kernel = {kernel!r}: None or 'small'")
+    if small_sec and (generated is False or not small_sections(
+            model, method, project=bool(codes.size), fixed=fixed, dense_output=dense_output)):
+        raise ValueError("kernel = 'small': a run of a model with a generated field, a "
+                         "tableau of small kernels, dense output, no projection and no "
+                         "fixed step")
     A, c, b, E, Pd, meth = method_arrays(method)
     if not dense_output:
         Pd = np.zeros((0, 1))
@@ -250,9 +275,9 @@ def integrate_ensemble(model, p, Y0, t_out, *, method="dop853", rtol=1e-10, atol
     t_stop = np.zeros(n_traj)
     if n_traj == 0:
         return []
-    if plain:
+    if plain or small_sec:
         return _small_ensemble(model, p, Y0, T, counts, steps, compensated, FOPT, atol_v,
-                               method, workers)
+                               method, workers, section if small_sec else None, cross)
     gen = use_gen and model in generate.GENERATED_MODELS
     w = min(workers, numba.config.NUMBA_NUM_THREADS)
     t0 = time.perf_counter()

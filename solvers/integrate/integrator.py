@@ -276,26 +276,28 @@ def _mark_ready(model: int, p, key) -> None:
 # The tableaux with small kernels (solvers/kernels/small.py): a plain run of a model with a
 # generated field and one of these runs its small kernel, whatever is compiled (issue 19).
 SMALL_METHODS = ("dop853", "vern9")
+SMALL_SECTIONS = "small-sections"     # the kernel's name in a result (a plain run's: "small")
 _SMALL_MODULES: dict = {}
 
 
-def small_module(model: int, p, method: str):
-    """The small kernel of the case's structure and tableau (compiled on its first call,
-    then loaded from numba's on-disk cache), memoized per parameter vector."""
+def small_module(model: int, p, method: str, sections: bool = False):
+    """The small kernel of the case's structure and tableau (sections: the one with
+    section crossings), compiled on its first call, then loaded from numba's on-disk
+    cache, memoized per parameter vector."""
     p = np.asarray(p, dtype=np.float64)
-    key = (int(model), p.tobytes(), method)
+    key = (int(model), p.tobytes(), method, bool(sections))
     mod = _SMALL_MODULES.get(key)
     if mod is None:
         if len(_SMALL_MODULES) > _CACHE_MAX:
             _SMALL_MODULES.clear()
-        mod = _SMALL_MODULES[key] = small.small_kernel(model, p, method)
+        mod = _SMALL_MODULES[key] = small.small_kernel(model, p, method, bool(sections))
     return mod
 
 
-def small_ready(model: int, p, method: str = "dop853") -> bool:
+def small_ready(model: int, p, method: str = "dop853", sections: bool = False) -> bool:
     """Whether the small kernel of the structure and tableau is compiled (in this process
     or in numba's on-disk cache for this machine): the warm-up's test, never the route's."""
-    mod = small_module(model, p, method)
+    mod = small_module(model, p, method, sections)
     return _numba_cache_holds(mod, "run")
 
 
@@ -304,9 +306,19 @@ def is_plain(model, method, *, project=False, section=None, compensated=False,
     """Whether integrate() runs the small kernel for these options (and generated is
     not False): what the route depends on is the request, never the cache. Compensated
     sums are a run-time flag of the small kernels (method "auto" uses them)."""
+    return section is None and small_sections(model, method, project=project,
+                                              compensated=compensated, fixed=fixed,
+                                              dense_output=dense_output)
+
+
+def small_sections(model, method, *, project=False, compensated=False, fixed=False,
+                   dense_output=True) -> bool:
+    """Whether a run with a section and these options has a small kernel with sections
+    (solvers/kernels/small.py), which kernel="small" runs: a plain run but for the
+    section."""
     del compensated
     return (model in generate.GENERATED_MODELS and method in SMALL_METHODS and not project
-            and section is None and not fixed and dense_output)
+            and not fixed and dense_output)
 
 
 def integrate(model, p, y0, t_out, *, method="dop853", rtol=1e-10, atol=1e-12,
@@ -336,7 +348,13 @@ def integrate(model, p, y0, t_out, *, method="dop853", rtol=1e-10, atol=1e-12,
     of a structure, ~32 s); False: the general support-function field, the reference.
     The result's `vector_field` says which field ran, `kernel` which compiled form.
     kernel: None (default) the rule above; "rk": rk.py's kernel whatever the run (the
-    tests' reference for the small kernels).
+    tests' reference for the small kernels); "small": the small kernel, a run with a
+    section included (its kernel with sections: the steps and samples of rk.py's generated
+    integrator bit for bit, the crossings located by rk.py's own code on the general
+    field; result kernel "small-sections"), ValueError for a run no small kernel takes.
+    A run with a section takes it only when asked (a Poincare map decides by its size:
+    solvers/maps/poincare.py map_kernel): it compiles once per structure (~10-14 s on 2
+    cores).
     """
     if (kernel is None and generated is not False and method in SMALL_METHODS
             and h_fixed is None and section is None and dense_output
@@ -392,9 +410,9 @@ def integrate(model, p, y0, t_out, *, method="dop853", rtol=1e-10, atol=1e-12,
     cross_y = np.empty((n_cross, n))
     y_stop = np.empty(n)
     stats = np.zeros(5, dtype=np.int64)
-    if kernel not in (None, "rk"):
-        raise ValueError(f"kernel = {kernel!r}: None or 'rk'")
-    if kernel is None and generated is not False and is_plain(
+    if kernel not in (None, "rk", "small"):
+        raise ValueError(f"kernel = {kernel!r}: None, 'rk' or 'small'")
+    if kernel in (None, "small") and generated is not False and is_plain(
             model, method, project=bool(codes.size), section=section,
             compensated=compensated, fixed=fixed, dense_output=dense_output):
         run = small_module(model, p, method).run
@@ -404,6 +422,25 @@ def integrate(model, p, y0, t_out, *, method="dop853", rtol=1e-10, atol=1e-12,
         wall = time.perf_counter() - t0
         return _result(t_out, Y, y_stop, stats, status, t_stop, wall, method, cross_t,
                        cross_y, "generated", "small")
+    if kernel == "small" and section is not None:
+        if generated is False or not small_sections(
+                model, method, project=bool(codes.size), fixed=fixed, dense_output=dense_output):
+            raise ValueError("kernel = 'small': a run of a model with a generated field, a "
+                             f"tableau of {', '.join(SMALL_METHODS)}, dense output, no "
+                             "projection and no fixed step")
+        run = small_module(model, p, method, sections=True).run
+        t0 = time.perf_counter()
+        status, t_stop = run(p, y0, t_out, int(max_steps), bool(compensated), fopt, atol_v,
+                             Y, y_stop, stats, int(model), sec_code, sec_dir, n_cross, sec_coef,
+                             A, c, b,
+                             meth, cross_t, cross_y)
+        wall = time.perf_counter() - t0
+        return _result(t_out, Y, y_stop, stats, status, t_stop, wall, method, cross_t,
+                       cross_y, "generated", SMALL_SECTIONS)
+    if kernel == "small":
+        raise ValueError("kernel = 'small': a run of a model with a generated field, a "
+                         f"tableau of {', '.join(SMALL_METHODS)}, dense output, no "
+                         "projection and no fixed step")
     kern, used, fresh = rk.rk_integrate, "general", None
     if generated and model in generate.GENERATED_MODELS:
         key = (int(model), p.tobytes(), method)

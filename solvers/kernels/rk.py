@@ -278,15 +278,25 @@ def _crossing_start(code, coef, y, f0, ynew, f1, h, grad, direction):
     both ends but crossing over inside, or coming nearer to the section than it swings in
     the step (a grazing pair), or a sign change with ds/dt of the wrong sign at both
     ends."""
-    n = y.shape[0]
-    s0 = section_value(code, y, coef, grad)
-    d0 = 0.0
-    for m in range(n):
-        d0 += grad[m] * f0[m]
-    s1 = section_value(code, ynew, coef, grad)
-    d1 = 0.0
-    for m in range(n):
-        d1 += grad[m] * f1[m]
+    s0, d0 = section_slope(code, y, f0, coef, grad)
+    s1, d1 = section_slope(code, ynew, f1, coef, grad)
+    return crossing_kind(s0, d0, s1, d1, h, direction)
+
+
+@kernel
+def section_slope(code, y, f, coef, grad):
+    """(s(y), ds/dt = grad s . f) of section `code` at y where the field is f."""
+    s = section_value(code, y, coef, grad)
+    d = 0.0
+    for m in range(y.shape[0]):
+        d += grad[m] * f[m]
+    return s, d
+
+
+@kernel
+def crossing_kind(s0, d0, s1, d1, h, direction):
+    """_crossing_start's answer from the section's values and slopes at the step's ends
+    (the small kernels carry them from step to step: solvers/kernels/small.py)."""
     if not (np.isfinite(s0) and np.isfinite(s1) and np.isfinite(d0) and np.isfinite(d1)):
         return 0
     up = s0 < 0.0 <= s1

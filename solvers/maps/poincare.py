@@ -56,6 +56,7 @@ class MapSpec:
     samples_per_crossing: int = 32
     check: bool = True
     generated: bool | None = None     # the case's generated field; None: integrate's default
+    kernel: str = "auto"              # small | general | auto: by the map's size (map_kernel)
 
     def validate(self) -> None:
         if not math.isfinite(self.energy):
@@ -70,6 +71,8 @@ class MapSpec:
             raise InputError(f"rtol = {self.rtol!r}: must lie in [1e-14, 1e-3]")
         if self.samples_per_crossing < 8:
             raise InputError("samples_per_crossing must be at least 8")
+        if self.kernel not in KERNELS:
+            raise InputError(f"kernel = {self.kernel!r}: one of {', '.join(KERNELS)}")
 
     def section(self):
         from solvers.integrate.integrator import Section
@@ -229,11 +232,45 @@ class _Tracer:
         self.done = True
 
 
+# Which kernel runs a map's trajectories. The small kernel with sections (solvers/kernels/
+# small.py: the case's generated field in local variables; integrate(kernel="small")) runs
+# a map's trajectory in less time than the general kernel (bench/results/
+# map_kernel_gain.txt), but compiles once per case structure (~10-14 s of CPU on 2 cores,
+# then numba's disk cache), while the general kernel serves every case and is compiled by
+# the warm-up. "auto" takes the small kernel for a map of at least SMALL_MAP_CROSSINGS
+# crossings in all (trajectories x points), where the time saved is of the order of that
+# compile; a smaller map runs the general kernel. The request alone decides (never what is
+# compiled), so the same request gives the same bits: "auto" is resolved once for the
+# whole map (resolve_kernel; the explorer before it splits the trajectories into jobs).
+KERNELS = ("auto", "small", "general")
+SMALL_MAP_CROSSINGS = 100_000
+
+
+def map_kernel(model: Model, spec: MapSpec, trajectories: int) -> str:
+    """"small" or "general": spec.kernel, with "auto" resolved by the map's size."""
+    if spec.kernel != "auto":
+        return spec.kernel
+    from solvers.integrate.integrator import small_sections
+
+    fits = spec.generated is not False and small_sections(model.model, spec.method)
+    return "small" if fits and trajectories * spec.points >= SMALL_MAP_CROSSINGS else "general"
+
+
+def resolve_kernel(model: Model, spec: MapSpec, trajectories: int) -> MapSpec:
+    """spec with its kernel decided for a map of `trajectories` trajectories."""
+    from dataclasses import replace
+
+    return spec if spec.kernel != "auto" else replace(
+        spec, kernel=map_kernel(model, spec, trajectories))
+
+
 def _integrate_options(spec: MapSpec) -> dict:
     opts = {"method": spec.method, "rtol": spec.rtol, "atol": spec.atol,
             "section": spec.section()}
     if spec.generated is not None:
         opts["generated"] = spec.generated
+    if spec.kernel == "small":
+        opts["kernel"] = "small"
     return opts
 
 
@@ -242,6 +279,7 @@ def trace(model: Model, y0, spec: MapSpec, *, h_max: float = math.inf) -> MapTra
     `integrate` call per run."""
     from solvers.integrate.integrator import StepControl, integrate
 
+    spec = resolve_kernel(model, spec, 1)
     tr = _Tracer(model, y0, spec, h_max)
     control = StepControl(h_max=h_max)
     while not tr.done:
@@ -258,6 +296,7 @@ def trace_all(model: Model, starts, spec: MapSpec, *, h_max=None, workers: int |
     parallel call per round (solvers/integrate/ensemble.py; several if their samples
     would take more than ROUND_BYTES); h_max: one per start or None.
     progress(finished, total) when a round finishes some."""
+    spec = resolve_kernel(model, spec, len(starts))
     hm = [math.inf] * len(starts) if h_max is None else list(h_max)
     tracers = [_Tracer(model, y0, spec, h) for y0, h in zip(starts, hm, strict=True)]
     finished = 0
@@ -310,6 +349,7 @@ def _again(first: MapTrajectory, again: MapTrajectory) -> MapTrajectory:
 def trace_checked(model: Model, y0, spec: MapSpec) -> MapTrajectory:
     """trace(), and once more with h_max = the sample spacing if the check found a
     crossing the kernel missed (or the samples were too coarse to tell)."""
+    spec = resolve_kernel(model, spec, 1)
     traj = trace(model, y0, spec)
     if _needs_again(spec, traj):
         return _again(traj, trace(model, y0, spec, h_max=0.5 * traj.check["sample_dt"]))
@@ -323,6 +363,7 @@ def trace_checked_all(model: Model, starts, spec: MapSpec, *, workers: int | Non
     check asks for it. progress(finished, total) as the first pass finishes them, and
     once more after the second pass if there is one."""
     starts = list(starts)
+    spec = resolve_kernel(model, spec, len(starts))     # the redo runs as the first pass
     out = trace_all(model, starts, spec, workers=workers, progress=progress)
     redo = [i for i, tr in enumerate(out) if _needs_again(spec, tr)]
     if redo:
@@ -394,7 +435,8 @@ class PoincareResult:
         return {"case": self.case, "params": self.params, "energy": self.spec.energy,
                 "section": {"g0": self.spec.g0, "direction": self.spec.direction},
                 "coordinates": ["L/G", "H/G", "l"], "points": self.spec.points,
-                "method": self.spec.method, "rtol": self.spec.rtol, "atol": self.spec.atol}
+                "method": self.spec.method, "rtol": self.spec.rtol, "atol": self.spec.atol,
+                "kernel": self.spec.kernel}
 
     def to_json(self) -> dict:
         trs = []
@@ -438,12 +480,13 @@ def poincare(case: str, params: dict | None, spec: MapSpec, *, trajectories: int
     """The map of `case` on the level spec.energy: `trajectories` sampled starts (seeded),
     or the given `initial` map points (L/G, H/G, l), or full `states` (M, gamma) taken
     as they are (their own energy is reported). All trajectories run together, one
-    compiled parallel call per round on `workers` threads (trace_checked_all);
-    progress(done, total) as they finish."""
+    compiled parallel call per round on `workers` threads (trace_checked_all; the kernel
+    by the map's size, map_kernel); progress(done, total) as they finish."""
     spec.validate()
     model = map_model(case, params, allow_any_inertia=allow_any_inertia)
     starts = starts_for(model, spec, trajectories=trajectories, initial=initial,
                         states=states, seed=seed)
+    spec = resolve_kernel(model, spec, len(starts))
     out = trace_checked_all(model, starts, spec, workers=workers, progress=progress)
     names = tuple(n for n in model.integral_names)
     return PoincareResult(case, model.params, spec, out, names)

@@ -52,7 +52,7 @@ def resolve(req: PoincareRequest, max_steps: int) -> tuple[dict, dict, list[list
     """(header of the answer, the job every trajectory shares, the starts)."""
     from dataclasses import asdict
 
-    from solvers.maps.poincare import MapSpec, map_model, starts_for
+    from solvers.maps.poincare import MapSpec, map_model, resolve_kernel, starts_for
     from solvers.models.cases import get_case
 
     spec_case = get_case(req.case)
@@ -67,10 +67,13 @@ def resolve(req: PoincareRequest, max_steps: int) -> tuple[dict, dict, list[list
 
     for s in starts:   # a level so high that its starts overflow (energy = 1e308)
         check_derived(model, s, blame=f"energy = {req.energy!r}")
+    # the kernel by the whole map's size, before its trajectories become separate jobs
+    spec = resolve_kernel(model, spec, len(starts))
     header = {"case": req.case, "params": model.params, "energy": spec.energy,
               "section": {"g0": spec.g0, "direction": spec.direction},
               "coordinates": ["L/G", "H/G", "l"], "points": spec.points,
-              "method": spec.method, "rtol": spec.rtol, "atol": spec.atol}
+              "method": spec.method, "rtol": spec.rtol, "atol": spec.atol,
+              "kernel": spec.kernel}
     job = {"case": req.case, "params": params, "allow_any_inertia": req.allow_any_inertia,
            "spec": asdict(spec)}
     return header, job, [s.tolist() for s in starts]
@@ -150,7 +153,7 @@ async def poincare(req: PoincareRequest, request: Request, pool: PoolDep,
     n = len(starts)
     results: list[dict | None] = [None] * n
     kernels = request.app.state.kernels
-    keys = [("map", req.case, req.method)]
+    keys = [kernel_prepare.map_key(job)]
 
     async def prepare():
         # the map's kernels compile (first use) in a job without a deadline; the map's
