@@ -20,7 +20,7 @@ from solvers.integrate import integrator
 from solvers.integrate.ensemble import integrate_ensemble
 from solvers.integrate.integrator import Section, integrate
 from solvers.kernels import generate
-from solvers.kernels.rk import CROSSINGS_DONE
+from solvers.kernels.rk import CROSSINGS_DONE, MAX_STEPS
 from solvers.models.cases import build, registry
 from tests.test_ensemble import _case, _same
 
@@ -157,3 +157,30 @@ def test_small_kernel_with_sections_takes_the_generated_integrators_steps():
             plain = integrate(m.model, m.p, y0, t)
             assert r.rejected > plain.rejected + 2, (r.rejected, plain.rejected)
     assert big.status == CROSSINGS_DONE and len(big.crossings_t) == 3
+
+
+def test_small_kernel_with_projection_takes_the_generated_integrators_steps():
+    """The small kernel with projection (integrate(kernel="small") with project_codes)
+    against rk.py's generated integrator on the same field: the same bits everywhere
+    (rk.py's own projection onto the levels, every project_every-th accepted step, the
+    field again at the projected point, the interpolated and the step-end samples
+    projected too), compensated sums and a step budget included."""
+    from solvers.kernels.integrals import ENERGY, NAMES
+
+    c = registry()["plane/chaplygin-ball"]
+    m = build(c.id, c.example)
+    t = np.linspace(0.0, 40.0, 81)
+    codes = [ENERGY, NAMES.index("gamma2"), NAMES.index("area")]   # E, |gamma|^2, M.gamma
+    for every, comp, budget in ((1, False, 10**7), (3, False, 10**7), (2, True, 10**7),
+                                (1, False, 40)):
+        kw = dict(project_codes=codes, project_every=every, compensated=comp,
+                  max_steps=budget, rtol=1e-9, atol=1e-11)
+        big = integrate(m.model, m.p, c.state, t, generated=True, kernel="rk", **kw)
+        r = integrate(m.model, m.p, c.state, t, kernel="small", **kw)
+        assert (big.kernel, r.kernel, r.vector_field) == ("rk", "small-projection",
+                                                           "generated")
+        assert (big.status, big.steps, big.rejected, big.rhs_calls, big.t_stop) == \
+            (r.status, r.steps, r.rejected, r.rhs_calls, r.t_stop), (big.message, r.message)
+        np.testing.assert_array_equal(big.y, r.y)
+        np.testing.assert_array_equal(big.y_stop, r.y_stop)
+    assert not big.success and big.status == MAX_STEPS

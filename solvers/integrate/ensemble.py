@@ -244,7 +244,7 @@ def integrate_ensemble(model, p, Y0, t_out, *, method="dop853", rtol=1e-10, atol
     small_sec = kernel == "small" and section is not None
     if kernel not in (None, "small"):
         raise ValueError(f"kernel = {kernel!r}: None or 'small'")
-    if small_sec and (generated is False or not small_sections(
+    if kernel == "small" and (generated is False or not small_sections(
             model, method, project=bool(codes.size), fixed=fixed, dense_output=dense_output)):
         raise ValueError("kernel = 'small': a run of a model with a generated field, a "
                          "tableau of small kernels, dense output, no projection and no "

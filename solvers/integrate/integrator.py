@@ -277,20 +277,26 @@ def _mark_ready(model: int, p, key) -> None:
 # generated field and one of these runs its small kernel, whatever is compiled (issue 19).
 SMALL_METHODS = ("dop853", "vern9")
 SMALL_SECTIONS = "small-sections"     # the kernel's name in a result (a plain run's: "small")
+SMALL_PROJECTION = "small-projection"
+SMALL_REFUSED = (f"kernel = 'small': a run of a model with a generated field, a tableau of "
+                 f"{', '.join(SMALL_METHODS)}, dense output, no fixed step, and a section "
+                 "or a projection but not both")
 _SMALL_MODULES: dict = {}
 
 
-def small_module(model: int, p, method: str, sections: bool = False):
+def small_module(model: int, p, method: str, sections: bool = False,
+                 projection: bool = False):
     """The small kernel of the case's structure and tableau (sections: the one with
-    section crossings), compiled on its first call, then loaded from numba's on-disk
-    cache, memoized per parameter vector."""
+    section crossings; projection: the one with projection), compiled on its first call,
+    then loaded from numba's on-disk cache, memoized per parameter vector."""
     p = np.asarray(p, dtype=np.float64)
-    key = (int(model), p.tobytes(), method, bool(sections))
+    key = (int(model), p.tobytes(), method, bool(sections), bool(projection))
     mod = _SMALL_MODULES.get(key)
     if mod is None:
         if len(_SMALL_MODULES) > _CACHE_MAX:
             _SMALL_MODULES.clear()
-        mod = _SMALL_MODULES[key] = small.small_kernel(model, p, method, bool(sections))
+        mod = _SMALL_MODULES[key] = small.small_kernel(model, p, method, bool(sections),
+                                                       bool(projection))
     return mod
 
 
@@ -349,10 +355,13 @@ def integrate(model, p, y0, t_out, *, method="dop853", rtol=1e-10, atol=1e-12,
     The result's `vector_field` says which field ran, `kernel` which compiled form.
     kernel: None (default) the rule above; "rk": rk.py's kernel whatever the run (the
     tests' reference for the small kernels); "small": the small kernel, a run with a
-    section included (its kernel with sections: the steps and samples of rk.py's generated
-    integrator bit for bit, the crossings located by rk.py's own code on the general
-    field; result kernel "small-sections"), ValueError for a run no small kernel takes.
-    A run with a section takes it only when asked (a Poincare map decides by its size:
+    section or a projection included (its kernel with sections: the steps and samples of
+    rk.py's generated integrator bit for bit, the crossings located by rk.py's own code on
+    the general field, result kernel "small-sections"; with projection: the generated
+    integrator's bits, rk.py's own projection, "small-projection"), ValueError for a run
+    no small kernel takes.
+    A run with a section or a projection takes it only when asked (a Poincare map decides
+    by its size:
     solvers/maps/poincare.py map_kernel): it compiles once per structure (~10-14 s on 2
     cores).
     """
@@ -422,25 +431,26 @@ def integrate(model, p, y0, t_out, *, method="dop853", rtol=1e-10, atol=1e-12,
         wall = time.perf_counter() - t0
         return _result(t_out, Y, y_stop, stats, status, t_stop, wall, method, cross_t,
                        cross_y, "generated", "small")
-    if kernel == "small" and section is not None:
-        if generated is False or not small_sections(
-                model, method, project=bool(codes.size), fixed=fixed, dense_output=dense_output):
-            raise ValueError("kernel = 'small': a run of a model with a generated field, a "
-                             f"tableau of {', '.join(SMALL_METHODS)}, dense output, no "
-                             "projection and no fixed step")
-        run = small_module(model, p, method, sections=True).run
+    if kernel == "small":   # a section or a projection: the small kernel with it
+        if (generated is False or (section is not None and codes.size) or not small_sections(
+                model, method, fixed=fixed, dense_output=dense_output)):
+            raise ValueError(SMALL_REFUSED)
         t0 = time.perf_counter()
-        status, t_stop = run(p, y0, t_out, int(max_steps), bool(compensated), fopt, atol_v,
-                             Y, y_stop, stats, int(model), sec_code, sec_dir, n_cross, sec_coef,
-                             A, c, b,
-                             meth, cross_t, cross_y)
+        if section is not None:
+            run = small_module(model, p, method, sections=True).run
+            status, t_stop = run(p, y0, t_out, int(max_steps), bool(compensated), fopt,
+                                 atol_v, Y, y_stop, stats, int(model), sec_code, sec_dir,
+                                 n_cross, sec_coef, A, c, b, meth, cross_t, cross_y)
+            used = SMALL_SECTIONS
+        else:
+            run = small_module(model, p, method, projection=True).run
+            status, t_stop = run(p, y0, t_out, int(max_steps), bool(compensated), fopt,
+                                 atol_v, Y, y_stop, stats, int(model), codes, vals,
+                                 int(project_every))
+            used = SMALL_PROJECTION
         wall = time.perf_counter() - t0
         return _result(t_out, Y, y_stop, stats, status, t_stop, wall, method, cross_t,
-                       cross_y, "generated", SMALL_SECTIONS)
-    if kernel == "small":
-        raise ValueError("kernel = 'small': a run of a model with a generated field, a "
-                         f"tableau of {', '.join(SMALL_METHODS)}, dense output, no "
-                         "projection and no fixed step")
+                       cross_y, "generated", used)
     kern, used, fresh = rk.rk_integrate, "general", None
     if generated and model in generate.GENERATED_MODELS:
         key = (int(model), p.tobytes(), method)

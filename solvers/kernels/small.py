@@ -60,6 +60,17 @@ for bit and the crossings agree with its to round-off (tests/test_generated_inte
     status, t_stop = module.run(p, y0, t_out, max_steps, compensated, fopt, atol, Y,
                                 y_stop, stats, model, code, direction, max_cross, coef,
                                 A, c, b, meth, cross_t, cross_y)
+
+With projection (small_kernel(..., projection=True); integrate(kernel="small") with
+project_codes): the same step plus rk.py's projection, in rk.py's order: every
+project_every-th accepted step its end is moved onto the levels (rk._project, rk.py's own
+code on the integrals' kernels, compiled once for every structure), the compensation
+reset and the field evaluated again there (the generated field, inlined); a sample at a
+step's end that was not projected, and every interpolated sample, is projected too. The
+generated integrator's bits (tests/test_generated_integrator.py).
+
+    status, t_stop = module.run(p, y0, t_out, max_steps, compensated, fopt, atol, Y,
+                                y_stop, stats, model, proj_codes, proj_vals, project_every)
 """
 
 from __future__ import annotations
@@ -146,9 +157,13 @@ def _call(fn: str, lead: list[str], terms) -> str:
     return f"{fn}{len(terms)}({', '.join([*lead, *(x for t in terms for x in t)])})"
 
 
-def kernel_source(model: int, p, method: str, tab, sections: bool = False) -> str:
+def kernel_source(model: int, p, method: str, tab, sections: bool = False,
+                  projection: bool = False) -> str:
     """The module text: `fs` (the scalar field) and `run` (the plain integration;
-    sections: with rk.py's section crossings, module docstring)."""
+    sections: with rk.py's section crossings; projection: with rk.py's projection onto
+    the levels of integrals; module docstring)."""
+    if sections and projection:
+        raise ValueError("a small kernel has sections or projection, not both")
     A, _c, b, E, P, meth = (np.asarray(x) for x in tab)    # the generated field ignores t
     s, new, errkind, order, q = (int(x) for x in meth[:5])
     S = A.shape[0]
@@ -165,6 +180,7 @@ def kernel_source(model: int, p, method: str, tab, sections: bool = False) -> st
            *(["from solvers.kernels.rk import (  # noqa: F401",
               "    _locate_crossing, _refine_crossing, crossing_kind, section_accept,",
               "    section_slope, section_step_error)"] if sections else []),
+           *(["from solvers.kernels.rk import _project  # noqa: F401"] if projection else []),
            "",
            "# forceinline: LLVM inlines the field at each stage (typed once; numba's own",
            "# inline='always' retyped it at every call site: twice the compile, same speed)",
@@ -216,7 +232,8 @@ def kernel_source(model: int, p, method: str, tab, sections: bool = False) -> st
     fp = {name: f"fopt[{getattr(rk, 'F_' + name)}]" for name in
           ("RTOL", "H", "HMAX", "SAFETY", "FACMIN", "FACMAX", "BETA")}
     sec_args = (", model, code, direction, max_cross, coef, tabA, tabc, tabb, meth, "
-                "cross_t, cross_y" if sections else "")
+                "cross_t, cross_y" if sections else
+                ", model, proj_codes, proj_vals, project_every" if projection else "")
     i3 = ind * 3
     o = ["", "", "@kernel",
          "def run(p, ya, t_out, max_steps, compensated, fopt, atol, Y, y_stop, stats"
@@ -286,6 +303,12 @@ def kernel_source(model: int, p, method: str, tab, sections: bool = False) -> st
               f"{ind}if code != {rk.SECTION_NONE}:"]
         o += [ind + x for x in wy] + [f"{i2}{put('wf0', [f'k0_{m}' for m in R])}"]
         o += [f"{ind}    sa, da = section_slope(code, wy, wf0, coef, wgrad)"]
+    if projection:  # rk.py's work arrays of the projection (rk._project)
+        o += [f"{ind}nproj = proj_codes.shape[0]", f"{ind}wyn = np.empty({n})",
+              f"{ind}wG = np.empty((nproj, {n}))", f"{ind}wM = np.empty((nproj, nproj))",
+              f"{ind}wr = np.empty(nproj)", f"{ind}wlam = np.empty(nproj)",
+              f"{ind}wyc = np.empty({n}, dtype=np.complex128)", f"{ind}projected = False"]
+    proj = "proj_codes, proj_vals, wG, wM, wr, wlam, wyc"
     o += [f"{ind}{' = '.join([*(f'cm{m}' for m in R), *(f'cn{m}' for m in R)])} = 0.0",
           f"{ind}t_comp = 0.0",
           f"{ind}err_old = 1e-4", f"{ind}rejected_last = False", f"{ind}j = 1",
@@ -353,12 +376,28 @@ def kernel_source(model: int, p, method: str, tab, sections: bool = False) -> st
     o += [f"{i2}n_acc += 1",
           f"{i2}if compensated and not landing:",
           f"{i2}    t_comp = (h + t_comp) - (t_new - t)", f"{i2}else:", f"{i2}    t_comp = 0.0"]
+    fnew = [f"k{new}_{m}" for m in R]
+    if projection:  # rk.py: every project_every-th accepted step onto the levels, then
+        fnew = [f"fn{m}" for m in R]    # the field again at the projected point
+        o += [f"{i2}projected = nproj > 0 and n_acc % project_every == 0",
+              f"{i2}if projected:", f"{i3}{put('wyn', [f'yn{m}' for m in R])}",
+              f"{i3}status = _project(model, p, wyn, {proj})",
+              f"{i3}if status != {L.OK}:", f"{i3}    break"]
+        o += [f"{i3}yn{m} = wyn[{m}]" for m in R] + [f"{i3}cn{m} = 0.0" for m in R]
+        o += [f"{i3}n_rhs += 1", f"{i3}status, {', '.join(fnew)} = "
+              f"{call([f'yn{m}' for m in R])}", f"{i3}if status != {L.OK}:", f"{i3}    break",
+              f"{i2}else:"]
+        o += [f"{i3}fn{m} = k{new}_{m}" for m in R]
     # outputs inside (t, t_new]: the dense stages once, Clenshaw per sample
     dense_rows = [i for i in range(S) if np.any(P[i] != 0.0)]
     ncheb = P.shape[1]
     o += [f"{i2}extra_done = False", f"{i2}while j < N and t_out[j] <= t_new:",
           f"{i3}if t_out[j] == t_new:"]
     o += [f"{i3}    Y[j, {m}] = yn{m}" for m in R]
+    if projection:
+        o += [f"{i3}    if nproj > 0 and not projected:",
+              f"{i3}        status = _project(model, p, Y[j], {proj})",
+              f"{i3}        if status != {L.OK}:", f"{i3}            break"]
     o += [f"{i3}else:", f"{i3}    if not extra_done:"]
     i5 = i3 + ind * 2
     first = max(s, new + 1)
@@ -372,6 +411,9 @@ def kernel_source(model: int, p, method: str, tab, sections: bool = False) -> st
     for m in R:
         c = _call("axpy", [f"y_{m}", "h"], [(f"w{i}", f"k{i}_{m}") for i in dense_rows])
         o.append(f"{i4}Y[j, {m}] = {c or f'y_{m} + h * (0.0)'}")
+    if projection:      # interpolated samples join the projected trajectory (rk.py)
+        o += [f"{i4}if nproj > 0:", f"{i4}    status = _project(model, p, Y[j], {proj})",
+              f"{i4}    if status != {L.OK}:", f"{i4}        break"]
     o += [f"{i3}j += 1", f"{i2}if status != {L.OK}:", f"{i2}    break"]
     if sections:    # rk.py: the crossing inside (t, t_new], located and refined
         i4 = i3 + ind
@@ -395,7 +437,7 @@ def kernel_source(model: int, p, method: str, tab, sections: bool = False) -> st
               f"{i4}    n_cross = kc + 1", f"{i3}sa = sb", f"{i3}da = db"]
     o += [f"{i2}t = t_new"]
     for m in R:
-        o += [f"{i2}y_{m} = yn{m}", f"{i2}k0_{m} = k{new}_{m}"]
+        o += [f"{i2}y_{m} = yn{m}", f"{i2}k0_{m} = {fnew[m]}"]
     o.append(f"{i2}if compensated:")
     o += [f"{i2}    cm{m} = cn{m}" for m in R]
     if sections:
@@ -421,17 +463,20 @@ def kernel_source(model: int, p, method: str, tab, sections: bool = False) -> st
     return "\n".join(out + o) + "\n"
 
 
-def module_name(model: int, p, method: str, sections: bool = False) -> str:
-    """small_<structure and sources hash>_<tableau hash>[_sec]: any edit of solvers/kernels
-    or of the tableau regenerates it."""
+def module_name(model: int, p, method: str, sections: bool = False,
+                projection: bool = False) -> str:
+    """small_<structure and sources hash>_<tableau hash>[_sec|_proj]: any edit of
+    solvers/kernels or of the tableau regenerates it."""
     from solvers.kernels import baked
 
     tabs = baked.baked_tableaux((method,))
     return (f"small_{generate.module_name(model, p)[4:]}_{method}_"
-            f"{baked.tableaux_stamp(tabs)[:10]}_v{SMALL_VERSION}{'_sec' if sections else ''}")
+            f"{baked.tableaux_stamp(tabs)[:10]}_v{SMALL_VERSION}"
+            f"{'_sec' if sections else '_proj' if projection else ''}")
 
 
-def small_kernel(model: int, p, method: str = "dop853", sections: bool = False):
+def small_kernel(model: int, p, method: str = "dop853", sections: bool = False,
+                 projection: bool = False):
     """The small kernel module of the case's structure and the tableau `method` (one of
     those the integrate layer provides: baked.set_provider), written on first use and
     compiled on its first call (then numba's on-disk cache)."""
@@ -441,5 +486,6 @@ def small_kernel(model: int, p, method: str = "dop853", sections: bool = False):
         raise ValueError(f"no small kernel for model {model}")
     tab = baked.baked_tableaux((method,))[method]
     ops_module()      # imported by name by the kernel's text, which may be on disk already
-    return generate.cached_module(module_name(model, p, method, sections),
-                                  lambda: kernel_source(model, p, method, tab, sections))
+    return generate.cached_module(
+        module_name(model, p, method, sections, projection),
+        lambda: kernel_source(model, p, method, tab, sections, projection))

@@ -1,12 +1,13 @@
-"""The small kernel with sections (solvers/kernels/small.py, sections=True): a plain run's
-small kernel plus rk.py's section crossings, which integrate(kernel="small") and
-integrate_ensemble(kernel="small") run, and which a Poincare map of at least
-SMALL_MAP_CROSSINGS crossings takes (solvers/maps/poincare.py map_kernel).
+"""The small kernels with sections and with projection (solvers/kernels/small.py,
+sections=True, projection=True): a plain run's small kernel plus rk.py's section crossings
+or its projection onto the levels of integrals, which integrate(kernel="small") runs
+(integrate_ensemble(kernel="small") with a section), and the one with sections a Poincare
+map of at least SMALL_MAP_CROSSINGS crossings takes (solvers/maps/poincare.py map_kernel).
 
-That it takes rk.py's generated integrator's steps bit for bit is
-tests/test_generated_integrator.py's test (the module that compiles that integrator).
-Here: it follows the general kernel (the reference) to the tolerance, the ensemble gives
-integrate()'s bits one by one, requests it cannot run are refused, and the map's rule
+That they take rk.py's generated integrator's steps bit for bit is
+tests/test_generated_integrator.py's tests (the module that compiles that integrator).
+Here: they follow the general kernel (the reference) to the tolerance, the ensemble gives
+integrate()'s bits one by one, requests they cannot run are refused, and the map's rule
 depends on the request only."""
 
 import numpy as np
@@ -77,14 +78,47 @@ def test_the_ensemble_gives_integrates_bits(ball):
     assert ens[2].status == rk.MAX_STEPS
 
 
+def test_projection_follows_the_general_kernel(ball):
+    """Projected onto the energy and |gamma|^2 levels every step: the general kernel's
+    samples to the tolerance, the same steps give or take two, and the integrals held at
+    round-off on the small kernel's samples."""
+    from solvers.integrate.integrator import initial_integrals
+    from solvers.kernels.integrals import NAMES
+
+    m, _, starts = ball
+    codes = (ENERGY, NAMES.index("gamma2"))
+    t = np.linspace(0.0, 100.0, 201)
+    a = integrate(m.model, m.p, starts[0], t, project_codes=codes)
+    b = integrate(m.model, m.p, starts[0], t, project_codes=codes, kernel="small")
+    assert (a.kernel, b.kernel) == ("rk", "small-projection")
+    assert a.success and b.success and abs(a.steps - b.steps) <= 2
+    np.testing.assert_allclose(b.y, a.y, rtol=0, atol=1e-8)
+    want = initial_integrals(m.model, m.p, starts[0], np.array(codes))
+    for y in b.y[::20]:
+        got = initial_integrals(m.model, m.p, y, np.array(codes))
+        np.testing.assert_allclose(got, want, rtol=4e-15)
+
+
 @pytest.mark.parametrize("kw", [dict(project_codes=(ENERGY,)), dict(h_fixed=0.05),
                                 dict(dense_output=False), dict(method="rk45"),
                                 dict(generated=False)])
 def test_a_run_it_cannot_take_is_refused(ball, kw):
+    """Neither integrate nor the ensemble runs a small kernel where none fits (a section
+    and a projection together, fixed or clipped steps, a tableau without one, the general
+    field asked for); the ensemble has no small kernel with projection."""
     m, spec, starts = ball
     t = np.linspace(0.0, 1.0, 3)
     with pytest.raises(ValueError, match="kernel = 'small'"):
         integrate(m.model, m.p, starts[0], t, section=spec.section(), kernel="small", **kw)
+    with pytest.raises(ValueError, match="kernel = 'small'"):
+        integrate_ensemble(m.model, m.p, starts, t, section=spec.section(), kernel="small",
+                           **kw)
+    if "project_codes" not in kw:
+        with pytest.raises(ValueError, match="kernel = 'small'"):
+            integrate(m.model, m.p, starts[0], t, project_codes=(ENERGY,), kernel="small",
+                      **kw)
+    with pytest.raises(ValueError, match="kernel = 'small'"):
+        integrate_ensemble(m.model, m.p, starts, t, project_codes=(ENERGY,), kernel="small")
 
 
 def test_a_section_runs_the_general_kernel_unless_asked():
