@@ -33,14 +33,15 @@ import numpy as np
 
 from solvers.integrate import collocation, tableaux
 from solvers.integrate.integrator import (
+    SMALL_REFUSED,
     IntegrationResult,
     Section,
     StepControl,
     initial_integrals,
     is_plain,
     method_arrays,
+    small_fits,
     small_module,
-    small_sections,
     status_message,
 )
 from solvers.kernels import ensemble as kernels
@@ -244,11 +245,9 @@ def integrate_ensemble(model, p, Y0, t_out, *, method="dop853", rtol=1e-10, atol
     small_sec = kernel == "small" and section is not None
     if kernel not in (None, "small"):
         raise ValueError(f"kernel = {kernel!r}: None or 'small'")
-    if kernel == "small" and (generated is False or not small_sections(
-            model, method, project=bool(codes.size), fixed=fixed, dense_output=dense_output)):
-        raise ValueError("kernel = 'small': a run of a model with a generated field, a "
-                         "tableau of small kernels, dense output, no projection and no "
-                         "fixed step")
+    if kernel == "small" and (generated is False or codes.size or not small_fits(
+            model, method, fixed=fixed, dense_output=dense_output)):
+        raise ValueError(f"{SMALL_REFUSED}; the ensemble's: a section, no projection")
     A, c, b, E, Pd, meth = method_arrays(method)
     if not dense_output:
         Pd = np.zeros((0, 1))

@@ -300,10 +300,10 @@ def small_module(model: int, p, method: str, sections: bool = False,
     return mod
 
 
-def small_ready(model: int, p, method: str = "dop853", sections: bool = False) -> bool:
+def small_ready(model: int, p, method: str = "dop853") -> bool:
     """Whether the small kernel of the structure and tableau is compiled (in this process
     or in numba's on-disk cache for this machine): the warm-up's test, never the route's."""
-    mod = small_module(model, p, method, sections)
+    mod = small_module(model, p, method)
     return _numba_cache_holds(mod, "run")
 
 
@@ -312,19 +312,18 @@ def is_plain(model, method, *, project=False, section=None, compensated=False,
     """Whether integrate() runs the small kernel for these options (and generated is
     not False): what the route depends on is the request, never the cache. Compensated
     sums are a run-time flag of the small kernels (method "auto" uses them)."""
-    return section is None and small_sections(model, method, project=project,
-                                              compensated=compensated, fixed=fixed,
-                                              dense_output=dense_output)
-
-
-def small_sections(model, method, *, project=False, compensated=False, fixed=False,
-                   dense_output=True) -> bool:
-    """Whether a run with a section and these options has a small kernel with sections
-    (solvers/kernels/small.py), which kernel="small" runs: a plain run but for the
-    section."""
     del compensated
-    return (model in generate.GENERATED_MODELS and method in SMALL_METHODS and not project
-            and not fixed and dense_output)
+    return section is None and not project and small_fits(model, method, fixed=fixed,
+                                                          dense_output=dense_output)
+
+
+def small_fits(model, method, *, fixed=False, dense_output=True) -> bool:
+    """Whether the small kernels (solvers/kernels/small.py) take a run of these options:
+    a plain run's kernel, or with a section or a projection the one kernel="small" runs
+    (a model with a generated field, a tableau of SMALL_METHODS, dense output, no fixed
+    step)."""
+    return (model in generate.GENERATED_MODELS and method in SMALL_METHODS and not fixed
+            and dense_output)
 
 
 def integrate(model, p, y0, t_out, *, method="dop853", rtol=1e-10, atol=1e-12,
@@ -361,9 +360,8 @@ def integrate(model, p, y0, t_out, *, method="dop853", rtol=1e-10, atol=1e-12,
     integrator's bits, rk.py's own projection, "small-projection"), ValueError for a run
     no small kernel takes.
     A run with a section or a projection takes it only when asked (a Poincare map decides
-    by its size:
-    solvers/maps/poincare.py map_kernel): it compiles once per structure (~10-14 s on 2
-    cores).
+    by its size: solvers/maps/poincare.py map_kernel): it compiles once per structure
+    (~10-14 s on 2 cores).
     """
     if (kernel is None and generated is not False and method in SMALL_METHODS
             and h_fixed is None and section is None and dense_output
@@ -432,7 +430,7 @@ def integrate(model, p, y0, t_out, *, method="dop853", rtol=1e-10, atol=1e-12,
         return _result(t_out, Y, y_stop, stats, status, t_stop, wall, method, cross_t,
                        cross_y, "generated", "small")
     if kernel == "small":   # a section or a projection: the small kernel with it
-        if (generated is False or (section is not None and codes.size) or not small_sections(
+        if (generated is False or (section is not None and codes.size) or not small_fits(
                 model, method, fixed=fixed, dense_output=dense_output)):
             raise ValueError(SMALL_REFUSED)
         t0 = time.perf_counter()

@@ -284,7 +284,9 @@ def kernel_source(model: int, p, method: str, tab, sections: bool = False,
     def put(arr, names):    # one call: typed once per kernel, not n item assignments
         return f"put{n}({arr}, {', '.join(names)})"
 
-    wy = [f"{ind}{put('wy', [f'y_{m}' for m in R])}"]
+    # the scalar state and fields into the section and projection code's work vectors
+    put_y, put_f0 = put("wy", [f"y_{m}" for m in R]), put("wf0", [f"k0_{m}" for m in R])
+    put_yn = put("wyn", [f"yn{m}" for m in R])
     if sections:    # rk.py's work vectors of the section code (used at crossings only)
         o += [f"{ind}nst = meth[{rk.M_STAGES}]", f"{ind}qord = meth[{rk.M_ERRORDER}]",
               f"{ind}wy = np.empty({n})", f"{ind}wf0 = np.empty({n})",
@@ -298,11 +300,9 @@ def kernel_source(model: int, p, method: str, tab, sections: bool = False,
               f"{ind}stats[{rk.S_RHS}] = 0",
               # (sa, da): s and ds/dt at the step's start, (sb, db) at its end, carried
               # to the next step (rk.py evaluates each twice: the same bits)
-              f"{ind}n_cross = 0", f"{ind}from_start = 0",
-              f"{ind}sa = da = sb = db = 0.0",
-              f"{ind}if code != {rk.SECTION_NONE}:"]
-        o += [ind + x for x in wy] + [f"{i2}{put('wf0', [f'k0_{m}' for m in R])}"]
-        o += [f"{ind}    sa, da = section_slope(code, wy, wf0, coef, wgrad)"]
+              f"{ind}n_cross = 0", f"{ind}sa = da = sb = db = 0.0",
+              f"{ind}if code != {rk.SECTION_NONE}:", f"{i2}{put_y}", f"{i2}{put_f0}",
+              f"{i2}sa, da = section_slope(code, wy, wf0, coef, wgrad)"]
     if projection:  # rk.py's work arrays of the projection (rk._project)
         o += [f"{ind}nproj = proj_codes.shape[0]", f"{ind}wyn = np.empty({n})",
               f"{ind}wG = np.empty((nproj, {n}))", f"{ind}wM = np.empty((nproj, nproj))",
@@ -350,9 +350,8 @@ def kernel_source(model: int, p, method: str, tab, sections: bool = False,
     else:
         o.append(f"{i2}err = abs(h) * np.sqrt(e1 / {n})")
     if sections:    # rk.py: step control near the section (sections.py)
-        o += [f"{i2}if code == {SECTION_ANDOYER_G}:"]
-        o += [i2 + x for x in wy] + [f"{i3}{put('wyn', [f'yn{m}' for m in R])}"]
-        o += [f"{i3}err = max(err, section_step_error(wy, wyn, coef, qord))"]
+        o += [f"{i2}if code == {SECTION_ANDOYER_G}:", f"{i3}{put_y}", f"{i3}{put_yn}",
+              f"{i3}err = max(err, section_step_error(wy, wyn, coef, qord))"]
     o += [f"{i2}if err <= 1.0:",
           f"{i2}    t_new = t_end if landing else t + (h + t_comp if compensated else h)"]
     if new >= s:
@@ -365,10 +364,9 @@ def kernel_source(model: int, p, method: str, tab, sections: bool = False,
           f"{i2}    fac = safety * err ** {_lit(-1.0 / (q + 1))} if np.isfinite(err) else 0.0",
           f"{i2}    h = h * min(1.0, max(facmin, fac))", f"{i2}    continue"]
     if sections:    # rk.py: a step whose ends misread the section is halved
-        o += [f"{i2}from_start = 0", f"{i2}if code != {rk.SECTION_NONE}:"]
-        o += [f"{i3}{put('wyn', [f'yn{m}' for m in R])}",
-              f"{i3}{put('wf1', [f'k{new}_{m}' for m in R])}"]
-        o += [f"{i3}sb, db = section_slope(code, wyn, wf1, coef, wgrad)",
+        o += [f"{i2}from_start = 0", f"{i2}if code != {rk.SECTION_NONE}:", f"{i3}{put_yn}",
+              f"{i3}{put('wf1', [f'k{new}_{m}' for m in R])}",
+              f"{i3}sb, db = section_slope(code, wyn, wf1, coef, wgrad)",
               f"{i3}from_start = crossing_kind(sa, da, sb, db, h, direction)",
               f"{i3}if from_start == 2 and abs(h) > {_lit(rk.GRAZE_H)} * max(1.0, abs(t)):",
               f"{i3}    n_rej += 1", f"{i3}    rejected_last = True", f"{i3}    h = 0.5 * h",
@@ -380,7 +378,7 @@ def kernel_source(model: int, p, method: str, tab, sections: bool = False,
     if projection:  # rk.py: every project_every-th accepted step onto the levels, then
         fnew = [f"fn{m}" for m in R]    # the field again at the projected point
         o += [f"{i2}projected = nproj > 0 and n_acc % project_every == 0",
-              f"{i2}if projected:", f"{i3}{put('wyn', [f'yn{m}' for m in R])}",
+              f"{i2}if projected:", f"{i3}{put_yn}",
               f"{i3}status = _project(model, p, wyn, {proj})",
               f"{i3}if status != {L.OK}:", f"{i3}    break"]
         o += [f"{i3}yn{m} = wyn[{m}]" for m in R] + [f"{i3}cn{m} = 0.0" for m in R]
@@ -416,15 +414,12 @@ def kernel_source(model: int, p, method: str, tab, sections: bool = False,
               f"{i4}    if status != {L.OK}:", f"{i4}        break"]
     o += [f"{i3}j += 1", f"{i2}if status != {L.OK}:", f"{i2}    break"]
     if sections:    # rk.py: the crossing inside (t, t_new], located and refined
-        i4 = i3 + ind
         loc = ("tabA, tabc, tabb, nst, code, coef, wKH, wz0, wz, wztmp, wytmp, wfb, wgrad, "
                "stats")
         o += [f"{i2}if code != {rk.SECTION_NONE}:",
               f"{i3}if (direction >= 0 and sa < 0.0 <= sb) or "
               "(direction <= 0 and sa > 0.0 >= sb):",
-              f"{i4}{put('wy', [f'y_{m}' for m in R])}",
-              f"{i4}{put('wf0', [f'k0_{m}' for m in R])}",
-              f"{i4}kc = n_cross", f"{i4}if from_start != -1:",
+              f"{i4}{put_y}", f"{i4}{put_f0}", f"{i4}kc = n_cross", f"{i4}if from_start != -1:",
               f"{i4}    status = _locate_crossing(model, p, t, wy, wf0, sa, {loc})",
               f"{i4}else:",
               f"{i4}    status = _locate_crossing(model, p, t_new, wyn, wf1, sb, {loc})",

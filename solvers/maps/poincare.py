@@ -250,9 +250,9 @@ def map_kernel(model: Model, spec: MapSpec, trajectories: int) -> str:
     """"small" or "general": spec.kernel, with "auto" resolved by the map's size."""
     if spec.kernel != "auto":
         return spec.kernel
-    from solvers.integrate.integrator import small_sections
+    from solvers.integrate.integrator import small_fits
 
-    fits = spec.generated is not False and small_sections(model.model, spec.method)
+    fits = spec.generated is not False and small_fits(model.model, spec.method)
     return "small" if fits and trajectories * spec.points >= SMALL_MAP_CROSSINGS else "general"
 
 
@@ -349,7 +349,6 @@ def _again(first: MapTrajectory, again: MapTrajectory) -> MapTrajectory:
 def trace_checked(model: Model, y0, spec: MapSpec) -> MapTrajectory:
     """trace(), and once more with h_max = the sample spacing if the check found a
     crossing the kernel missed (or the samples were too coarse to tell)."""
-    spec = resolve_kernel(model, spec, 1)
     traj = trace(model, y0, spec)
     if _needs_again(spec, traj):
         return _again(traj, trace(model, y0, spec, h_max=0.5 * traj.check["sample_dt"]))
