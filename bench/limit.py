@@ -51,6 +51,7 @@ import os
 import sys
 import time
 import timeit
+from functools import partial
 from pathlib import Path
 
 import numba
@@ -311,6 +312,14 @@ def best_of(fn, repeats):
         out = fn()
         best = min(best, time.perf_counter() - t0)
     return best, out
+
+
+def warm_best(f, *args, repeats=3, **kw):
+    """(best wall time of `repeats`, the last result) of f(*args, **kw) after one warm call
+    (the compile and first-use caches out of the timing): best_of."""
+    run = partial(f, *args, **kw)
+    run()
+    return best_of(run, repeats)
 
 
 def at_error(points, target):

@@ -28,13 +28,12 @@ import os
 import statistics
 import sys
 import time
-from functools import partial
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path[:0] = [str(ROOT)]
 
-from bench.limit import best_of  # noqa: E402
+from bench.limit import warm_best  # noqa: E402
 from solvers.integrate.integrator import integrate  # noqa: E402
 from solvers.maps.poincare import MapSpec, map_model, starts_for, trace  # noqa: E402
 from solvers.models.cases import get_case  # noqa: E402
@@ -42,13 +41,6 @@ from solvers.models.cases import get_case  # noqa: E402
 OUT = ROOT / "bench" / "results" / "map_kernel_gain.txt"
 CASES = ["plane/chaplygin-ball", "sphere/routh-ball", "sphere/chaplygin-ball"]
 STARTS = 5
-
-
-def best(f, *args, **kw):
-    """(best wall time of 3, the last result) after a warm call: bench/limit.py's best_of."""
-    run = partial(f, *args, **kw)
-    run()
-    return best_of(run, 3)
 
 
 def main() -> None:
@@ -66,8 +58,8 @@ def main() -> None:
         m = map_model(case, get_case(case).example)
         rows = []
         for y0 in starts_for(m, spec, trajectories=STARTS, seed=0):
-            t_gen, tr = best(trace, m, y0, replace(spec, kernel="general"))
-            t_small, tr_small = best(trace, m, y0, replace(spec, kernel="small"))
+            t_gen, tr = warm_best(trace, m, y0, replace(spec, kernel="general"))
+            t_small, tr_small = warm_best(trace, m, y0, replace(spec, kernel="small"))
             assert len(tr.t) == len(tr_small.t) == spec.points
             T = float(tr.t[-1])
             opts = {"rtol": spec.rtol, "atol": spec.atol, "section": spec.section(),
@@ -75,7 +67,7 @@ def main() -> None:
             runs = {}
             for label, kw in (("sec", {}), ("gsec", {"generated": True}),
                               ("ssec", {"kernel": "small"})):
-                dt, r = best(integrate, m.model, m.p, y0, [0.0, T], **opts, **kw)
+                dt, r = warm_best(integrate, m.model, m.p, y0, [0.0, T], **opts, **kw)
                 runs[label] = (dt, r.steps, r.kernel, r.vector_field)
             assert runs["sec"][2:] == ("rk", "general"), runs
             assert runs["gsec"][2:] == ("rk", "generated"), runs["gsec"]

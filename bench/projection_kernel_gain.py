@@ -23,13 +23,12 @@ import os
 import statistics
 import sys
 import time
-from functools import partial
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path[:0] = [str(ROOT)]
 
-from bench.limit import best_of  # noqa: E402
+from bench.limit import warm_best  # noqa: E402
 from solvers.integrate.integrator import integrate  # noqa: E402
 from solvers.kernels.integrals import ENERGY, NAMES  # noqa: E402
 from solvers.models.cases import build, get_case  # noqa: E402
@@ -61,9 +60,8 @@ def main() -> None:
                                              "kernel": "rk"}),
                               ("small", {"project_codes": codes, "kernel": "small"}),
                               ("plain", {})):
-                run = partial(integrate, m.model, m.p, y0, t_out, rtol=1e-10, atol=1e-12, **kw)
-                run()
-                dt, r = best_of(run, 3)
+                dt, r = warm_best(integrate, m.model, m.p, y0, t_out, rtol=1e-10, atol=1e-12,
+                                  **kw)
                 runs[label] = (dt, r.steps, r.kernel)
             assert runs["small"][2] == "small-projection" and runs["general"][2] == "rk"
             assert runs["small"][1] == runs["generated"][1], runs
