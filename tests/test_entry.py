@@ -91,6 +91,33 @@ def test_integrate_outputs_are_fresh_and_option_vectors_not_shared():
         I.integrate(m.model, m.p, y0, [0.0, np.nan, 1.0])
 
 
+def test_short_time_lists_and_parameter_forms_give_the_same_run():
+    """The plain entry's shortcuts (a short list of floats checked before any array, p's
+    own bytes as the plan's key, the plan's private copy of p run by the kernel) give the
+    run of the same values in any other form, refuse what the general check refuses, and
+    never keep a caller's array: a parameter vector changed in place is a new run."""
+    m = build(BALL, registry()[BALL].example)
+    y0 = np.array(registry()[BALL].state)
+    p = np.array(m.p, dtype=np.float64)
+    ref = I.integrate(m.model, p, y0, np.array([0.0, 2.0]))
+    for t in ([0.0, 2.0], [0, 2], (0.0, 2.0), [np.float64(0.0), 2.0], [0.0, 1.0, 2.0][::2]):
+        r = I.integrate(m.model, p, y0, t)
+        np.testing.assert_array_equal(r.t, ref.t)
+        np.testing.assert_array_equal(r.y, ref.y)
+    for q in (list(p), tuple(p), np.repeat(p, 2)[::2], p.astype(">f8"), p.reshape(1, -1)):
+        np.testing.assert_array_equal(I.integrate(m.model, q, y0, [0.0, 2.0]).y, ref.y)
+    for bad in ([], [0.0, np.nan], [np.nan], [0.0, np.inf], [-np.inf, 0.0], [1.0, 1.0],
+                [0.0, 2.0, 1.0], [0.0, "x"]):
+        with pytest.raises(ValueError):
+            I.integrate(m.model, p, y0, bad)
+    q, kw = p.copy(), {"rtol": 1e-9, "atol": 1e-9}
+    before = I.integrate(m.model, q, y0, [0.0, 2.0], **kw)    # a plan made from q
+    q[0] *= 1.5                          # I1 changed in place after the run
+    again = I.integrate(m.model, p.copy(), y0, [0.0, 2.0], **kw)   # that plan, not q
+    np.testing.assert_array_equal(again.y, before.y)
+    assert not np.array_equal(I.integrate(m.model, q, y0, [0.0, 2.0], **kw).y, before.y)
+
+
 def test_bad_input_is_never_memoized():
     params, state = _ball()
     with pytest.raises(InputError, match="I1"):

@@ -138,6 +138,18 @@ def _f64(x) -> np.ndarray:
 
 
 def _checked_times(t_out) -> np.ndarray:
+    if type(t_out) is list and len(t_out) <= _FEW_TIMES:
+        # a short list of Python floats (a run to T: [t0, T]) checked as it stands, before
+        # any array exists: the array, its list and the checks below cost ~5 us of a short
+        # run's entry right after other work (bench/limit.py --cold), this ~2 us
+        prev = -math.inf
+        for x in t_out:
+            if type(x) is not float or not x > prev:
+                break
+            prev = x
+        else:
+            if t_out and prev < math.inf:
+                return np.array(t_out)
     t = _f64(t_out)
     # strictly increasing (a NaN fails the comparison) with finite ends: all finite. A few
     # times (a run to T: [t0, T]) are compared as Python floats: NumPy's slices, ufunc and
@@ -154,6 +166,7 @@ def _checked_times(t_out) -> np.ndarray:
 
 
 _FEW_TIMES = 8
+_F64 = np.dtype(np.float64)
 
 
 # output times validated once: id -> (the read-only array handed out, a private writable
@@ -537,8 +550,9 @@ def _plain_plan(model, p, method, rtol, atol, control) -> tuple:
     if cross_y is None:
         cross_y = _NO_CROSSINGS_Y[n] = np.empty((0, n))
         cross_y.setflags(write=False)
+    p = np.array(p, dtype=np.float64).ravel()     # the plan's private copy
     return (control, small_module(model, p, method).run, _plain_fopt(rtol, control),
-            _plain_atol(atol, n), n, cross_y)
+            _plain_atol(atol, n), n, cross_y, p)
 
 
 def _integrate_small(model, p, y0, t_out, method, rtol, atol, max_steps, compensated,
@@ -548,11 +562,16 @@ def _integrate_small(model, p, y0, t_out, method, rtol, atol, max_steps, compens
         t_out, private = hit[1], False      # the shared twin: copied for the result
     else:
         t_out, private = _checked_times(t_out), True     # a fresh array of this call
-    y0 = _f64(y0)
-    p = np.array(p, dtype=np.float64)
+    y0 = np.array(y0, dtype=np.float64)     # a fresh copy (the kernel's own)
+    if y0.ndim != 1:
+        y0 = y0.ravel()
     n = y0.size
     if type(atol) is float or type(atol) is int:
-        key = (model, method, p.tobytes(), rtol, atol, id(control))
+        # keyed on p's values as float64 bytes: a float64 array's own bytes, with no copy
+        # (the plan holds its private copy, which the kernel only reads)
+        pb = (p.tobytes() if type(p) is np.ndarray and p.dtype is _F64
+              else np.array(p, dtype=np.float64).tobytes())
+        key = (model, method, pb, rtol, atol, id(control))
         plan = _PLANS.get(key)
         if plan is None or plan[0] is not control:
             if len(_PLANS) > _CACHE_MAX:
@@ -560,7 +579,7 @@ def _integrate_small(model, p, y0, t_out, method, rtol, atol, max_steps, compens
             plan = _PLANS[key] = _plain_plan(model, p, method, rtol, atol, control)
     else:       # a vector atol: the plan is not memoized (_plain_atol copies the vector)
         plan = _plain_plan(model, p, method, rtol, atol, control)
-    _, run, fopt, atol_v, n_model, cross_y = plan
+    _, run, fopt, atol_v, n_model, cross_y, p = plan
     if n != n_model:
         raise ValueError(f"model {model} has a state of dimension {n_model}")
     N = t_out.shape[0]
