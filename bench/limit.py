@@ -951,6 +951,20 @@ def order_effect(case_ids=("plane/chaplygin-ball", "sphere/chaplygin-ball"), n_s
 
 
 # --- the entry after a heyoka run (issue 19 item 4) -------------------------------------------
+def timed_after(fns: dict, before, rounds: int) -> dict:
+    """name -> the ns each callable took, timed alone right after `before()` (a heyoka run:
+    the state a many-start round leaves), `rounds` rounds interleaved."""
+    took = {k: [] for k in fns}
+    clock = time.perf_counter_ns
+    for _ in range(rounds):
+        for k, fn in fns.items():
+            before()
+            t0 = clock()
+            fn()
+            took[k].append(clock() - t0)
+    return took
+
+
 def cold_entry(case_id="plane/chaplygin-ball", rounds=300):
     """What integrate()'s entry and its parts cost right after a heyoka run (as in the
     many-start mode's rounds, where the short runs set the worst starts): on the many-start
@@ -1014,14 +1028,7 @@ def cold_entry(case_id="plane/chaplygin-ball", rounds=300):
            "an empty call": nothing}
     for fn in fns.values():
         fn()
-    took = {k: [] for k in fns}
-    clock = time.perf_counter_ns
-    for _ in range(rounds):
-        for k, fn in fns.items():
-            hey()
-            t0 = clock()
-            fn()
-            took[k].append(clock() - t0)
+    took = timed_after(fns, hey, rounds)
     lines = [f"bench/limit.py --cold: {case_id}, T = {T:g}, the start of |M| = "
              f"{np.linalg.norm(y0[:3]):.3f}, rtol 1e-6; each callable timed alone right after "
              f"a heyoka run of that start, {rounds} rounds, medians (wall clock); load average "
