@@ -651,12 +651,13 @@ def matched(front_pts, target):
     return at_error(front_pts, target)
 
 
-def many_starts(quick=False, only=None):
+def many_starts(quick=False, only=None, repeats=3):
     """For each of the six work-precision cases, random starts (20; --quick 5 over at most
     T = 200): the time at matched final-state errors 1e-6 and 1e-10 of ours (integrate(),
     the default route: the small kernel), the limit (the scalar DOP853 above) and heyoka on
     the lean equations; median and worst ratio over the starts. The table is written after
-    every case (a partial run keeps what it measured). only: case ids to run."""
+    every case (a partial run keeps what it measured). only: case ids to run. repeats: each
+    run's time is the best of this many (3: limit_starts.*; another: limit_starts.bestN.*)."""
     sys.path.insert(0, str(Path(__file__).parent))
     from work_precision import CASES
 
@@ -664,7 +665,6 @@ def many_starts(quick=False, only=None):
     targets = (1e-6, 1e-10)
     rtols = [10.0 ** (-k / 2) for k in range(8, 29)]      # 1e-4 ... 1e-14, half decades
     htols = [10.0 ** -k for k in range(4, 16)]
-    repeats = 3
     rng = np.random.default_rng(19)
     import heyoka as hy
 
@@ -674,7 +674,7 @@ def many_starts(quick=False, only=None):
              "gamma uniform on the sphere; final-state error (max-norm / max(1, |y|)) at T "
              "against heyoka long double tol 1e-18; time at matched error 1e-6 and 1e-10 "
              "interpolated log-log on each front (rtol = atol 1e-4 ... 1e-14 every half "
-             "decade; heyoka tol 1e-4 ... 1e-15), best of 3 interleaved, each run timed "
+             f"decade; heyoka tol 1e-4 ... 1e-15), best of {repeats} interleaved, each run timed "
              "on the wall clock and on the process's CPU time.",
              "  ours  = integrate() by default (dop853, the small kernel of the structure)",
              "  kernel = that small kernel called directly, its option arrays built before "
@@ -686,10 +686,11 @@ def many_starts(quick=False, only=None):
              "  heyoka = heyoka's Taylor integrator on the lean generated equations",
              f"load average at the start: {load0[0]:.2f} {load0[1]:.2f} {load0[2]:.2f} "
              f"({os.cpu_count()} cores)"]
-    out = {"quick": quick, "starts": n_starts, "load_start": load0, "cases": {},
+    out = {"quick": quick, "starts": n_starts, "repeats": repeats, "load_start": load0,
+           "cases": {},
            "date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())}
     summary = []
-    kept = _kept_cases(quick, only)
+    kept = _kept_cases(quick, only, repeats)
     for wp in CASES:
         c = registry()[wp.id]
         prm = {**c.example, **wp.overrides}
@@ -806,9 +807,10 @@ def many_starts(quick=False, only=None):
         _write_starts(quick, lines, summary, out)
 
 
-def _kept_cases(quick, only) -> dict:
+def _kept_cases(quick, only, repeats=3) -> dict:
     """--cases: the other cases' results of the stored run, to write back beside the new."""
-    path = OUT / ("limit_starts.quick.json" if quick else "limit_starts.json")
+    path = OUT / (("limit_starts.quick" if quick else "limit_starts")
+                  + ("" if repeats == 3 else f".best{repeats}") + ".json")
     if not only or not path.exists():
         return {}
     stored = json.loads(path.read_text())
@@ -862,7 +864,8 @@ def _write_starts(quick, head, summary, out):
     text = "\n".join(lines) + "\n"
     print(text, flush=True)
     OUT.mkdir(exist_ok=True)
-    stem = "limit_starts.quick" if quick else "limit_starts"
+    stem = ("limit_starts.quick" if quick else "limit_starts") + (
+        "" if out.get("repeats", 3) == 3 else f".best{out['repeats']}")
     (OUT / f"{stem}.txt").write_text(text)
     (OUT / f"{stem}.json").write_text(json.dumps(out, indent=1))
 
@@ -1208,7 +1211,8 @@ def main():
     if "--fronts" not in sys.argv:
         only = sys.argv[sys.argv.index("--cases") + 1].split(",") if "--cases" in sys.argv \
             else None
-        many_starts(quick, only)
+        many_starts(quick, only, int(sys.argv[sys.argv.index("--repeats") + 1])
+                    if "--repeats" in sys.argv else 3)
         return
     cases = [
         ("plane/chaplygin-ball", {"I1": 1.0, "I2": 2.0, "I3": 3.0, "m": 1.0, "R": 1.0},
