@@ -140,8 +140,9 @@ def _f64(x) -> np.ndarray:
 def _checked_times(t_out) -> np.ndarray:
     if type(t_out) is list and len(t_out) <= _FEW_TIMES:
         # a short list of Python floats (a run to T: [t0, T]) checked as it stands, before
-        # any array exists: the array, its list and the checks below cost ~5 us of a short
-        # run's entry right after other work (bench/limit.py --cold), this ~2 us
+        # any array exists, in place of the array, its list and the checks below: with p's
+        # bytes as the plan's key, the plain entry ~0.7 us shorter at a short run, right
+        # after other work (bench/entry_ab.py; the runs' spread is larger)
         prev = -math.inf
         for x in t_out:
             if type(x) is not float or not x > prev:
