@@ -807,10 +807,15 @@ def many_starts(quick=False, only=None, repeats=3):
         _write_starts(quick, lines, summary, out)
 
 
+def _starts_stem(quick: bool, repeats: int) -> str:
+    """The many-start mode's results file: limit_starts[.quick][.bestN] (N != 3)."""
+    return ("limit_starts.quick" if quick else "limit_starts") + (
+        "" if repeats == 3 else f".best{repeats}")
+
+
 def _kept_cases(quick, only, repeats=3) -> dict:
     """--cases: the other cases' results of the stored run, to write back beside the new."""
-    path = OUT / (("limit_starts.quick" if quick else "limit_starts")
-                  + ("" if repeats == 3 else f".best{repeats}") + ".json")
+    path = OUT / f"{_starts_stem(quick, repeats)}.json"
     if not only or not path.exists():
         return {}
     stored = json.loads(path.read_text())
@@ -864,8 +869,7 @@ def _write_starts(quick, head, summary, out):
     text = "\n".join(lines) + "\n"
     print(text, flush=True)
     OUT.mkdir(exist_ok=True)
-    stem = ("limit_starts.quick" if quick else "limit_starts") + (
-        "" if out.get("repeats", 3) == 3 else f".best{out['repeats']}")
+    stem = _starts_stem(quick, out["repeats"])
     (OUT / f"{stem}.txt").write_text(text)
     (OUT / f"{stem}.json").write_text(json.dumps(out, indent=1))
 

@@ -133,8 +133,10 @@ _CACHE_MAX = 1024
 
 def _f64(x) -> np.ndarray:
     """x as a fresh 1-D writable C float64 array (the one type the kernels are compiled
-    for: a read-only or strided input would be another ~12 s numba specialization)."""
-    return np.array(x, dtype=np.float64).ravel()
+    for: a read-only or strided input would be another ~12 s numba specialization); a 1-D
+    input's copy as it is (ravel only where there is something to flatten)."""
+    a = np.array(x, dtype=np.float64)
+    return a if a.ndim == 1 else a.ravel()
 
 
 def _checked_times(t_out) -> np.ndarray:
@@ -551,7 +553,7 @@ def _plain_plan(model, p, method, rtol, atol, control) -> tuple:
     if cross_y is None:
         cross_y = _NO_CROSSINGS_Y[n] = np.empty((0, n))
         cross_y.setflags(write=False)
-    p = np.array(p, dtype=np.float64).ravel()     # the plan's private copy
+    p = _f64(p)     # the plan's private copy
     return (control, small_module(model, p, method).run, _plain_fopt(rtol, control),
             _plain_atol(atol, n), n, cross_y, p)
 
@@ -563,9 +565,7 @@ def _integrate_small(model, p, y0, t_out, method, rtol, atol, max_steps, compens
         t_out, private = hit[1], False      # the shared twin: copied for the result
     else:
         t_out, private = _checked_times(t_out), True     # a fresh array of this call
-    y0 = np.array(y0, dtype=np.float64)     # a fresh copy (the kernel's own)
-    if y0.ndim != 1:
-        y0 = y0.ravel()
+    y0 = _f64(y0)
     n = y0.size
     if type(atol) is float or type(atol) is int:
         # keyed on p's values as float64 bytes: a float64 array's own bytes, with no copy
