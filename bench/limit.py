@@ -36,6 +36,10 @@ the field alone) says where the time goes.
         where the gap lies on one case (gap below): steps, rhs calls and errors at equal
         tolerances, ns per rhs call with the small kernel called directly, and
         integrate()'s entry -> bench/results/limit_gap[.case].{txt,json}
+    PYTHONPATH=$PWD .venv/bin/python bench/limit.py --work
+        the many-start mode's starts counted in rhs calls at matched error (no clock):
+        ours, ours with the limit's controller, the limit, the limit on the generated field
+        (work_split below) -> bench/results/limit_work.{txt,json}
     PYTHONPATH=$PWD .venv/bin/python bench/limit.py --fronts [--quick]
         the one-start fronts described above
         -> bench/results/limit.{txt,json}   (--quick: limit.quick.{txt,json})
@@ -1055,6 +1059,95 @@ def cold_entry(case_id="plane/chaplygin-ball", rounds=300):
     (OUT / "limit_cold_entry.txt").write_text(text)
 
 
+# --- the work at matched error, without a clock (issue 19 item 4) -----------------------------
+def work_split(targets=(1e-6, 1e-10)):
+    """Where the many-start mode's worst starts come from, with no clock: on the same 20
+    starts per case (the same draws), each competitor's front in right-hand-side calls (a
+    count, the same on every machine and every run) and ours / the limit in calls at
+    matched error, median and worst over the starts. The competitors:
+      ours      integrate() by default (the small kernel; Hairer's DOPRI5 PI controller,
+                beta = 0.04, StepControl's default)
+      ours-I    integrate() with beta = 0: the limit's controller (Hairer's DOP853 and
+                scipy's: fac = 0.9 err^(-1/8))
+      limit     the many-start mode's limit (a hand-written field for the ball, the disk and
+                the flat base; the project's generated field for the others)
+      limit-gen for the three hand-written cases, the same scalar DOP853 on the project's
+                generated field, which agrees with the hand-written one on the invariant
+                manifold (|gamma| = 1) and differs off it
+    ours-I against limit-gen is one algorithm against itself on one field: the calls
+    differ only in the first step and the landing on T. Written to
+    bench/results/limit_work.{txt,json}."""
+    from solvers.integrate.integrator import StepControl
+
+    sys.path.insert(0, str(Path(__file__).parent))
+    from work_precision import CASES
+
+    rng = np.random.default_rng(19)
+    rtols = [10.0 ** (-k / 2) for k in range(8, 29)]
+    pairs = (("ours", "limit"), ("ours-I", "limit"), ("ours", "limit-gen"),
+             ("ours-I", "limit-gen"), ("limit", "limit-gen"))
+    lines = ["bench/limit.py --work: right-hand-side calls at matched final-state error "
+             "(log-log on each front, rtol = atol 1e-4 ... 1e-14 every half decade), the "
+             "many-start mode's 20 starts per case and its error measure; no clock. "
+             "ours-I: integrate() with beta = 0 (the limit's controller); limit-gen: the "
+             "limit's DOP853 on the project's generated field (hand-written cases only).",
+             "",
+             f"{'case':22s} {'error':6s} " + " ".join(f"{a + '/' + b:>17s}" for a, b in pairs)
+             + "   (median worst, starts matched)"]
+    out = {"targets": targets, "cases": {}}
+    for wp in CASES:
+        c = registry()[wp.id]
+        prm = {**c.example, **wp.overrides}
+        starts = random_starts(wp.id, prm, 20, rng)
+        model = build(wp.id, prm)
+        p = np.asarray(model.p, dtype=float)
+        limit, kind = scalar_limit(wp.id, model, p)
+        fs, slots = generated_scalar_field(model.model, p)
+        comp = {"limit": limit}
+        if kind == "hand":
+            comp["limit-gen"] = make_scalar_dop853(fs, L.STATE_DIM[model.model], slots)
+        rows = []
+        for y0 in starts:
+            ref = np.asarray(Taylor(model.model, p, y0, tol=1e-18, fp="longdouble").run(
+                y0, [0.0, wp.t_end])[1][-1], dtype=float)
+            scale = max(1.0, float(np.max(np.abs(ref))))
+            fronts = {k: [] for k in ("ours", "ours-I", *comp)}
+            for rt in rtols:
+                for k, ctl in (("ours", StepControl()), ("ours-I", StepControl(beta=0.0))):
+                    r = integrate(model.model, p, y0, [0.0, wp.t_end], rtol=rt, atol=rt,
+                                  control=ctl)
+                    e = float(np.max(np.abs(r.y[-1] - ref))) / scale if r.success \
+                        else math.nan
+                    fronts[k].append((e, r.rhs_calls))
+                for k, fn in comp.items():
+                    y, _, nfev = fn(y0, p, wp.t_end, rt, rt)
+                    fronts[k].append((float(np.max(np.abs(y - ref))) / scale, int(nfev)))
+            rows.append({"y0": [float(v) for v in y0], "fronts": fronts})
+        ratios = {}
+        for t in targets:
+            key = f"{t:.0e}"
+            for a, b in pairs:
+                if b not in fronts or a not in fronts:
+                    continue
+                v = [at_error(r["fronts"][a], t) / at_error(r["fronts"][b], t) for r in rows
+                     if at_error(r["fronts"][a], t) and at_error(r["fronts"][b], t)]
+                ratios[f"{a}/{b} {key}"] = v
+            cells = []
+            for a, b in pairs:
+                v = ratios.get(f"{a}/{b} {key}")
+                cells.append(f"{np.median(v):.3f} {max(v):.3f} {len(v):2d}" if v else
+                             ("-" if v is None else "none matched"))
+            lines.append(f"{wp.id:22s} {key:6s} " + " ".join(f"{x:>17s}" for x in cells))
+        out["cases"][wp.id] = {"T": wp.t_end, "params": prm, "limit_field": kind,
+                               "rows": rows, "ratios": ratios}
+        print("\n".join(lines[-len(targets):]), flush=True)
+    text = "\n".join(lines) + "\n"
+    OUT.mkdir(exist_ok=True)
+    (OUT / "limit_work.txt").write_text(text)
+    (OUT / "limit_work.json").write_text(json.dumps(out, indent=1))
+    print(text)
+
+
 # --- where the gap lies (issue 19 item 4) -----------------------------------------------------
 def gap(case_id="plane/chaplygin-ball", n_starts=5, T=200.0, repeats=7):
     """Where ours loses against the limit on one case, measured part by part, same process,
@@ -1207,6 +1300,9 @@ def main():
         return
     if "--order" in sys.argv:
         order_effect()
+        return
+    if "--work" in sys.argv:
+        work_split()
         return
     if "--gap" in sys.argv:
         gap(sys.argv[sys.argv.index("--case") + 1] if "--case" in sys.argv
