@@ -601,6 +601,12 @@ HAND = {"plane/chaplygin-ball": (ball_s, 6), "plane/round-disk": (disk_s, 6),
         "sphere/flat-base": (flat_s, 5)}
 
 
+def _gen_field(model, p):
+    """make_scalar_dop853's arguments for the project's generated scalar field."""
+    fs, slots = generated_scalar_field(model, p)
+    return fs, L.STATE_DIM[model], slots
+
+
 def scalar_limit(case_id, model, p):
     """The limit of a case and which field it runs: the scalar DOP853 on the case's
     hand-written field where there is one ("hand"), else on the project's generated scalar
@@ -658,8 +664,9 @@ def matched(front_pts, target):
 def many_starts(quick=False, only=None, repeats=3):
     """For each of the six work-precision cases, random starts (20; --quick 5 over at most
     T = 200): the time at matched final-state errors 1e-6 and 1e-10 of ours (integrate(),
-    the default route: the small kernel), the limit (the scalar DOP853 above) and heyoka on
-    the lean equations; median and worst ratio over the starts. The table is written after
+    the default route: the small kernel), the limit (the scalar DOP853 above; where its
+    field is hand-written, also the same DOP853 on the generated field, limit-gen) and
+    heyoka on the lean equations; median and worst ratio over the starts. The table is written after
     every case (a partial run keeps what it measured). only: case ids to run. repeats: each
     run's time is the best of this many (3: limit_starts.*; another: limit_starts.bestN.*)."""
     sys.path.insert(0, str(Path(__file__).parent))
@@ -688,6 +695,9 @@ def many_starts(quick=False, only=None, repeats=3):
              "locals), its field inlined: written by hand for the ball, the disk and the "
              "flat base, the project's generated scalar field for the others",
              "  heyoka = heyoka's Taylor integrator on the lean generated equations",
+             "  limit-gen = where the limit's field is hand-written, the same scalar DOP853 "
+             "on the project's generated field (which agrees with the hand-written one on "
+             "|gamma| = 1 and differs off it: bench/limit.py --work)",
              f"load average at the start: {load0[0]:.2f} {load0[1]:.2f} {load0[2]:.2f} "
              f"({os.cpu_count()} cores)"]
     out = {"quick": quick, "starts": n_starts, "repeats": repeats, "load_start": load0,
@@ -710,6 +720,10 @@ def many_starts(quick=False, only=None, repeats=3):
         p = np.asarray(model.p, dtype=float)
         T = min(wp.t_end, 200.0) if quick else wp.t_end
         limit, limit_kind = scalar_limit(wp.id, model, p)
+        # where the limit's field is hand-written, the same DOP853 on the project's
+        # generated field too ("limit-gen"): the field's form off |gamma| = 1 apart
+        limit_gen = (make_scalar_dop853(*_gen_field(model.model, p)) if limit_kind == "hand"
+                     else None)
         # the small kernel as integrate() calls it: a writable p (a read-only one is another
         # numba specialization), the option arrays integrate() memoizes for its default
         # step control
@@ -758,6 +772,8 @@ def many_starts(quick=False, only=None, repeats=3):
 
             comp = {"ours": (ours, rtols), "limit": (lim, rtols), "heyoka": (hey, htols),
                     "kernel": (kern, rtols)}
+            if limit_gen is not None:
+                comp["limit-gen"] = (partial(lim, limit=limit_gen), rtols)
             for fn, grid in comp.values():     # compile / warm
                 fn(grid[0])
             # two clocks per run, the same for every competitor: the wall clock (as timed)
@@ -793,15 +809,18 @@ def many_starts(quick=False, only=None, repeats=3):
             ratios = {}
             for suffix in ("", "_cpu"):
                 for mine, other in (("ours", "limit"), ("ours", "heyoka"),
-                                    ("kernel", "limit")):
+                                    ("kernel", "limit"), ("ours", "limit-gen")):
                     a, b = mine + suffix, other + suffix
                     ratios[mine + other + suffix] = [r[a][key] / r[b][key] for r in rows
-                                                     if r[a][key] and r[b][key]]
+                                                     if r[a][key] and r[b][key]] \
+                        if b in rows[0] else None
             res[key] = {"vs_limit": ratios["ourslimit"], "vs_heyoka": ratios["oursheyoka"],
                         "vs_limit_cpu": ratios["ourslimit_cpu"],
                         "vs_heyoka_cpu": ratios["oursheyoka_cpu"],
                         "kernel_vs_limit": ratios["kernellimit"],
-                        "kernel_vs_limit_cpu": ratios["kernellimit_cpu"]}
+                        "kernel_vs_limit_cpu": ratios["kernellimit_cpu"],
+                        "vs_limit_gen": ratios["ourslimit-gen"],
+                        "vs_limit_gen_cpu": ratios["ourslimit-gen_cpu"]}
         out["cases"][wp.id] = {"T": T, "params": prm, "limit_field": limit_kind,
                                "rows": rows, "ratios": res, "measured": out["date"]}
         summary += _summary_of(wp.id, out["cases"][wp.id])
@@ -834,7 +853,8 @@ def _summary_of(cid, case) -> list:
              {"limit": r["vs_limit"], "heyoka": r["vs_heyoka"],
               "limit_cpu": r["vs_limit_cpu"], "heyoka_cpu": r["vs_heyoka_cpu"],
               # the kernel alone (rows kept from a run before this column have none)
-              "kernel": r.get("kernel_vs_limit"), "kernel_cpu": r.get("kernel_vs_limit_cpu")},
+              "kernel": r.get("kernel_vs_limit"), "kernel_cpu": r.get("kernel_vs_limit_cpu"),
+              "limit-gen": r.get("vs_limit_gen"), "limit-gen_cpu": r.get("vs_limit_gen_cpu")},
              len(case["rows"])) for key, r in case["ratios"].items()]
 
 
@@ -850,13 +870,16 @@ def _write_starts(quick, head, summary, out):
         lines.append(f"{title}:")
         lines.append(f"{'case':28s} {'error':6s} {'limit':9s} {'ours/limit median':>17s} "
                      f"{'worst':>6s} {'ours/heyoka median':>18s} {'worst':>6s}  "
-                     f"{'kernel/limit median':>19s} {'worst':>6s}  starts matched")
+                     f"{'kernel/limit median':>19s} {'worst':>6s}  "
+                     f"{'ours/limit-gen median':>21s} {'worst':>6s}  starts matched")
         for cid, key, kind, ratios, n in summary:
             rl, rh = ratios["limit" + suffix], ratios["heyoka" + suffix]
             rk_ = ratios["kernel" + suffix]
+            rg = ratios.get("limit-gen" + suffix)
             lines.append(f"{cid:28s} {key:6s} {kind:9s} {fmt(rl, np.median):>17s} "
                          f"{fmt(rl, max):>6s} {fmt(rh, np.median):>18s} {fmt(rh, max):>6s}  "
                          f"{fmt(rk_, np.median):>19s} {fmt(rk_, max):>6s}  "
+                         f"{fmt(rg, np.median):>21s} {fmt(rg, max):>6s}  "
                          f"{len(rl)}/{n}, {len(rh)}/{n}")
         lines.append("")
     load1 = os.getloadavg()
@@ -1063,7 +1086,7 @@ def cold_entry(case_id="plane/chaplygin-ball", rounds=300):
 def work_split(targets=(1e-6, 1e-10)):
     """Where the many-start mode's worst starts come from, with no clock: on the same 20
     starts per case (the same draws), each competitor's front in right-hand-side calls (a
-    count, the same on every machine and every run) and ours / the limit in calls at
+    count, which the machine's load does not change) and ours / the limit in calls at
     matched error, median and worst over the starts. The competitors:
       ours      integrate() by default (the small kernel; Hairer's DOPRI5 PI controller,
                 beta = 0.04, StepControl's default)
@@ -1102,10 +1125,9 @@ def work_split(targets=(1e-6, 1e-10)):
         model = build(wp.id, prm)
         p = np.asarray(model.p, dtype=float)
         limit, kind = scalar_limit(wp.id, model, p)
-        fs, slots = generated_scalar_field(model.model, p)
         comp = {"limit": limit}
         if kind == "hand":
-            comp["limit-gen"] = make_scalar_dop853(fs, L.STATE_DIM[model.model], slots)
+            comp["limit-gen"] = make_scalar_dop853(*_gen_field(model.model, p))
         rows = []
         for y0 in starts:
             ref = np.asarray(Taylor(model.model, p, y0, tol=1e-18, fp="longdouble").run(
@@ -1169,8 +1191,7 @@ def gap(case_id="plane/chaplygin-ball", n_starts=5, T=200.0, repeats=7):
     # specialization of the kernel (other machine code, a few % apart on long runs)
     p = np.array(model.p, dtype=float)
     n = L.STATE_DIM[model.model]
-    fs, slots = generated_scalar_field(model.model, p)
-    lims = {"limit-gen": make_scalar_dop853(fs, n, slots)}
+    lims = {"limit-gen": make_scalar_dop853(*_gen_field(model.model, p))}
     if wp.id in HAND:
         lims["limit-hand"] = make_scalar_dop853(HAND[wp.id][0], n)
     run = small_module(model.model, p, "dop853").run
