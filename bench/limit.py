@@ -40,6 +40,9 @@ the field alone) says where the time goes.
         the many-start mode's starts counted in rhs calls at matched error (no clock):
         ours, ours with the limit's controller, the limit, the limit on the generated field
         (work_split below) -> bench/results/limit_work.{txt,json}
+    PYTHONPATH=$PWD .venv/bin/python bench/limit.py --status
+        what testing the field's status after every call (as the small kernel does) costs
+        the limit (status_cost below) -> bench/results/limit_status.txt
     PYTHONPATH=$PWD .venv/bin/python bench/limit.py --fronts [--quick]
         the one-start fronts described above
         -> bench/results/limit.{txt,json}   (--quick: limit.quick.{txt,json})
@@ -52,6 +55,7 @@ import itertools
 import json
 import math
 import os
+import re
 import sys
 import time
 import timeit
@@ -511,7 +515,7 @@ def field_cost(case, params, y0, limit_field):
 
 
 # --- the limit: a scalar DOP853, its field inlined ----------------------------------------
-def make_scalar_dop853(field, n, params=None):
+def make_scalar_dop853(field, n, params=None, checked=False):
     """The limit (issue 19): DOP853 written for one state dimension n with the state, the
     stages and the error terms in scalar locals, the field a numba function of scalars
     returning the derivative as a tuple, inlined by LLVM. Written here, independently of
@@ -519,7 +523,9 @@ def make_scalar_dop853(field, n, params=None):
     controller (safety 0.9, factors in [0.2, 10], err^(-1/8)), Hairer's starting step, no
     dense output, no statuses (the final state at T only). params: for a field with the
     project's signature fs(slots..., y...) -> (status, dy...), the parameter slots it takes
-    (read from p once)."""
+    (read from p once). checked (such a field only): the field's status is tested after
+    every call, as the small kernel does (a nonzero status ends the run: steps -1), where
+    the limit drops it (and LLVM the finite check that makes it)."""
     R = range(n)
     ys = [f"y{m}" for m in R]
 
@@ -582,6 +588,10 @@ def make_scalar_dop853(field, n, params=None):
             "        else:", "            fac = max(0.2, 0.9 * err ** -0.125)",
             "        h *= fac",
             f"    return np.array([{', '.join(ys)}]), steps, nfev"]
+    if checked:
+        if params is None:
+            raise ValueError("checked: a field with the project's signature (params)")
+        src = _status_checked(src, ys)
     ns = {"F": field, "np": np, "math": math}
     exec("\n".join(src), ns)
     return numba.njit(nogil=True)(ns["run"])
@@ -599,6 +609,30 @@ def generated_scalar_field(model, p):
 # --- many starts ------------------------------------------------------------------------------
 HAND = {"plane/chaplygin-ball": (ball_s, 6), "plane/round-disk": (disk_s, 6),
         "sphere/flat-base": (flat_s, 5)}
+
+
+def _status_checked(src, ys):
+    """make_scalar_dop853's lines with `st, ... = F(...)` and a test of st after each call
+    of the field, in place of `... = F(...)[1:]`."""
+    out = []
+    for line in src:
+        m = re.match(r"^(\s*)(.+?) = (F\(.*\))\[1:\]$", line)
+        if m is None:
+            out.append(line)
+            continue
+        ind, lhs, call = m.groups()
+        out += [f"{ind}st, {lhs} = {call}", f"{ind}if st != 0:",
+                f"{ind}    return np.array([{', '.join(ys)}]), -1, 0"]
+    return out
+
+
+def _drawn(wp, rng, k=20):
+    """A work-precision case's parameters, its k starts drawn from rng as the many-start
+    mode draws them, its model and p."""
+    prm = {**registry()[wp.id].example, **wp.overrides}
+    starts = random_starts(wp.id, prm, k, rng)
+    model = build(wp.id, prm)
+    return prm, starts, model, np.asarray(model.p, dtype=float)
 
 
 def _gen_field(model, p):
@@ -1119,11 +1153,7 @@ def work_split(targets=(1e-6, 1e-10)):
              + "   (median worst, starts matched)"]
     out = {"targets": targets, "cases": {}}
     for wp in CASES:
-        c = registry()[wp.id]
-        prm = {**c.example, **wp.overrides}
-        starts = random_starts(wp.id, prm, 20, rng)
-        model = build(wp.id, prm)
-        p = np.asarray(model.p, dtype=float)
+        prm, starts, model, p = _drawn(wp, rng)
         limit, kind = scalar_limit(wp.id, model, p)
         comp = {"limit": limit}
         if kind == "hand":
@@ -1168,6 +1198,50 @@ def work_split(targets=(1e-6, 1e-10)):
     (OUT / "limit_work.txt").write_text(text)
     (OUT / "limit_work.json").write_text(json.dumps(out, indent=1))
     print(text)
+
+
+# --- the cost of the field's status (issue 19 item 4) -------------------------------------------
+def status_cost(n_starts=3, repeats=7, rtol=1e-10):
+    """What testing the field's status after every call costs: per case, the limit's DOP853
+    on the project's generated field as the limit runs it (the status dropped) and with the
+    status tested after every call (make_scalar_dop853(checked=True), as the small kernel
+    does), on the many-start mode's n_starts longest starts (same draws), rtol = atol =
+    1e-10, CPU time, best of `repeats`, interleaved; the same steps and bits. Written to
+    bench/results/limit_status.txt."""
+    sys.path.insert(0, str(Path(__file__).parent))
+    from work_precision import CASES
+
+    rng = np.random.default_rng(19)
+    lines = ["bench/limit.py --status: the limit's DOP853 on the project's generated field, "
+             "the field's status dropped (as the limit runs) or tested after every call (as "
+             f"the small kernel does); the {n_starts} longest of the many-start mode's starts "
+             f"per case, rtol = atol = {rtol:g}, CPU time, best of {repeats}, interleaved; "
+             f"load average at the start: {' '.join(f'{x:.2f}' for x in os.getloadavg())}",
+             f"{'case':22s} {'|M|':>6s} {'calls':>7s} {'dropped':>9s} {'tested':>9s}  "
+             "tested/dropped"]
+    print(lines[0], flush=True)
+    for wp in CASES:
+        _, starts, model, p = _drawn(wp, rng)
+        args = _gen_field(model.model, p)
+        runs = {"dropped": make_scalar_dop853(*args),
+                "tested": make_scalar_dop853(*args, checked=True)}
+        for y0 in sorted(starts, key=lambda y: -float(np.linalg.norm(y[:3])))[:n_starts]:
+            out = {k: f(y0, p, wp.t_end, rtol, rtol) for k, f in runs.items()}
+            (ya, sa, na), (yb, sb, nb) = out["dropped"], out["tested"]
+            assert sa == sb and na == nb and np.array_equal(ya, yb), (wp.id, sa, sb)
+            best = dict.fromkeys(runs, math.inf)
+            for _ in range(repeats):
+                for k, f in runs.items():
+                    c0 = time.process_time()
+                    f(y0, p, wp.t_end, rtol, rtol)
+                    best[k] = min(best[k], time.process_time() - c0)
+            lines.append(f"{wp.id:22s} {float(np.linalg.norm(y0[:3])):6.2f} {na:7d} "
+                         f"{best['dropped'] / na * 1e9:6.1f} ns {best['tested'] / na * 1e9:6.1f} "
+                         f"ns  {best['tested'] / best['dropped']:.3f}")
+            print(lines[-1], flush=True)
+    lines.append(f"load average at the end: {' '.join(f'{x:.2f}' for x in os.getloadavg())}")
+    OUT.mkdir(exist_ok=True)
+    (OUT / "limit_status.txt").write_text("\n".join(lines) + "\n")
 
 
 # --- where the gap lies (issue 19 item 4) -----------------------------------------------------
@@ -1324,6 +1398,9 @@ def main():
         return
     if "--work" in sys.argv:
         work_split()
+        return
+    if "--status" in sys.argv:
+        status_cost()
         return
     if "--gap" in sys.argv:
         gap(sys.argv[sys.argv.index("--case") + 1] if "--case" in sys.argv
