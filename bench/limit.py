@@ -629,10 +629,8 @@ def _status_checked(src, ys):
 def _drawn(wp, rng, k=20):
     """A work-precision case's parameters, its k starts drawn from rng as the many-start
     mode draws them, its model and p."""
-    prm = {**registry()[wp.id].example, **wp.overrides}
-    starts = random_starts(wp.id, prm, k, rng)
-    model = build(wp.id, prm)
-    return prm, starts, model, np.asarray(model.p, dtype=float)
+    _, prm, model = work_precision_case(wp.id)
+    return prm, random_starts(wp.id, prm, k, rng), model, np.asarray(model.p, dtype=float)
 
 
 def _gen_field(model, p):
@@ -1179,11 +1177,11 @@ def work_split(targets=(1e-6, 1e-10)):
         for t in targets:
             key = f"{t:.0e}"
             for a, b in pairs:
-                if b not in fronts or a not in fronts:
+                if b not in comp and b != "limit":     # limit-gen: hand-written cases only
                     continue
-                v = [at_error(r["fronts"][a], t) / at_error(r["fronts"][b], t) for r in rows
-                     if at_error(r["fronts"][a], t) and at_error(r["fronts"][b], t)]
-                ratios[f"{a}/{b} {key}"] = v
+                at = [(at_error(r["fronts"][a], t), at_error(r["fronts"][b], t))
+                      for r in rows]
+                ratios[f"{a}/{b} {key}"] = [x / y for x, y in at if x and y]
             cells = []
             for a, b in pairs:
                 v = ratios.get(f"{a}/{b} {key}")
@@ -1205,8 +1203,8 @@ def status_cost(n_starts=3, repeats=7, rtol=1e-10):
     """What testing the field's status after every call costs: per case, the limit's DOP853
     on the project's generated field as the limit runs it (the status dropped) and with the
     status tested after every call (make_scalar_dop853(checked=True), as the small kernel
-    does), on the many-start mode's n_starts longest starts (same draws), rtol = atol =
-    1e-10, CPU time, best of `repeats`, interleaved; the same steps and bits. Written to
+    does), on the many-start mode's n_starts longest starts (same draws), rtol = atol
+    (1e-10), CPU time, best of `repeats`, interleaved; the same steps and bits. Written to
     bench/results/limit_status.txt."""
     sys.path.insert(0, str(Path(__file__).parent))
     from work_precision import CASES
