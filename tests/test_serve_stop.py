@@ -4,8 +4,9 @@ app/services/kernel_warmup.py's stop and reap).
 
 The server runs with an empty kernel cache, so that the generated kernels compile: the
 background warm-up (a subprocess in its own session, with its spawned compile processes),
-the start-up validation (a thread of the server), and a scene request's prepare job in a
-pool worker. SIGTERM comes while they compile. Before, the server took 17 s to exit here
+the start-up validation (a thread of the server), and a simulate request's prepare job in a
+pool worker (compiling its small kernel, then a run of minutes). SIGTERM comes while they
+compile. Before, the server took 17 s to exit here
 (it waited for the validation's compile and for the request's prepare job) and its
 workers outlived it until their job ended. The general kernels come from this checkout's
 numba cache: a fresh copy of the sources (tests/test_cold_prepare.py) would add a cold
@@ -127,17 +128,24 @@ def _stop(server, sig: int) -> tuple[float, set[int], set[int], str]:
 
 
 def test_sigterm_while_compiling_stops_in_seconds_and_leaves_no_process(tmp_path):
-    server, url = _serve(tmp_path, None)
+    # a step budget and a deadline that let the request below run for minutes: its job is
+    # in a worker when SIGTERM comes, however fast the machine (a scene of the example,
+    # asked before, loaded its general kernels from this checkout's cache and answered 200
+    # in about a second on a fast machine, before the signal)
+    server, url = _serve(tmp_path, None, {"ROLLING_MAX_STEPS": str(10**10),
+                                          "ROLLING_DEADLINE_S": "600"})
     try:
         _wait_compiling(server, url, tmp_path, time.monotonic() + 300)
-        # a request whose kernels are not compiled: its prepare job compiles in a worker
+        # a request whose small kernel is not compiled (the kernel cache is empty): its
+        # prepare job compiles it in a worker, then its run (T = 1e7 at rtol 1e-13, about
+        # 10^8 steps) goes on in a worker
         answers = []
 
         def ask():
             try:
-                answers.append(httpx.post(f"{url}/api/scene", timeout=120.0, json={
-                    "case": "plane/chaplygin-ball", "example": True, "t_end": 1.0,
-                    "frames": 20}).status_code)
+                answers.append(httpx.post(f"{url}/api/simulate", timeout=120.0, json={
+                    "case": "plane/chaplygin-ball", "example": True, "t_end": 1e7,
+                    "rtol": 1e-13, "atol": 1e-13, "samples": 2}).status_code)
             except httpx.TransportError as exc:
                 answers.append(repr(exc))
         asker = threading.Thread(target=ask)
@@ -145,8 +153,10 @@ def test_sigterm_while_compiling_stops_in_seconds_and_leaves_no_process(tmp_path
         deadline = time.monotonic() + 120
         while httpx.get(f"{url}/api/health", timeout=2.0).json()["pool"]["running"] < 1:
             assert time.monotonic() < deadline
+            assert not answers, answers     # it answered before its job ran
             time.sleep(0.1)
-        time.sleep(1.0)     # the prepare job is compiling
+        time.sleep(1.0)     # the prepare job compiles, or the run has begun
+        assert not answers, answers         # the job is still in its worker
     except BaseException:
         server.kill()
         raise
