@@ -32,6 +32,9 @@ the field alone) says where the time goes.
         many starts (issue 19, many_starts below): ours (integrate()) against the scalar
         limit (make_scalar_dop853) and heyoka-lean over random starts
         -> bench/results/limit_starts.{txt,json}   (--quick: limit_starts.quick.*)
+        [--repeats N]: each time the best of N (default 3) -> limit_starts.bestN.*
+        [--batch MS]: each measurement a batch of back-to-back calls filling MS ms, divided
+        by their number (timeit's way) -> limit_starts.batchMSms.*
     PYTHONPATH=$PWD .venv/bin/python bench/limit.py --gap [--case plane/ellipsoid]
         where the gap lies on one case (gap below): steps, rhs calls and errors at equal
         tolerances, ns per rhs call with the small kernel called directly, and
@@ -693,14 +696,20 @@ def matched(front_pts, target):
     return at_error(front_pts, target)
 
 
-def many_starts(quick=False, only=None, repeats=3):
+def many_starts(quick=False, only=None, repeats=3, batch_ms=None):
     """For each of the six work-precision cases, random starts (20; --quick 5 over at most
     T = 200): the time at matched final-state errors 1e-6 and 1e-10 of ours (integrate(),
     the default route: the small kernel), the limit (the scalar DOP853 above; where its
     field is hand-written, also the same DOP853 on the generated field, limit-gen) and
     heyoka on the lean equations; median and worst ratio over the starts. The table is written after
     every case (a partial run keeps what it measured). only: case ids to run. repeats: each
-    run's time is the best of this many (3: limit_starts.*; another: limit_starts.bestN.*)."""
+    run's time is the best of this many (3: limit_starts.*; another: limit_starts.bestN.*).
+    batch_ms: each timed measurement is a batch of back-to-back calls of the same run,
+    as many as fill batch_ms milliseconds (counted once per run from one timed call, at
+    least one call), its time divided by their number (timeit's way: a run of ~50 us alone
+    is at the mercy of the machine's hiccups, which a best of 3 does not filter: start 8 of
+    the plane ball measured 41 us at rtol 1e-4 and 72 us at the next rtol with about the
+    same steps); None: one call per measurement. Results: limit_starts.batchMms.*."""
     sys.path.insert(0, str(Path(__file__).parent))
     from work_precision import CASES
 
@@ -712,13 +721,18 @@ def many_starts(quick=False, only=None, repeats=3):
     import heyoka as hy
 
     load0 = os.getloadavg()
+    batch = ("" if batch_ms is None else
+             f" Each measurement is a batch of back-to-back calls of the same run filling "
+             f"{batch_ms:g} ms (at least one call), timed as a whole and divided by the "
+             "number of calls; the number is fixed per run and competitor from one timed "
+             "call before the repeats.")
     lines = [f"bench/limit.py{' --quick' if quick else ''}: many starts. Per case {n_starts} "
              "random starts, |M| log-uniform over two decades (0.1x ... 10x the example's), "
              "gamma uniform on the sphere; final-state error (max-norm / max(1, |y|)) at T "
              "against heyoka long double tol 1e-18; time at matched error 1e-6 and 1e-10 "
              "interpolated log-log on each front (rtol = atol 1e-4 ... 1e-14 every half "
              f"decade; heyoka tol 1e-4 ... 1e-15), best of {repeats} interleaved, each run timed "
-             "on the wall clock and on the process's CPU time.",
+             f"on the wall clock and on the process's CPU time.{batch}",
              "  ours  = integrate() by default (dop853, the small kernel of the structure)",
              "  kernel = that small kernel called directly, its option arrays built before "
              "the timed call (ours without integrate()'s Python entry: the same steps and "
@@ -732,11 +746,12 @@ def many_starts(quick=False, only=None, repeats=3):
              "|gamma| = 1 and differs off it: bench/limit.py --work)",
              f"load average at the start: {load0[0]:.2f} {load0[1]:.2f} {load0[2]:.2f} "
              f"({os.cpu_count()} cores)"]
-    out = {"quick": quick, "starts": n_starts, "repeats": repeats, "load_start": load0,
+    out = {"quick": quick, "starts": n_starts, "repeats": repeats, "batch_ms": batch_ms,
+           "load_start": load0,
            "cases": {},
            "date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())}
     summary = []
-    kept = _kept_cases(quick, only, repeats)
+    kept = _kept_cases(quick, only, repeats, batch_ms)
     for wp in CASES:
         c = registry()[wp.id]
         prm = {**c.example, **wp.overrides}
@@ -812,6 +827,15 @@ def many_starts(quick=False, only=None, repeats=3):
             # and the process's CPU time, which a run preempted by the machine's other jobs
             # does not count (at load 13 on 2 cores a best of 3 still caught 10x outliers
             # on the wall clock); the CPU clock includes ~1 us of its own reading
+            # calls per measurement: 1, or (--batch) as many as fill batch_ms
+            n_calls = {k: [1] * len(g) for k, (_, g) in comp.items()}
+            if batch_ms is not None:
+                for k, (fn, grid) in comp.items():
+                    for i, x in enumerate(grid):
+                        t0 = time.perf_counter()
+                        fn(x)
+                        w = time.perf_counter() - t0
+                        n_calls[k][i] = max(1, math.ceil(batch_ms * 1e-3 / max(w, 1e-7)))
             best = {k: [math.inf] * len(g) for k, (_, g) in comp.items()}
             cpu = {k: [math.inf] * len(g) for k, (_, g) in comp.items()}
             errs = {k: [None] * len(g) for k, (_, g) in comp.items()}
@@ -820,11 +844,13 @@ def many_starts(quick=False, only=None, repeats=3):
                     for k, (fn, grid) in comp.items():    # interleaved
                         if i >= len(grid):
                             continue
+                        n = n_calls[k][i]
                         c0 = time.process_time()
                         t0 = time.perf_counter()
-                        y, ok = fn(grid[i])
-                        w = time.perf_counter() - t0
-                        c = time.process_time() - c0
+                        for _ in range(n):
+                            y, ok = fn(grid[i])
+                        w = (time.perf_counter() - t0) / n
+                        c = (time.process_time() - c0) / n
                         best[k][i] = min(best[k][i], w)
                         cpu[k][i] = min(cpu[k][i], c)
                         errs[k][i] = err(y) if ok else math.nan
@@ -862,15 +888,16 @@ def many_starts(quick=False, only=None, repeats=3):
         _write_starts(quick, lines, summary, out)
 
 
-def _starts_stem(quick: bool, repeats: int) -> str:
-    """The many-start mode's results file: limit_starts[.quick][.bestN] (N != 3)."""
+def _starts_stem(quick: bool, repeats: int, batch_ms=None) -> str:
+    """The many-start mode's results file: limit_starts[.quick][.batchMms][.bestN] (N != 3)."""
     return ("limit_starts.quick" if quick else "limit_starts") + (
+        "" if batch_ms is None else f".batch{batch_ms:g}ms") + (
         "" if repeats == 3 else f".best{repeats}")
 
 
-def _kept_cases(quick, only, repeats=3) -> dict:
+def _kept_cases(quick, only, repeats=3, batch_ms=None) -> dict:
     """--cases: the other cases' results of the stored run, to write back beside the new."""
-    path = OUT / f"{_starts_stem(quick, repeats)}.json"
+    path = OUT / f"{_starts_stem(quick, repeats, batch_ms)}.json"
     if not only or not path.exists():
         return {}
     stored = json.loads(path.read_text())
@@ -928,7 +955,7 @@ def _write_starts(quick, head, summary, out):
     text = "\n".join(lines) + "\n"
     print(text, flush=True)
     OUT.mkdir(exist_ok=True)
-    stem = _starts_stem(quick, out["repeats"])
+    stem = _starts_stem(quick, out["repeats"], out.get("batch_ms"))
     (OUT / f"{stem}.txt").write_text(text)
     (OUT / f"{stem}.json").write_text(json.dumps(out, indent=1))
 
@@ -1408,7 +1435,9 @@ def main():
         only = sys.argv[sys.argv.index("--cases") + 1].split(",") if "--cases" in sys.argv \
             else None
         many_starts(quick, only, int(sys.argv[sys.argv.index("--repeats") + 1])
-                    if "--repeats" in sys.argv else 3)
+                    if "--repeats" in sys.argv else 3,
+                    float(sys.argv[sys.argv.index("--batch") + 1])
+                    if "--batch" in sys.argv else None)
         return
     cases = [
         ("plane/chaplygin-ball", {"I1": 1.0, "I2": 2.0, "I3": 3.0, "m": 1.0, "R": 1.0},
