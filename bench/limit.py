@@ -1204,7 +1204,7 @@ def work_split(targets=(1e-6, 1e-10)):
         for t in targets:
             key = f"{t:.0e}"
             for a, b in pairs:
-                if b not in comp and b != "limit":     # limit-gen: hand-written cases only
+                if b not in comp:      # limit-gen: hand-written cases only
                     continue
                 at = [(at_error(r["fronts"][a], t), at_error(r["fronts"][b], t))
                       for r in rows]

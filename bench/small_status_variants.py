@@ -38,7 +38,6 @@ import limit as B  # noqa: E402
 
 import solvers.integrate.integrator as I  # noqa: E402
 from solvers.kernels import small  # noqa: E402
-from solvers.models.cases import build, registry  # noqa: E402
 
 OUT = ROOT / "bench" / "results" / "small_status_variants.txt"
 CASE = "plane/chaplygin-ball"
@@ -69,9 +68,9 @@ def variants(src: str) -> dict:
 
 
 def main() -> None:
-    c = registry()[CASE]
-    model = build(CASE, c.example)
-    p = np.array(model.p, dtype=float)
+    # the many-start mode's case, parameters and draws (bench/limit.py's seed 19)
+    _, starts, model, p = B._drawn(B.work_precision_case(CASE)[0], np.random.default_rng(19))
+    p = np.array(p)     # writable, as integrate() passes it (one numba specialization)
     mod = small.small_kernel(model.model, p, "dop853")
     src = Path(mod.__file__).read_text()
     tmp = Path(tempfile.mkdtemp(prefix="small-status-"))
@@ -81,9 +80,8 @@ def main() -> None:
         name = "status_" + k.replace("-", "_")
         (tmp / f"{name}.py").write_text(text)
         runs[k] = importlib.import_module(name).run
-    fs, slots = B.generated_scalar_field(model.model, p)
-    lim = B.make_scalar_dop853(fs, 6, slots)
-    starts = B.random_starts(CASE, c.example, 20, np.random.default_rng(19))
+    lim = B.make_scalar_dop853(*B._gen_field(model.model, p))
+    n_state = len(starts[0])
     control = I.integrate.__kwdefaults__["control"]
     T = 1000.0
     t_out = np.array([0.0, T])
@@ -98,10 +96,10 @@ def main() -> None:
     for i in STARTS:
         y0 = starts[i]
         for rt in (1e-6, 1e-10):
-            fopt, atol = I._plain_fopt(rt, control), I._plain_atol(rt, 6)
+            fopt, atol = I._plain_fopt(rt, control), I._plain_atol(rt, n_state)
 
             def kern(run, y0=y0, fopt=fopt, atol=atol):
-                Y, ys = np.empty((2, 6)), np.empty(6)
+                Y, ys = np.empty((2, n_state)), np.empty(n_state)
                 st = np.zeros(5, dtype=np.int64)
                 run(p, y0, t_out, 10_000_000, False, fopt, atol, Y, ys, st)
                 return int(st[2]), Y[1]
