@@ -35,6 +35,8 @@ the field alone) says where the time goes.
         [--repeats N]: each time the best of N (default 3) -> limit_starts.bestN.*
         [--batch MS]: each measurement a batch of back-to-back calls filling MS ms, divided
         by their number (timeit's way) -> limit_starts.batchMSms.*
+        [--t-end T]: every case run to T instead of its own -> limit_starts.TT.* (the
+        disk at 1e-10: its DOP853 fronts at T = 1000 end above that error in double)
     PYTHONPATH=$PWD .venv/bin/python bench/limit.py --gap [--case plane/ellipsoid]
         where the gap lies on one case (gap below): steps, rhs calls and errors at equal
         tolerances, ns per rhs call with the small kernel called directly, and
@@ -696,7 +698,7 @@ def matched(front_pts, target):
     return at_error(front_pts, target)
 
 
-def many_starts(quick=False, only=None, repeats=3, batch_ms=None):
+def many_starts(quick=False, only=None, repeats=3, batch_ms=None, t_end=None):
     """For each of the six work-precision cases, random starts (20; --quick 5 over at most
     T = 200): the time at matched final-state errors 1e-6 and 1e-10 of ours (integrate(),
     the default route: the small kernel), the limit (the scalar DOP853 above; where its
@@ -709,7 +711,10 @@ def many_starts(quick=False, only=None, repeats=3, batch_ms=None):
     least one call), its time divided by their number (timeit's way: a run of ~50 us alone
     is at the mercy of the machine's hiccups, which a best of 3 does not filter: start 8 of
     the plane ball measured 41 us at rtol 1e-4 and 72 us at the next rtol with about the
-    same steps); None: one call per measurement. Results: limit_starts.batchMms.*."""
+    same steps); None: one call per measurement. Results: limit_starts.batchMms.*.
+    t_end: every case run to this T instead of its own (the disk's DOP853 fronts at T =
+    1000 end above 1e-10 in double, so that error is matched at a shorter T); results:
+    limit_starts.T<t_end>.*."""
     sys.path.insert(0, str(Path(__file__).parent))
     from work_precision import CASES
 
@@ -747,11 +752,12 @@ def many_starts(quick=False, only=None, repeats=3, batch_ms=None):
              f"load average at the start: {load0[0]:.2f} {load0[1]:.2f} {load0[2]:.2f} "
              f"({os.cpu_count()} cores)"]
     out = {"quick": quick, "starts": n_starts, "repeats": repeats, "batch_ms": batch_ms,
+           "t_end": t_end,
            "load_start": load0,
            "cases": {},
            "date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())}
     summary = []
-    kept = _kept_cases(quick, only, repeats, batch_ms)
+    kept = _kept_cases(quick, only, repeats, batch_ms, t_end)
     for wp in CASES:
         c = registry()[wp.id]
         prm = {**c.example, **wp.overrides}
@@ -765,7 +771,7 @@ def many_starts(quick=False, only=None, repeats=3, batch_ms=None):
             continue
         model = build(wp.id, prm)
         p = np.asarray(model.p, dtype=float)
-        T = min(wp.t_end, 200.0) if quick else wp.t_end
+        T = t_end if t_end is not None else min(wp.t_end, 200.0) if quick else wp.t_end
         limit, limit_kind = scalar_limit(wp.id, model, p)
         # where the limit's field is hand-written, the same DOP853 on the project's
         # generated field too ("limit-gen"): the field's form off |gamma| = 1 apart
@@ -779,7 +785,7 @@ def many_starts(quick=False, only=None, repeats=3, batch_ms=None):
         control = integrate.__kwdefaults__["control"]
         small_opts = {rt: (_plain_fopt(rt, control), _plain_atol(rt, L.STATE_DIM[model.model]))
                       for rt in rtols}
-        t_end = np.array([0.0, T])
+        t_span = np.array([0.0, T])
         v, f, _ = heyoka_system(model.model, p, fold=True)
         sys_h = list(zip(v, f, strict=True))
         # one compiled Taylor integrator per tolerance, reused for every start
@@ -802,7 +808,7 @@ def many_starts(quick=False, only=None, repeats=3, batch_ms=None):
                 y, _, _ = limit(y0, p, T, rt, rt)
                 return y, True
 
-            def kern(rt, y0=y0, run=small_run, opts=small_opts, t_out=t_end, p_w=p_w):
+            def kern(rt, y0=y0, run=small_run, opts=small_opts, t_out=t_span, p_w=p_w):
                 fopt, atol_v = opts[rt]
                 n = y0.size
                 Y, y_stop, stats = np.empty((2, n)), np.empty(n), np.zeros(5, dtype=np.int64)
@@ -888,16 +894,18 @@ def many_starts(quick=False, only=None, repeats=3, batch_ms=None):
         _write_starts(quick, lines, summary, out)
 
 
-def _starts_stem(quick: bool, repeats: int, batch_ms=None) -> str:
-    """The many-start mode's results file: limit_starts[.quick][.batchMms][.bestN] (N != 3)."""
+def _starts_stem(quick: bool, repeats: int, batch_ms=None, t_end=None) -> str:
+    """The many-start mode's results file:
+    limit_starts[.quick][.T<t_end>][.batchMms][.bestN] (N != 3)."""
     return ("limit_starts.quick" if quick else "limit_starts") + (
+        "" if t_end is None else f".T{t_end:g}") + (
         "" if batch_ms is None else f".batch{batch_ms:g}ms") + (
         "" if repeats == 3 else f".best{repeats}")
 
 
-def _kept_cases(quick, only, repeats=3, batch_ms=None) -> dict:
+def _kept_cases(quick, only, repeats=3, batch_ms=None, t_end=None) -> dict:
     """--cases: the other cases' results of the stored run, to write back beside the new."""
-    path = OUT / f"{_starts_stem(quick, repeats, batch_ms)}.json"
+    path = OUT / f"{_starts_stem(quick, repeats, batch_ms, t_end)}.json"
     if not only or not path.exists():
         return {}
     stored = json.loads(path.read_text())
@@ -955,7 +963,7 @@ def _write_starts(quick, head, summary, out):
     text = "\n".join(lines) + "\n"
     print(text, flush=True)
     OUT.mkdir(exist_ok=True)
-    stem = _starts_stem(quick, out["repeats"], out.get("batch_ms"))
+    stem = _starts_stem(quick, out["repeats"], out.get("batch_ms"), out.get("t_end"))
     (OUT / f"{stem}.txt").write_text(text)
     (OUT / f"{stem}.json").write_text(json.dumps(out, indent=1))
 
@@ -1437,7 +1445,9 @@ def main():
         many_starts(quick, only, int(sys.argv[sys.argv.index("--repeats") + 1])
                     if "--repeats" in sys.argv else 3,
                     float(sys.argv[sys.argv.index("--batch") + 1])
-                    if "--batch" in sys.argv else None)
+                    if "--batch" in sys.argv else None,
+                    float(sys.argv[sys.argv.index("--t-end") + 1])
+                    if "--t-end" in sys.argv else None)
         return
     cases = [
         ("plane/chaplygin-ball", {"I1": 1.0, "I2": 2.0, "I3": 3.0, "m": 1.0, "R": 1.0},
