@@ -52,25 +52,11 @@ TARGETS = (1e-6, 1e-10)
 @numba.njit(inline="always")
 def phys_s(p, M0, M1, M2, g0, g1, g2):
     """A ball of radius c |gamma|: I_Q = I + m c^2 (|gamma|^2 E - gamma gamma^T), r = c
-    gamma (Cramer's solve, as the hand-written field)."""
-    I1, I2, I3, m, c = p[0], p[1], p[2], p[3], p[16]
-    mc2 = m * c * c
-    a00 = I1 + mc2 * (g1 * g1 + g2 * g2)
-    a11 = I2 + mc2 * (g0 * g0 + g2 * g2)
-    a22 = I3 + mc2 * (g0 * g0 + g1 * g1)
-    a01 = -mc2 * g0 * g1
-    a02 = -mc2 * g0 * g2
-    a12 = -mc2 * g1 * g2
-    w0, w1, w2 = B.solve_sym3(a00, a01, a02, a11, a12, a22, M0, M1, M2)
-    d0 = g1 * w2 - g2 * w1
-    d1 = g2 * w0 - g0 * w2
-    d2 = g0 * w1 - g1 * w0
-    x0 = w1 * g2 - w2 * g1
-    x1 = w2 * g0 - w0 * g2
-    x2 = w0 * g1 - w1 * g0
-    return (M1 * w2 - M2 * w1 + mc2 * (d1 * x2 - d2 * x1),
-            M2 * w0 - M0 * w2 + mc2 * (d2 * x0 - d0 * x2),
-            M0 * w1 - M1 * w0 + mc2 * (d0 * x1 - d1 * x0), d0, d1, d2)
+    gamma: the hand-written field (bench/limit.py's ball_s, Cramer's solve) with |r|^2 =
+    c^2 |gamma|^2 in place of c^2."""
+    mc2 = p[3] * p[16] * p[16]
+    return B.ball_of_diagonal(p, M0, M1, M2, g0, g1, g2, mc2 * (g1 * g1 + g2 * g2),
+                              mc2 * (g0 * g0 + g2 * g2), mc2 * (g0 * g0 + g1 * g1))
 
 
 def main() -> None:

@@ -115,11 +115,20 @@ def ball_s(p, M0, M1, M2, g0, g1, g2):
     """Chaplygin ball on the plane as a user writes it for |gamma| = 1: r = R gamma,
     I_Q = I + m R^2 (E - gamma gamma^T), omega = I_Q^-1 M (Cramer), dgamma = gamma x omega,
     dr = R dgamma, dM = M x omega + m dr x (omega x r)."""
+    mR2 = p[3] * p[16] * p[16]
+    return ball_of_diagonal(p, M0, M1, M2, g0, g1, g2, mR2 * (1.0 - g0 * g0),
+                            mR2 * (1.0 - g1 * g1), mR2 * (1.0 - g2 * g2))
+
+
+@numba.njit(inline="always")
+def ball_of_diagonal(p, M0, M1, M2, g0, g1, g2, e0, e1, e2):
+    """ball_s with the diagonal of m (|r|^2 E - r r^T) given (e0, e1, e2), its other terms
+    -m R^2 gamma_i gamma_j: r = R gamma (bench/ball_extension.py gives another diagonal)."""
     I1, I2, I3, m, R = p[0], p[1], p[2], p[3], p[16]
     mR2 = m * R * R
-    a00 = I1 + mR2 * (1.0 - g0 * g0)
-    a11 = I2 + mR2 * (1.0 - g1 * g1)
-    a22 = I3 + mR2 * (1.0 - g2 * g2)
+    a00 = I1 + e0
+    a11 = I2 + e1
+    a22 = I3 + e2
     a01 = -mR2 * g0 * g1
     a02 = -mR2 * g0 * g2
     a12 = -mR2 * g1 * g2
@@ -1440,14 +1449,11 @@ def main():
             else "plane/chaplygin-ball")
         return
     if "--fronts" not in sys.argv:
-        only = sys.argv[sys.argv.index("--cases") + 1].split(",") if "--cases" in sys.argv \
-            else None
-        many_starts(quick, only, int(sys.argv[sys.argv.index("--repeats") + 1])
-                    if "--repeats" in sys.argv else 3,
-                    float(sys.argv[sys.argv.index("--batch") + 1])
-                    if "--batch" in sys.argv else None,
-                    float(sys.argv[sys.argv.index("--t-end") + 1])
-                    if "--t-end" in sys.argv else None)
+        def opt(flag, kind, default=None):     # `flag VALUE` on the command line
+            return kind(sys.argv[sys.argv.index(flag) + 1]) if flag in sys.argv else default
+
+        many_starts(quick, opt("--cases", lambda v: v.split(",")), opt("--repeats", int, 3),
+                    opt("--batch", float), opt("--t-end", float))
         return
     cases = [
         ("plane/chaplygin-ball", {"I1": 1.0, "I2": 2.0, "I3": 3.0, "m": 1.0, "R": 1.0},
