@@ -1,5 +1,4 @@
-"""Does method="auto" keep its promise? Coverage of the requested error over random starts
-(issue 19, item 5).
+"""Does method="auto" keep its promise? Coverage of the requested error over random starts.
 
 For each of the six work-precision cases (bench/work_precision.py: its parameters and T),
 random starts from bench/limit.py's generator (random_starts: M in a random direction with
@@ -30,7 +29,7 @@ this ratio means little where auto moved to the Taylor backend) and its total in
 time (every run's, compile excluded) / the first choice's. No time is asserted.
 
     nice -n 10 .venv/bin/python bench/auto_coverage.py [--quick]
-        -> bench/results/auto_coverage{,_quick}.{txt,json}
+        -> bench/results/auto_coverage.txt (--quick: auto_coverage_quick.txt, not kept)
 --quick: 3 starts per case, T at most 100, levels 1e-6 and 1e-10 (a smoke run, seconds once
 the kernels are compiled).
 """
@@ -38,7 +37,6 @@ the kernels are compiled).
 from __future__ import annotations
 
 import argparse
-import json
 import math
 import os
 import sys
@@ -217,7 +215,6 @@ def main():
     if not args.only:
         OUT.mkdir(exist_ok=True)
         (OUT / f"{stem}.txt").write_text("\n".join(text) + "\n")
-        (OUT / f"{stem}.json").write_text(json.dumps(out, indent=1, default=float))
 
 
 if __name__ == "__main__":

@@ -1,5 +1,5 @@
 """method="auto" against heyoka on lean equations at matched error, the six work-precision
-cases (issue 12's target: "at 1e-12 the auto choice is no slower than heyoka on any of the
+cases (the target: "at 1e-12 the auto choice is no slower than heyoka on any of the
 six work-precision cases").
 
 Competitors, each traced as a work-precision front on the case, T and initial state of
@@ -18,14 +18,13 @@ heyoka point, auto point, ...) in one process, best of REPEATS; time at the matc
 interpolated log-log on each front's Pareto points (None: the front does not reach it).
 
     PYTHONPATH=$PWD .venv/bin/python bench/auto_front.py [--quick]
-        -> bench/results/auto_front{,_quick}.{txt,json}
+        -> bench/results/auto_front.txt (--quick: auto_front_quick.txt, not kept)
 """
 
 from __future__ import annotations
 
 import argparse
 import itertools
-import json
 import math
 import os
 import sys
@@ -197,8 +196,6 @@ def main(argv=None):
     OUT.mkdir(exist_ok=True)
     suffix = "_quick" if args.quick else ""
     (OUT / f"auto_front{suffix}.txt").write_text("\n".join(lines) + "\n")
-    (OUT / f"auto_front{suffix}.json").write_text(json.dumps(
-        {"load_start": load0, "load_end": load1, "match": MATCH, "cases": out}, indent=1) + "\n")
     return 0
 
 

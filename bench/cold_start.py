@@ -1,4 +1,4 @@
-"""Ready in a minute (issue 19's "done when"): a fresh clone, an empty HOME and caches,
+"""Ready in a minute: a fresh clone, an empty HOME and caches,
 `./dev serve --port N`, and the time from the end of the set-up (pip) to the first 200 on /.
 
     python bench/cold_start.py [--port 8731] [--watch 900] [--out bench/results/cold_start.txt]

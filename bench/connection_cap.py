@@ -1,16 +1,15 @@
-"""What the connection cap of app/core/server.py costs (issue 21):
+"""What the connection cap of app/core/server.py costs:
 
 1. choosing the connection to evict at the cap, among `--cap` open connections (half of
    them stalled heads, half stalled bodies, a few idle keep-alive ones): the ordered
    candidates of app.core.server (_Candidates.victim) against the linear scan over every
-   connection that main used before (copied below), in the same process;
+   connection (the former choice, copied below), in the same process;
 2. what held connections cost a live server: its resident memory with 0 and with `--hold`
    stalled sockets (half a head or half a body), and how many connections a second it
    accepts and evicts while a flood opens them as fast as one client can;
 3. --body-cpu: the server's CPU time per stalled half body at the cap (100, held by
    stalled half bodies; 1000 more opened, then a pause for the server to drain them).
-   This branch evicts each stalled one; main refused each new one at once. Run it from a
-   checkout of another commit (with this file) to compare servers.
+   The server evicts each stalled one.
 4. with --profile: what legitimate clients look like to the server, to set stall_grace_s:
    a server whose protocol records, for every request that completed, the time its head
    took (from the connection, or from the first byte of a keep-alive connection's next
@@ -70,7 +69,7 @@ class _Transport:
 
 
 def _old_scan(protocols) -> object:
-    """main's choice before this change (a381c9c): every connection that holds no request,
+    """The former choice, a linear scan (the yardstick): every connection that holds no request,
     the never-served first, then the oldest."""
     idle = [p for p in protocols if p.conn.their_state is h11.IDLE
             and (p.cycle is None or p.cycle.response_complete)

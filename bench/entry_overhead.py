@@ -1,4 +1,4 @@
-"""The Python cost of an entry call (issue 12, item 3: a repeated `simulate()` of the same
+"""The Python cost of an entry call (the target: a repeated `simulate()` of the same
 case should cost no more than 20 us beyond the kernel).
 
 A tiny run (t_end = 0.01, 3 samples: a handful of steps) of each case, timed three ways
@@ -105,7 +105,7 @@ def main(argv=None):
     lines = ["Entry overhead: a tiny run (t_end = 0.01, 3 samples, dop853, rtol 1e-10) per case,",
              "the generated kernel called bare vs integrate() vs simulate(), interleaved,",
              f"best of {rounds} batches of {batch} calls each (microseconds per call).",
-             "overhead = entry - kernel; target (issue 12): <= 20 us for a repeated simulate().",
+             "overhead = entry - kernel; target: <= 20 us for a repeated simulate().",
              "", f"{'case':26s} {'steps':>5s} {'kernel':>8s} {'integrate':>10s} "
              f"{'(+us, x)':>14s} {'simulate':>9s} {'(+us, x)':>14s}"]
     worst = 0.0
@@ -125,7 +125,7 @@ def main(argv=None):
               f"command: PYTHONPATH=$PWD python bench/entry_overhead.py{' --quick' * a.quick}"]
     text = "\n".join(lines) + "\n"
     print(text)
-    OUT.write_text(text)
+    (OUT.with_name("entry_overhead_quick.txt") if a.quick else OUT).write_text(text)
 
 
 if __name__ == "__main__":

@@ -15,8 +15,6 @@ a matched final-state error interpolated (log-log) on that front:
   gen-loops    rk.py compiled against the case's generated field, inlined
                (generate.generated_integrator: what generated=True runs with a section or
                a projection), called directly (packed arrays reused: no entry);
-  (gen-unrolled, the same with the DOP853 and Vern9 stages written out, was dropped with
-  solvers/kernels/unroll.py on 2026-11-27: its last figures stay in bench/results/limit.txt)
   heyoka-lean  heyoka's Taylor integrator on the generated lean expressions;
   heyoka-gen   heyoka on the general expression system (solvers/integrate/taylor.py);
   scipy-scalar scipy DOP853 on the best plain-Python scalar field (math.sqrt, tuples);
@@ -29,38 +27,37 @@ competitor's front (Runge-Kutta competitors only). A breakdown (ns per rhs call,
 the field alone) says where the time goes.
 
     PYTHONPATH=$PWD .venv/bin/python bench/limit.py [--quick] [--cases a,b]
-        many starts (issue 19, many_starts below): ours (integrate()) against the scalar
-        limit (make_scalar_dop853) and heyoka-lean over random starts
-        -> bench/results/limit_starts.{txt,json}   (--quick: limit_starts.quick.*)
-        [--repeats N]: each time the best of N (default 3) -> limit_starts.bestN.*
-        [--batch MS]: each measurement a batch of back-to-back calls filling MS ms, divided
-        by their number (timeit's way) -> limit_starts.batchMSms.*
-        [--t-end T]: every case run to T instead of its own -> limit_starts.TT.* (the
-        disk at 1e-10: its DOP853 fronts at T = 1000 end above that error in double)
-    PYTHONPATH=$PWD .venv/bin/python bench/limit.py --gap [--case plane/ellipsoid]
-        where the gap lies on one case (gap below): steps, rhs calls and errors at equal
-        tolerances, ns per rhs call with the small kernel called directly, and
-        integrate()'s entry -> bench/results/limit_gap[.case].{txt,json}
+        [--repeats N] [--batch MS] [--t-end T]
+        many starts (many_starts below): ours (integrate()) against the scalar limit
+        (make_scalar_dop853) and heyoka-lean over 20 random starts per case
+        -> bench/results/limit_starts.txt (--quick: 5 starts, T <= 200,
+        limit_starts_quick.txt, not kept). --repeats N: each time the best of N (default
+        3); --batch MS: each measurement a batch of back-to-back calls filling MS ms,
+        divided by their number (timeit's way); --t-end T: every case run to T instead of
+        its own; --cases a,b: only these cases (the same starts as a whole run)
     PYTHONPATH=$PWD .venv/bin/python bench/limit.py --work
         the many-start mode's starts counted in rhs calls at matched error (no clock):
         ours, ours with the limit's controller, the limit, the limit on the generated field
-        (work_split below) -> bench/results/limit_work.{txt,json}
-    PYTHONPATH=$PWD .venv/bin/python bench/limit.py --status
-        what testing the field's status after every call (as the small kernel does) costs
-        the limit (status_cost below) -> bench/results/limit_status.txt
+        (work_split below) -> bench/results/limit_work.txt
+    PYTHONPATH=$PWD .venv/bin/python bench/limit.py --extension
+        the plane ball's field in three extensions off |gamma| = 1 (hand-written,
+        generated, a ball of radius c |gamma|) in the limit's DOP853: rhs calls at matched
+        error on five bodies (extension below) -> bench/results/limit_extension.txt
+    PYTHONPATH=$PWD .venv/bin/python bench/limit.py --gap [--case plane/ellipsoid]
+        where the gap lies on one case (gap below): steps, rhs calls and errors at equal
+        tolerances, ns per rhs call with the small kernel called directly, and
+        integrate()'s entry -> bench/results/limit_gap.txt
     PYTHONPATH=$PWD .venv/bin/python bench/limit.py --fronts [--quick]
-        the one-start fronts described above
-        -> bench/results/limit.{txt,json}   (--quick: limit.quick.{txt,json})
+        the one-start fronts described above -> bench/results/limit.txt (--quick:
+        limit_quick.txt, not kept)
 --fronts --quick: 5 tolerances (1e-6 ... 1e-12), best of 3, no scipy-numpy and no heyoka-gen
 (~3 min once the kernels are compiled; a fresh cache first compiles the generated kernels,
 ~2 min a case).
 """
 
 import itertools
-import json
 import math
 import os
-import re
 import sys
 import time
 import timeit
@@ -529,17 +526,16 @@ def field_cost(case, params, y0, limit_field):
 
 
 # --- the limit: a scalar DOP853, its field inlined ----------------------------------------
-def make_scalar_dop853(field, n, params=None, checked=False):
-    """The limit (issue 19): DOP853 written for one state dimension n with the state, the
+def make_scalar_dop853(field, n, params=None):
+    """The limit: DOP853 written for one state dimension n with the state, the
     stages and the error terms in scalar locals, the field a numba function of scalars
     returning the derivative as a tuple, inlined by LLVM. Written here, independently of
     the project's generators: scipy's coefficients (DC), Hairer's error norm, the plain
     controller (safety 0.9, factors in [0.2, 10], err^(-1/8)), Hairer's starting step, no
     dense output, no statuses (the final state at T only). params: for a field with the
     project's signature fs(slots..., y...) -> (status, dy...), the parameter slots it takes
-    (read from p once). checked (such a field only): the field's status is tested after
-    every call, as the small kernel does (a nonzero status ends the run: steps -1), where
-    the limit drops it (and LLVM the finite check that makes it)."""
+    (read from p once); the limit drops the field's status (and LLVM the finite check that
+    makes it), where the small kernel tests it after every call."""
     R = range(n)
     ys = [f"y{m}" for m in R]
 
@@ -602,10 +598,6 @@ def make_scalar_dop853(field, n, params=None, checked=False):
             "        else:", "            fac = max(0.2, 0.9 * err ** -0.125)",
             "        h *= fac",
             f"    return np.array([{', '.join(ys)}]), steps, nfev"]
-    if checked:
-        if params is None:
-            raise ValueError("checked: a field with the project's signature (params)")
-        src = _status_checked(src, ys)
     ns = {"F": field, "np": np, "math": math}
     exec("\n".join(src), ns)
     return numba.njit(nogil=True)(ns["run"])
@@ -623,21 +615,6 @@ def generated_scalar_field(model, p):
 # --- many starts ------------------------------------------------------------------------------
 HAND = {"plane/chaplygin-ball": (ball_s, 6), "plane/round-disk": (disk_s, 6),
         "sphere/flat-base": (flat_s, 5)}
-
-
-def _status_checked(src, ys):
-    """make_scalar_dop853's lines with `st, ... = F(...)` and a test of st after each call
-    of the field, in place of `... = F(...)[1:]`."""
-    out = []
-    for line in src:
-        m = re.match(r"^(\s*)(.+?) = (F\(.*\))\[1:\]$", line)
-        if m is None:
-            out.append(line)
-            continue
-        ind, lhs, call = m.groups()
-        out += [f"{ind}st, {lhs} = {call}", f"{ind}if st != 0:",
-                f"{ind}    return np.array([{', '.join(ys)}]), -1, 0"]
-    return out
 
 
 def _drawn(wp, rng, k=20):
@@ -714,16 +691,15 @@ def many_starts(quick=False, only=None, repeats=3, batch_ms=None, t_end=None):
     field is hand-written, also the same DOP853 on the generated field, limit-gen) and
     heyoka on the lean equations; median and worst ratio over the starts. The table is written after
     every case (a partial run keeps what it measured). only: case ids to run. repeats: each
-    run's time is the best of this many (3: limit_starts.*; another: limit_starts.bestN.*).
+    run's time is the best of this many.
     batch_ms: each timed measurement is a batch of back-to-back calls of the same run,
     as many as fill batch_ms milliseconds (counted once per run from one timed call, at
     least one call), its time divided by their number (timeit's way: a run of ~50 us alone
     is at the mercy of the machine's hiccups, which a best of 3 does not filter: start 8 of
     the plane ball measured 41 us at rtol 1e-4 and 72 us at the next rtol with about the
-    same steps); None: one call per measurement. Results: limit_starts.batchMms.*.
-    t_end: every case run to this T instead of its own (the disk's DOP853 fronts at T =
-    1000 end above 1e-10 in double, so that error is matched at a shorter T); results:
-    limit_starts.T<t_end>.*."""
+    same steps); None: one call per measurement. t_end: every case run to this T
+    instead of its own (the disk's DOP853 fronts at T = 1000 end above 1e-10 in double, so
+    that error is matched at a shorter T). The table's head states the options."""
     sys.path.insert(0, str(Path(__file__).parent))
     from work_precision import CASES
 
@@ -766,17 +742,12 @@ def many_starts(quick=False, only=None, repeats=3, batch_ms=None, t_end=None):
            "cases": {},
            "date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())}
     summary = []
-    kept = _kept_cases(quick, only, repeats, batch_ms, t_end)
     for wp in CASES:
         c = registry()[wp.id]
         prm = {**c.example, **wp.overrides}
         if only and wp.id not in only:
-            # the same starts as a whole run: draw this case's starts all the same; its
-            # rows are the last whole run's (limit_starts.json), if any
+            # the same starts as a whole run: draw this case's starts all the same
             random_starts(wp.id, prm, n_starts, rng)
-            if wp.id in kept:
-                out["cases"][wp.id] = kept[wp.id]
-                summary += _summary_of(wp.id, kept[wp.id])
             continue
         model = build(wp.id, prm)
         p = np.asarray(model.p, dtype=float)
@@ -899,28 +870,6 @@ def many_starts(quick=False, only=None, repeats=3, batch_ms=None, t_end=None):
         summary += _summary_of(wp.id, out["cases"][wp.id])
         print(f"{wp.id} done (load {os.getloadavg()[0]:.2f})", flush=True)
         _write_starts(quick, lines, summary, out)
-    if only:     # the kept cases after the last one run
-        _write_starts(quick, lines, summary, out)
-
-
-def _starts_stem(quick: bool, repeats: int, batch_ms=None, t_end=None) -> str:
-    """The many-start mode's results file:
-    limit_starts[.quick][.T<t_end>][.batchMms][.bestN] (N != 3)."""
-    return ("limit_starts.quick" if quick else "limit_starts") + (
-        "" if t_end is None else f".T{t_end:g}") + (
-        "" if batch_ms is None else f".batch{batch_ms:g}ms") + (
-        "" if repeats == 3 else f".best{repeats}")
-
-
-def _kept_cases(quick, only, repeats=3, batch_ms=None, t_end=None) -> dict:
-    """--cases: the other cases' results of the stored run, to write back beside the new."""
-    path = OUT / f"{_starts_stem(quick, repeats, batch_ms, t_end)}.json"
-    if not only or not path.exists():
-        return {}
-    stored = json.loads(path.read_text())
-    before = stored.get("date", "2026-11-25 (the whole run of commit 3523ecd)")
-    return {cid: {**c, "measured": c.get("measured", before)}
-            for cid, c in stored["cases"].items()}
 
 
 def _summary_of(cid, case) -> list:
@@ -972,193 +921,10 @@ def _write_starts(quick, head, summary, out):
     text = "\n".join(lines) + "\n"
     print(text, flush=True)
     OUT.mkdir(exist_ok=True)
-    stem = _starts_stem(quick, out["repeats"], out.get("batch_ms"), out.get("t_end"))
-    (OUT / f"{stem}.txt").write_text(text)
-    (OUT / f"{stem}.json").write_text(json.dumps(out, indent=1))
+    (OUT / ("limit_starts_quick.txt" if quick else "limit_starts.txt")).write_text(text)
 
 
-# --- the order of the competitors (issue 19 item 4) ---------------------------------------------
-def order_effect(case_ids=("plane/chaplygin-ball", "sphere/chaplygin-ball"), n_starts=5,
-                 repeats=3):
-    """Whether the order of the competitors in many_starts' interleaved rounds changes
-    ours / limit: on the many-start mode's first starts of each case (same seed), the
-    same rounds as there (per repeat, every tolerance of the grid in turn, at each one
-    ours, the limit and heyoka one after the other; CPU time, best of `repeats`), timed
-    once with ours always first (right after the previous tolerance's heyoka run, as
-    many_starts runs them) and once with the order rotated between the repeats (each
-    competitor first once). Printed: ours / limit at the same rtol, the median and the
-    90th percentile over starts x tolerances, for either order, and at rtol 1e-4 ... 1e-6
-    (the shortest runs). Measured on 2026-11-27 (bench/results/limit_order.txt): the
-    order changes neither, so many_starts keeps its fixed order."""
-    import heyoka as hy
-
-    sys.path.insert(0, str(Path(__file__).parent))
-    from work_precision import CASES
-
-    rng = np.random.default_rng(19)
-    rtols = [10.0 ** (-k / 2) for k in range(8, 29)]
-    htols = [10.0 ** -k for k in range(4, 16)]
-    lines = ["bench/limit.py --order: ours / limit at the same rtol (CPU time, best of "
-             f"{repeats}), {n_starts} starts per case (the many-start mode's first), the "
-             "rounds of the many-start mode with ours always first or the order rotated.",
-             f"load average at the start: {' '.join(f'{x:.2f}' for x in os.getloadavg())}",
-             "case                   order          median   p90   median at rtol >= 1e-6"]
-    for wp in CASES:
-        c = registry()[wp.id]
-        prm = {**c.example, **wp.overrides}
-        starts = random_starts(wp.id, prm, 20, rng)     # the draws of many_starts
-        if wp.id not in case_ids:
-            continue
-        model = build(wp.id, prm)
-        p = np.asarray(model.p, dtype=float)
-        limit, _ = scalar_limit(wp.id, model, p)
-        v, f, _ = heyoka_system(model.model, p, fold=True)
-        tas = {tol: hy.taylor_adaptive(list(zip(v, f, strict=True)), starts[0], tol=tol)
-               for tol in htols}
-        T = wp.t_end
-        ratios = {"ours first": [], "rotated": []}
-        for y0 in starts[:n_starts]:
-            def ours(rt, y0=y0, m=model.model, p=p, T=T):
-                integrate(m, p, y0, [0.0, T], rtol=rt, atol=rt)
-
-            def lim(rt, y0=y0, limit=limit, p=p, T=T):
-                limit(y0, p, T, rt, rt)
-
-            def hey(tol, y0=y0, tas=tas, T=T):
-                ta = tas[tol]
-                ta.time = 0.0
-                ta.state[:] = y0
-                ta.propagate_until(T)
-
-            comp = {"ours": (ours, rtols), "limit": (lim, rtols), "heyoka": (hey, htols)}
-            for fn, grid in comp.values():
-                fn(grid[0])
-            for kind in ratios:
-                cpu = {k: [math.inf] * len(g) for k, (_, g) in comp.items()}
-                for rep in range(repeats):
-                    r = rep % len(comp) if kind == "rotated" else 0
-                    order = [*comp][r:] + [*comp][:r]
-                    for i in range(len(rtols)):
-                        for k in order:
-                            fn, grid = comp[k]
-                            if i >= len(grid):
-                                continue
-                            c0 = time.process_time()
-                            fn(grid[i])
-                            cpu[k][i] = min(cpu[k][i], time.process_time() - c0)
-                ratios[kind].append([a / b for a, b in zip(cpu["ours"], cpu["limit"],
-                                                            strict=True)])
-        for kind, rows in ratios.items():
-            a = np.asarray(rows)
-            lines.append(f"{wp.id:22s} {kind:12s} {np.median(a):8.2f} "
-                         f"{np.percentile(a, 90):5.2f} {np.median(a[:, :5]):10.2f}")
-            print(lines[-1], flush=True)
-    lines.append(f"load average at the end: {' '.join(f'{x:.2f}' for x in os.getloadavg())}")
-    text = "\n".join(lines) + "\n"
-    print(text)
-    OUT.mkdir(exist_ok=True)
-    (OUT / "limit_order.txt").write_text(text)
-
-
-# --- the entry after a heyoka run (issue 19 item 4) -------------------------------------------
-def timed_after(fns: dict, before, rounds: int) -> dict:
-    """name -> the ns each callable took, timed alone right after `before()` (a heyoka run:
-    the state a many-start round leaves), `rounds` rounds interleaved."""
-    took = {k: [] for k in fns}
-    clock = time.perf_counter_ns
-    for _ in range(rounds):
-        for k, fn in fns.items():
-            before()
-            t0 = clock()
-            fn()
-            took[k].append(clock() - t0)
-    return took
-
-
-def cold_entry(case_id="plane/chaplygin-ball", rounds=300):
-    """What integrate()'s entry and its parts cost right after a heyoka run (as in the
-    many-start mode's rounds, where the short runs set the worst starts): on the many-start
-    mode's start of |M| nearest 0.134 (its worst at 1e-6 in the run of 2026-11-27), rtol
-    1e-6, each callable timed alone (perf_counter_ns) right after heyoka's run of the same
-    start, `rounds` times; medians. The parts are timed on their own: the output times'
-    check of a list [0, T], the copies of y0 and p with p's bytes (the plan's key), the
-    result's construction, three empty arrays, and an empty call (the clock's own cost)."""
-    import heyoka as hy
-
-    from solvers.integrate import integrator as I
-
-    wp, prm, model = work_precision_case(case_id)
-    p = np.asarray(model.p, dtype=float)
-    n = L.STATE_DIM[model.model]
-    T = wp.t_end
-    starts = random_starts(wp.id, prm, 20, np.random.default_rng(19))
-    y0 = min(starts, key=lambda y: abs(float(np.linalg.norm(y[:3])) - 0.134))
-    v, f, _ = heyoka_system(model.model, p, fold=True)
-    ta = hy.taylor_adaptive(list(zip(v, f, strict=True)), y0, tol=1e-8)
-    rt = 1e-6
-    control = integrate.__kwdefaults__["control"]
-    p_w = np.array(p)
-    run = small_module(model.model, p_w, "dop853").run
-    fopt, atol_v, t_end = _plain_fopt(rt, control), _plain_atol(rt, n), np.array([0.0, T])
-
-    def hey():
-        ta.time = 0.0
-        ta.state[:] = y0
-        ta.propagate_until(T)
-
-    def kernel():
-        run(p_w, y0, t_end, 10_000_000, False, fopt, atol_v, np.empty((2, n)), np.empty(n),
-            np.zeros(5, dtype=np.int64))
-
-    def ours():
-        integrate(model.model, p, y0, [0.0, T], rtol=rt, atol=rt)
-
-    def times():
-        I._checked_times([0.0, T])
-
-    def copies():
-        np.array(y0, dtype=np.float64).ravel()
-        np.array(p, dtype=np.float64).tobytes()
-
-    def result():
-        I.IntegrationResult(t_end, t_end, 0, "ok", 1.0, t_end, 1, 2, 3, 1e-5, "dop853",
-                            t_end, t_end, "generated", "small")
-
-    def empties():
-        np.empty((2, n))
-        np.empty(n)
-        np.empty(5, dtype=np.int64)
-
-    def nothing():
-        pass
-
-    fns = {"integrate()": ours, "the kernel called directly": kernel,
-           "check of the output times [0, T]": times, "copies of y0 and p, p's bytes": copies,
-           "the result's construction": result, "three empty arrays": empties,
-           "an empty call": nothing}
-    for fn in fns.values():
-        fn()
-    took = timed_after(fns, hey, rounds)
-    lines = [f"bench/limit.py --cold: {case_id}, T = {T:g}, the start of |M| = "
-             f"{np.linalg.norm(y0[:3]):.3f}, rtol 1e-6; each callable timed alone right after "
-             f"a heyoka run of that start, {rounds} rounds, medians (wall clock); load average "
-             f"at the start {' '.join(f'{x:.2f}' for x in os.getloadavg())}"]
-    for k, v in took.items():
-        lines.append(f"  {k:34s} {np.median(v) / 1e3:8.2f} us   (p25 "
-                     f"{np.percentile(v, 25) / 1e3:.2f})")
-    hot = {}
-    for k in ("integrate()", "the kernel called directly"):
-        hot[k] = min(timeit.repeat(fns[k], number=200, repeat=7)) / 200
-    lines.append(f"  the same two in a tight loop (timeit, best of 7 x 200): integrate() "
-                 f"{hot['integrate()'] * 1e6:.2f} us, the kernel "
-                 f"{hot['the kernel called directly'] * 1e6:.2f} us")
-    text = "\n".join(lines) + "\n"
-    print(text)
-    OUT.mkdir(exist_ok=True)
-    (OUT / "limit_cold_entry.txt").write_text(text)
-
-
-# --- the work at matched error, without a clock (issue 19 item 4) -----------------------------
+# --- the work at matched error, without a clock -------------------------------------------
 def work_split(targets=(1e-6, 1e-10)):
     """Where the many-start mode's worst starts come from, with no clock: on the same 20
     starts per case (the same draws), each competitor's front in right-hand-side calls (a
@@ -1175,7 +941,7 @@ def work_split(targets=(1e-6, 1e-10)):
                 manifold (|gamma| = 1) and differs off it
     ours-I against limit-gen is one algorithm against itself on one field: the calls
     differ only in the first step and the landing on T. Written to
-    bench/results/limit_work.{txt,json}."""
+    bench/results/limit_work.txt."""
     from solvers.integrate.integrator import StepControl
 
     sys.path.insert(0, str(Path(__file__).parent))
@@ -1238,55 +1004,10 @@ def work_split(targets=(1e-6, 1e-10)):
     text = "\n".join(lines) + "\n"
     OUT.mkdir(exist_ok=True)
     (OUT / "limit_work.txt").write_text(text)
-    (OUT / "limit_work.json").write_text(json.dumps(out, indent=1))
     print(text)
 
 
-# --- the cost of the field's status (issue 19 item 4) -------------------------------------------
-def status_cost(n_starts=3, repeats=7, rtol=1e-10):
-    """What testing the field's status after every call costs: per case, the limit's DOP853
-    on the project's generated field as the limit runs it (the status dropped) and with the
-    status tested after every call (make_scalar_dop853(checked=True), as the small kernel
-    does), on the many-start mode's n_starts longest starts (same draws), rtol = atol
-    (1e-10), CPU time, best of `repeats`, interleaved; the same steps and bits. Written to
-    bench/results/limit_status.txt."""
-    sys.path.insert(0, str(Path(__file__).parent))
-    from work_precision import CASES
-
-    rng = np.random.default_rng(19)
-    lines = ["bench/limit.py --status: the limit's DOP853 on the project's generated field, "
-             "the field's status dropped (as the limit runs) or tested after every call (as "
-             f"the small kernel does); the {n_starts} longest of the many-start mode's starts "
-             f"per case, rtol = atol = {rtol:g}, CPU time, best of {repeats}, interleaved; "
-             f"load average at the start: {' '.join(f'{x:.2f}' for x in os.getloadavg())}",
-             f"{'case':22s} {'|M|':>6s} {'calls':>7s} {'dropped':>9s} {'tested':>9s}  "
-             "tested/dropped"]
-    print(lines[0], flush=True)
-    for wp in CASES:
-        _, starts, model, p = _drawn(wp, rng)
-        args = _gen_field(model.model, p)
-        runs = {"dropped": make_scalar_dop853(*args),
-                "tested": make_scalar_dop853(*args, checked=True)}
-        for y0 in sorted(starts, key=lambda y: -float(np.linalg.norm(y[:3])))[:n_starts]:
-            out = {k: f(y0, p, wp.t_end, rtol, rtol) for k, f in runs.items()}
-            (ya, sa, na), (yb, sb, nb) = out["dropped"], out["tested"]
-            assert sa == sb and na == nb and np.array_equal(ya, yb), (wp.id, sa, sb)
-            best = dict.fromkeys(runs, math.inf)
-            for _ in range(repeats):
-                for k, f in runs.items():
-                    c0 = time.process_time()
-                    f(y0, p, wp.t_end, rtol, rtol)
-                    best[k] = min(best[k], time.process_time() - c0)
-            lines.append(f"{wp.id:22s} {float(np.linalg.norm(y0[:3])):6.2f} {na:7d} "
-                         f"{best['dropped'] / na * 1e9:6.1f} ns {best['tested'] / na * 1e9:6.1f} "
-                         f"ns  {best['tested'] / best['dropped']:.3f}")
-            print(lines[-1], flush=True)
-    lines.append(f"load average at the end: {' '.join(f'{x:.2f}' for x in os.getloadavg())}")
-    OUT.mkdir(exist_ok=True)
-    (OUT / "limit_status.txt").write_text("\n".join(lines) + "\n")
-
-
-# --- where the gap lies (issue 19 item 4) -----------------------------------------------------
+# --- where the gap lies -------------------------------------------------------------------
 def gap(case_id="plane/chaplygin-ball", n_starts=5, T=200.0, repeats=7):
     """Where ours loses against the limit on one case, measured part by part, same process,
     interleaved, best of `repeats`, on the many-start mode's first starts (same seed):
@@ -1424,25 +1145,112 @@ def gap(case_id="plane/chaplygin-ball", n_starts=5, T=200.0, repeats=7):
     text = "\n".join(lines) + "\n"
     print(text, flush=True)
     OUT.mkdir(exist_ok=True)
-    stem = "limit_gap" + ("" if case_id == "plane/chaplygin-ball"
-                          else "." + case_id.replace("/", "_"))
-    (OUT / f"{stem}.txt").write_text(text)
-    (OUT / f"{stem}.json").write_text(json.dumps(out, indent=1))
+    (OUT / "limit_gap.txt").write_text(text)
+
+
+
+# --- the plane ball's field off |gamma| = 1 ------------------------------------------------------
+EXT_CASE = "plane/chaplygin-ball"
+EXT_BODIES = ((1.0, 2.0, 3.0), (0.01, 0.02, 0.025), (0.1, 0.2, 0.25), (1.0, 1.2, 1.5),
+              (10.0, 20.0, 25.0))      # I1, I2, I3 with m = c = 1 (the first: the example)
+
+
+@numba.njit(inline="always")
+def phys_s(p, M0, M1, M2, g0, g1, g2):
+    """A ball of radius c |gamma|: I_Q = I + m c^2 (|gamma|^2 E - gamma gamma^T), r = c
+    gamma: the hand-written field (ball_s) with |r|^2 = c^2 |gamma|^2 in place of c^2."""
+    mc2 = p[3] * p[16] * p[16]
+    return ball_of_diagonal(p, M0, M1, M2, g0, g1, g2, mc2 * (g1 * g1 + g2 * g2),
+                            mc2 * (g0 * g0 + g2 * g2), mc2 * (g0 * g0 + g1 * g1))
+
+
+def extension(n_starts=12, T=1000.0, targets=(1e-6, 1e-10)):
+    """Which extension of the plane Chaplygin ball's field off |gamma| = 1 integrates with
+    the smaller error. The equations hold on |gamma| = 1; an integrator's stages leave it,
+    so every field is some extension of them, and the extensions agree on the manifold and
+    differ off it. Three, each in the limit's scalar DOP853 (the same integrator, the same
+    controller):
+      hand  the limit's hand-written field: r = c gamma, I_Q = I + m c^2 (E - gamma
+            gamma^T) (|r|^2 taken as c^2), dr = c dgamma;
+      gen   the project's generated field (from the support function h = c |gamma|): r = c
+            gamma / |gamma|, I_Q = I + m (|r|^2 E - r r^T);
+      phys  a ball of radius c |gamma| (phys_s): r = c gamma, I_Q = I + m (|r|^2 E - r r^T).
+    Per body (EXT_BODIES), random starts (gamma uniform on the sphere, |M| = (mean I + m
+    c^2) * 0.25 * 10^U(-1, 1)), rtol = atol from 1e-5 to 1e-14 every half decade; the
+    final-state error (max-norm / max(1, |y|)) against heyoka's Taylor integrator in long
+    double (tol 1e-18; every extension's exact flow is the same from a start on the
+    manifold). Reported: the right-hand-side calls at matched errors (log-log interpolation
+    on each front) of gen and phys over hand, median and range over the starts: no clock,
+    so the figures do not depend on the machine's load. -> bench/results/limit_extension.txt"""
+    from solvers.integrate.taylor import Taylor
+
+    c = registry()[EXT_CASE]
+    rng = np.random.default_rng(23)
+    rtols = [10.0 ** (-k / 2) for k in range(10, 29)]
+    hand = make_scalar_dop853(HAND[EXT_CASE][0], 6)
+    phys = make_scalar_dop853(phys_s, 6)
+    load0 = os.getloadavg()
+    lines = [f"bench/limit.py --extension: {EXT_CASE}, three extensions of its field off "
+             "|gamma| = 1 in the limit's scalar DOP853 (extension()'s doc); calls at matched "
+             f"error over hand's, median [min, max] over {n_starts} starts per body, T = "
+             f"{T:g}; load average at the start: {load0[0]:.2f} {load0[1]:.2f} "
+             f"{load0[2]:.2f} (calls do not depend on it)"]
+    for I in EXT_BODIES:
+        prm = {**c.example, "I1": I[0], "I2": I[1], "I3": I[2]}
+        model = build(EXT_CASE, prm)
+        p = np.asarray(model.p, dtype=float)
+        gen = make_scalar_dop853(*_gen_field(model.model, p))
+        scale = (sum(I) / 3.0 + float(prm["m"]) * float(p[16]) ** 2) * 0.25
+        ratios = {k: {t: [] for t in targets} for k in ("gen", "phys")}
+        err_ratio = {k: [] for k in ("gen", "phys")}
+        for _ in range(n_starts):
+            d, g = rng.normal(size=3), rng.normal(size=3)
+            y0 = np.concatenate([d / np.linalg.norm(d) * scale * 10.0 ** rng.uniform(-1, 1),
+                                 g / np.linalg.norm(g)])
+            ref = np.asarray(Taylor(model.model, p, y0, tol=1e-18, fp="longdouble")
+                             .run(y0, [0.0, T])[1][-1], dtype=float)
+            fronts = {}
+            for k, f in (("hand", hand), ("gen", gen), ("phys", phys)):
+                pts = []
+                for rt in rtols:
+                    y, _, calls = f(y0, p, T, rt, rt)
+                    pts.append((float(np.max(np.abs(y - ref)) / max(1.0, np.max(np.abs(ref)))),
+                                float(calls)))
+                fronts[k] = pts
+            for k in ("gen", "phys"):
+                err_ratio[k] += [a[0] / b[0] for a, b in zip(fronts[k], fronts["hand"],
+                                                              strict=True) if b[0] > 0]
+                for t in targets:
+                    a, b = at_error(fronts[k], t), at_error(fronts["hand"], t)
+                    if a and b:
+                        ratios[k][t].append(a / b)
+        parts = []
+        for k in ("gen", "phys"):
+            for t in targets:
+                v = ratios[k][t]
+                parts.append(f"{k} {t:.0e}: " + (f"{np.median(v):.3f} [{min(v):.3f}, "
+                                                 f"{max(v):.3f}] ({len(v)} matched)"
+                                                 if v else "none matched"))
+            parts.append(f"{k} error / hand's at the same rtol: median "
+                         f"{np.median(err_ratio[k]):.2f}")
+        lines.append(f"I = {I}: " + "; ".join(parts))
+        print(lines[-1], flush=True)
+    load1 = os.getloadavg()
+    lines.append(f"load average at the end: {load1[0]:.2f} {load1[1]:.2f} {load1[2]:.2f}")
+    OUT.mkdir(exist_ok=True)
+    (OUT / "limit_extension.txt").write_text("\n".join(lines) + "\n")
 
 
 def main():
+    if "--help" in sys.argv or "-h" in sys.argv:
+        print(__doc__)
+        return
     quick = "--quick" in sys.argv
-    if "--cold" in sys.argv:
-        cold_entry()
-        return
-    if "--order" in sys.argv:
-        order_effect()
-        return
     if "--work" in sys.argv:
         work_split()
         return
-    if "--status" in sys.argv:
-        status_cost()
+    if "--extension" in sys.argv:
+        extension()
         return
     if "--gap" in sys.argv:
         gap(sys.argv[sys.argv.index("--case") + 1] if "--case" in sys.argv
@@ -1523,9 +1331,7 @@ def main():
     text = "\n".join(lines) + "\n"
     OUT.mkdir(exist_ok=True)
     print(text)
-    stem = "limit.quick" if quick else "limit"
-    (OUT / f"{stem}.txt").write_text(text)
-    (OUT / f"{stem}.json").write_text(json.dumps(out, indent=1))
+    (OUT / ("limit_quick.txt" if quick else "limit.txt")).write_text(text)
 
 
 if __name__ == "__main__":

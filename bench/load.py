@@ -5,7 +5,7 @@ prober measures GET /api/health. Bounded in users and time; it stops itself.
     python bench/load.py --users 4 --duration 5 --json
     python bench/load.py --url http://127.0.0.1:8000   # an explorer already running
 
-The users (issue 9: simulate, pages and a 50 MB body): one user in four browses the pages
+The users (simulate, pages and a 50 MB body): one user in four browses the pages
 (the home page, a case page and the scripts and data they load, plotly.js included); one
 user sends 50 MB bodies to POST /api/simulate, by turns with Content-Length and streamed
 (chunked), reading the answer while it sends, as a browser does; the others send the demo
@@ -386,7 +386,7 @@ def main(argv=None) -> int:
     ap.add_argument("--stalled", type=int, default=0,
                     help="stalled sockets to attempt (half a head or body; at most 5000)")
     ap.add_argument("--hostile", action="store_true",
-                    help="the hostile mix of issue 21: --big 3 --bombs 2 --stalled 3000")
+                    help="the hostile mix: --big 3 --bombs 2 --stalled 3000")
     ap.add_argument("--max-connections", type=int,
                     help="the server's connection cap (default: its setting, 1000); a "
                     "smaller one lets a slow flood fill it on a loaded machine")

@@ -16,13 +16,12 @@ For three integrable cases and both compiled methods:
 
     .venv/bin/python bench/longrun.py          (or: rolling bench longrun)
 
-Writes bench/results/longrun.txt and longrun.json. The CLI form of the projected run:
+Writes bench/results/longrun.txt. The CLI form of the projected run:
     rolling simulate plane/chaplygin-ball --example --t-end 100000 --project
 """
 
 from __future__ import annotations
 
-import json
 import sys
 import time
 from pathlib import Path
@@ -136,7 +135,6 @@ def main(argv=None):
                 + f"  {r.rhs_calls:9d}  " + " ".join(f"{k}={v:.1e}" for k, v in worst.items()))
     OUT.mkdir(exist_ok=True)
     (OUT / "longrun.txt").write_text("\n".join(lines) + "\n")
-    (OUT / "longrun.json").write_text(json.dumps(rows, indent=1) + "\n")
     return 0
 
 

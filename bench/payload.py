@@ -1,4 +1,4 @@
-"""Serialization against integration for a 2000-sample simulate (issue 12, item 7: the
+"""Serialization against integration for a 2000-sample simulate (the target: the
 answer's serialization should cost no more than 1.5x the integration).
 
 Side by side in one process, interleaved, best of N:
@@ -89,7 +89,7 @@ def main(argv=None):
               f"command: PYTHONPATH=$PWD python bench/payload.py{' --quick' * a.quick}"]
     text = "\n".join(lines) + "\n"
     print(text)
-    OUT.write_text(text)
+    (OUT.with_name("payload_quick.txt") if a.quick else OUT).write_text(text)
 
 
 def _through_api(rounds):

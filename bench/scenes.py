@@ -11,12 +11,11 @@ measure and is compared as is) against the baseline run at rtol 1e-13.
 
     .venv/bin/python bench/scenes.py          (or: rolling bench scenes)
 
-Writes bench/results/scenes.txt and scenes.json.
+Writes bench/results/scenes.txt.
 """
 
 from __future__ import annotations
 
-import json
 import sys
 import time
 from pathlib import Path
@@ -137,7 +136,6 @@ def main(argv=None):
                if "drift" in sc.shows else ""))
     OUT.mkdir(exist_ok=True)
     (OUT / "scenes.txt").write_text("\n".join(lines) + "\n")
-    (OUT / "scenes.json").write_text(json.dumps(rows, indent=1) + "\n")
     return 0
 
 

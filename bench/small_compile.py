@@ -108,7 +108,6 @@ def main():
     print(text)
     OUT.mkdir(exist_ok=True)
     (OUT / "small_compile.txt").write_text(text)
-    (OUT / "small_compile.json").write_text(json.dumps(rows, indent=1))
 
 
 if __name__ == "__main__":

@@ -1,4 +1,4 @@
-"""What a Taylor integrator costs on first use, per case (issue 19: no compile inside a
+"""What a Taylor integrator costs on first use, per case (the target: no compile inside a
 request's deadline): heyoka's compile against loading the integrator from the disk cache
 (solvers/integrate/taylor_backend.py), for the precisions method "taylor" and "auto" take.
 

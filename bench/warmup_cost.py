@@ -1,4 +1,4 @@
-"""Where the cold warm-up goes (issue 19 item 6: at most 2 minutes on 2 cores).
+"""Where the cold warm-up goes (the target: at most 2 minutes on 2 cores).
 
 Three measurements, each on empty caches (ROLLING_KERNEL_CACHE and NUMBA_CACHE_DIR in a
 fresh temporary directory, so the shared warm cache is never read or written):

@@ -32,7 +32,9 @@ absolute time is asserted anywhere: the ratios are read side by side.
         committed JSON, the other methods' runs kept)
 
 Writes solvers/integrate/data/work_precision.json (every run; package data the explorer serves)
-and bench/results/work_precision.txt (the table);
+and bench/results/work_precision.txt (the table; --quick: work_precision_quick.{txt,json} in
+bench/results/, not kept; --only-taylor: bench/results/work_precision_taylor.txt). The data
+file names its format and this command ("format", "generator"): workprecision.FORMAT;
 solvers/integrate/workprecision.py summarises them for the explorer (GET /api/work-precision).
 """
 
@@ -330,7 +332,9 @@ def main(argv=None):
     integrate(warm.model, warm.p, np.array(registry()["plane/chaplygin-ball"].state), [0, 1])
     say(f"first call (numba cache load or compile): {time.perf_counter() - t0:.2f} s; "
         f"python {platform.python_version()}, {platform.machine()}")
-    data = {"tolerances": list(tols), "samples": SAMPLES, "repeats": REPEATS, "cases": [],
+    # the data file names its format and the command that wrote it (workprecision.FORMAT)
+    data = {"format": wp.FORMAT, "generator": wp.GENERATOR + (" --quick" if args.quick else ""),
+            "tolerances": list(tols), "samples": SAMPLES, "repeats": REPEATS, "cases": [],
             "runs": [], "quick": args.quick,
             "error": "max over the output grid of ‖y − y*‖∞ / max(1, max ‖y*‖∞), "
                      "y* the reference solution"}
@@ -355,7 +359,7 @@ def main(argv=None):
     # the full run is what the explorer serves: package data next to its reader
     # (solvers.integrate.workprecision.RESULTS), so that an installed wheel carries it
     json_out = OUT / "work_precision_quick.json" if args.quick else wp.RESULTS
-    json_out.write_text(json.dumps(data, indent=1) + "\n")
+    json_out.write_text(json.dumps(data, indent=1, ensure_ascii=False) + "\n")
     (OUT / f"work_precision{suffix}.txt").write_text("\n".join(lines) + "\n")
     return 0
 
@@ -364,6 +368,11 @@ def merge_taylor(args) -> int:
     import os
 
     data = json.loads(wp.RESULTS.read_text())
+    wp.check_format(data, str(wp.RESULTS))
+    rerun = f"{wp.GENERATOR} --only-taylor"
+    generator = data.get("generator", wp.GENERATOR)
+    data = {**data, "format": wp.FORMAT,
+            "generator": generator if generator.endswith(rerun) else f"{generator}, then {rerun}"}
     tols = tuple(sorted({*data["tolerances"], *HALF_DECADES}, reverse=True))
     cases = [c for c in CASES if not args.case or c.id in args.case]
     renew = {wp.TAYLOR, *wp.PLAIN}
@@ -389,7 +398,7 @@ def merge_taylor(args) -> int:
             lines.append(f"{c['id']:24s} {what} tol {r['tol']:.1e} error {e:>8s}"
                          f" wall {r['wall_s'] * 1e3:8.2f} ms" + extra
                          + (f" [{r['load']}]" if "load" in r else ""))
-    wp.RESULTS.write_text(json.dumps(data, indent=1) + "\n")
+    wp.RESULTS.write_text(json.dumps(data, indent=1, ensure_ascii=False) + "\n")
     OUT.mkdir(exist_ok=True)
     (OUT / "work_precision_taylor.txt").write_text("\n".join(lines) + "\n")
     print("\n".join(lines))

@@ -1,7 +1,9 @@
 """The committed work-precision results (bench/work_precision.py), their summary, the
 explorer's GET /api/work-precision and page, `rolling bench`, and the batch runner."""
 
+import json
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -25,6 +27,28 @@ def test_committed_results_cover_the_cases_and_methods():
     for r in data["runs"]:
         if r["ok"]:
             assert r["error"] is not None and math.isfinite(r["error"]) and r["wall_s"] > 0
+
+
+def test_data_file_names_its_format_and_generator(tmp_path):
+    data = wp.load_results()
+    assert data["format"] == wp.FORMAT
+    assert data["generator"].startswith(wp.GENERATOR)
+    # the generator is a script of this checkout
+    script = data["generator"].split(",")[0].split()[1]
+    assert (Path(__file__).resolve().parents[1] / script).is_file()
+    # a file without the fields (format 1) is read; an unknown format is refused
+    raw = {k: v for k, v in json.loads(wp.RESULTS.read_text()).items()
+           if k not in ("format", "generator")}
+    old = tmp_path / "old.json"
+    old.write_text(json.dumps(raw))
+    assert wp.load_results(old)["cases"]
+    for bad in ({**raw, "format": wp.FORMAT + 1}, {**raw, "format": "1"},
+                {**raw, "generator": 3}, {k: v for k, v in raw.items() if k != "runs"}):
+        path = tmp_path / "bad.json"
+        path.write_text(json.dumps(bad))
+        wp._load.cache_clear()
+        with pytest.raises(ValueError):
+            wp.load_results(path)
 
 
 def test_summary_is_consistent_with_the_runs():

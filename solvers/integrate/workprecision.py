@@ -21,6 +21,10 @@ from functools import cache
 from pathlib import Path
 
 RESULTS = Path(__file__).resolve().parent / "data" / "work_precision.json"
+# the data file's layout: "format" (this number; a file without it is format 1) and
+# "generator" (the command that writes it); a reader refuses a format it does not know
+FORMAT = 1
+GENERATOR = "python bench/work_precision.py"
 LEVELS = (1e-4, 1e-6, 1e-8, 1e-10, 1e-12)
 
 # method keys of the benchmark; OURS are the compiled kernels of this project
@@ -104,8 +108,22 @@ def _default_method(by: dict) -> str:
 @cache
 def _load(path: str, mtime: float) -> dict:
     data = json.loads(Path(path).read_text())
+    check_format(data, path)
     data["summary"] = summarise(data)
     return data
+
+
+def check_format(data: dict, where: str = "work-precision data") -> None:
+    """Raise ValueError unless data is a work-precision file this reader knows: a format
+    number it reads (absent: 1), a generator string if any, and its runs and cases."""
+    fmt = data.get("format", 1)
+    if isinstance(fmt, bool) or not isinstance(fmt, int) or not 1 <= fmt <= FORMAT:
+        raise ValueError(f"{where}: format {fmt!r}, this reader knows formats 1 to {FORMAT}; "
+                         f"write it again with `{GENERATOR}`")
+    if not isinstance(data.get("generator", ""), str):
+        raise ValueError(f"{where}: 'generator' is not a command line")
+    if not isinstance(data.get("runs"), list) or not isinstance(data.get("cases"), list):
+        raise ValueError(f"{where}: no 'runs' and 'cases' lists")
 
 
 def load_results(path: Path | None = None) -> dict:
