@@ -13,6 +13,7 @@
 
 import os
 import random
+import sys
 import time
 from fractions import Fraction
 from pathlib import Path
@@ -85,4 +86,7 @@ def main():
 
 
 if __name__ == "__main__":
+    if {"-h", "--help"} & set(sys.argv[1:]):     # what it does, without running it
+        print(__doc__)
+        sys.exit(0)
     main()

@@ -139,6 +139,9 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
+    if {"-h", "--help"} & set(sys.argv[1:]):     # what it does, without running it
+        print(__doc__)
+        sys.exit(0)
     t0 = time.perf_counter()
     code = main(sys.argv[1:])
     print(f"total {time.perf_counter() - t0:.0f} s")

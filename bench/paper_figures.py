@@ -12,6 +12,7 @@ increasing, DOP853 at rtol 1e-12, atol 1e-14, no projection onto the integrals.
 from __future__ import annotations
 
 import json
+import sys
 import time
 from pathlib import Path
 
@@ -281,4 +282,7 @@ def main():
 
 
 if __name__ == "__main__":
+    if {"-h", "--help"} & set(sys.argv[1:]):     # what it does, without running it
+        print(__doc__)
+        sys.exit(0)
     main()

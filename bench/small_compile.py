@@ -111,4 +111,7 @@ def main():
 
 
 if __name__ == "__main__":
+    if {"-h", "--help"} & set(sys.argv[1:]):     # what it does, without running it
+        print(__doc__)
+        sys.exit(0)
     main()
