@@ -120,7 +120,7 @@ def ball_s(p, M0, M1, M2, g0, g1, g2):
 @numba.njit(inline="always")
 def ball_of_diagonal(p, M0, M1, M2, g0, g1, g2, e0, e1, e2):
     """ball_s with the diagonal of m (|r|^2 E - r r^T) given (e0, e1, e2), its other terms
-    -m R^2 gamma_i gamma_j: r = R gamma (bench/ball_extension.py gives another diagonal)."""
+    -m R^2 gamma_i gamma_j: r = R gamma (phys_s, --extension, gives another diagonal)."""
     I1, I2, I3, m, R = p[0], p[1], p[2], p[3], p[16]
     mR2 = m * R * R
     a00 = I1 + e0
