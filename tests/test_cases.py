@@ -13,7 +13,7 @@ def test_energy_and_geometric_integral_over_1000(case_id):
     """Done-when of the solver core: drift <= 1e-12 relative over T = 1000. Run with
     dop853 at rtol 1e-14, the method whose kernels the warm-up compiles (energy drift
     1e-15..9e-14 on these runs); vern9 reaches the same bound at rtol 1e-12
-    (bench/results/drift_1000.txt) but would compile one more kernel per case in CI, and
+    (docs/performance.md) but would compile one more kernel per case in CI, and
     its kernels are checked bit for bit against the reference in tests/test_small.py."""
     c = registry()[case_id]
     r = simulate(case_id, c.example, c.state, 1000.0, method="dop853", rtol=1e-14, atol=1e-16,

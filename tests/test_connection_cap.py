@@ -2,8 +2,8 @@
 connections evicted to make room are the stalled ones (half a head, half a body), never a
 legitimate client's while a stalled one is there. Before: a stalled half-BODY was never
 evictable, so a flood of them filled the cap; then the idle keep-alive connections of
-legitimate clients were evicted and new ones refused (bench/results/load_hostile.txt at
-a381c9c: 1475 legitimate requests without an answer).
+legitimate clients were evicted and new ones refused (bench/load.py --hostile: 1475
+legitimate requests without an answer).
 
 A live server with a cap of 20 and read timeouts of 60 s, so that only the cap closes the
 flood's sockets; the flood is paced so that it never opens more than the cap within the

@@ -61,7 +61,7 @@ def _profile_context(browser_type, browser_type_launch_args, browser_context_arg
     in. Playwright's own `context` is a new off-the-record profile per test, which keeps no
     compiled-code cache: each test's first page then compiled plotly.js again (chromium's
     CPU for a case page in a new tab of a new context 4.3-5.0 s, in a new tab of this
-    profile 1.8-2.0 s, medians: bench/results/browser_tab_cost.txt), for ~60 tests (issue
+    profile 1.8-2.0 s, medians: docs/performance.md), for ~60 tests (issue
     19: CI time). The app stores
     nothing in the browser (no cookie, no web storage), so the tabs share only the HTTP
     cache of static files. A test that needs a clean profile (the CSP, the bytes a page

@@ -73,7 +73,7 @@ def test_a_scene_waits_for_play_under_reduced_motion_and_draws_only_when_seen(pa
     expect(page.locator("#play")).to_have_text("Play")
     expect(page.locator("#scene-status")).to_contain_text("reduced motion")
     # the WebGL view is drawn at the screen's pixel ratio, 1 here (plotly's default, 2,
-    # drew 4x the pixels: bench/results/scene_frame_cost.txt)
+    # drew 4x the pixels: docs/performance.md)
     sizes = page.evaluate("""[...document.querySelectorAll('#scene-plot canvas')]
         .filter((c) => c.clientWidth > 0)
         .map((c) => [c.width, c.height, c.clientWidth, c.clientHeight, devicePixelRatio])""")
