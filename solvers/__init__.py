@@ -5,12 +5,12 @@ point maps, and checks of the paper's claims.
 Everything a user calls is importable from here::
 
     simulate, SimulationResult, methods     run a case and read the result
-    cases, CaseSpec                          the cases, their parameters and example values
+    cases, CaseSpec                         the cases, their parameters and example values
     poincare, MapSpec, PoincareResult       a point map on one energy level
     sweep, parameter_tasks, energy_tasks,   many maps over a parameter or energy levels,
     MapTask, SweepResult, DaskSettings      on dask.distributed
-    verify                                   check the paper's claims
-    InputError                               the error raised for bad input
+    verify                                  check the paper's claims
+    InputError                              the error raised for bad input
 
 The names are loaded on first use (PEP 562 `__getattr__`, as scipy does): ``import
 solvers.errors`` or any light submodule does not import numba and the integrators. Two

@@ -116,12 +116,12 @@ class SimulationResult:
     Examples
     --------
     >>> import solvers
-    >>> spec = solvers.cases()["plane/round-disk"]
+    >>> spec = solvers.cases()["plane/chaplygin-ball"]
     >>> res = solvers.simulate(spec.id, spec.example, spec.state, t_end=2.0, samples=5)
-    >>> res.ok, res.t.shape, res.state.shape, res.state_labels[:3]
-    (True, (5,), (5, 6), ('M1', 'M2', 'M3'))
-    >>> res.drift("energy") < 1e-10
-    True
+    >>> res.ok, res.t.shape, res.state.shape, res.state_labels
+    (True, (5,), (5, 6), ('M1', 'M2', 'M3', 'g1', 'g2', 'g3'))
+    >>> list(res.invariants), res.drift("area") < 1e-10
+    (['energy', 'gamma2', 'area', 'M2'], True)
     >>> sorted(res.to_json())[:4]
     ['case', 'invariants', 'message', 'params']
     """
