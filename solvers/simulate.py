@@ -1,18 +1,19 @@
 """One entry point for a run: `simulate(case, params, state0, t_end, ...)`.
 
-It validates everything first (InputError, nothing runs), integrates with the compiled
-in-house Runge-Kutta kernels or, for `scipy-*` methods, with scipy's solve_ivp on the
-independent NumPy field of solvers/models/reference.py, and reports the drift of every
-invariant the case carries. A run that meets a singularity returns what it computed up to
-there, with status "singular" and a message saying where: never NaN as a result.
+It validates everything first (InputError, nothing runs), integrates the equations of
+motion (eq1.1 with eq1.2 on a plane, eq1.3 on a sphere) with the compiled in-house
+Runge-Kutta kernels or, for `scipy-*` methods, with scipy's solve_ivp on the independent
+NumPy field of solvers/models/reference.py, and reports the drift of every invariant the
+case carries. A run that meets a singularity returns what it computed up to there, with
+status "singular" and a message saying where: never NaN as a result.
 
 A plain run of a compiled Runge-Kutta method (dop853 or vern9, no projection) runs the
 case's generated field (solvers/kernels/generate.py) in its small kernel, any other run the
 general field (`field`, FIELDS): the route depends on the request, never on what happens
-to be compiled, so the same request gives the same numbers (issue 19). A repeated run of
-the same case is thin (issue 12): the model, the initial state, the options and the output
-times are validated once and memoized, and the invariants and their drift come from one
-compiled call (bench/entry_overhead.py).
+to be compiled, so the same request gives the same numbers. A repeated run of the same
+case is thin: the model, the initial state, the options and the output times are
+validated once and memoized, and the invariants and their drift come from one compiled
+call (bench/entry_overhead.py measures that overhead).
 """
 
 import math
@@ -33,8 +34,8 @@ MAX_SAMPLES = 200_000
 # which vector field the compiled Runge-Kutta kernels run (solvers/integrate/integrator.py):
 # auto: integrate()'s rule: the generated field in the small kernel for a plain run, else
 # the general one; generated: the generated field for every compiled run (a projected run
-# compiles rk.py on it, ~40 s on first use of a structure); general: the general
-# support-function field, the reference
+# compiles rk.py on it on first use of a structure, which takes a while); general: the
+# general support-function field, the reference
 FIELDS = {"auto": None, "generated": True, "general": False}
 
 
@@ -57,11 +58,74 @@ TAYLOR_METHODS = ("taylor", "auto")   # heyoka's Taylor backend; auto: chosen fr
 
 @cache
 def methods() -> tuple[str, ...]:
+    """The integration methods `simulate` accepts, by name.
+
+    The adaptive explicit Runge-Kutta methods compiled in-house (tableaux in
+    solvers/integrate/tableaux), the symmetric fixed-step Gauss collocation methods (they take
+    `step`, not rtol and atol), heyoka's Taylor integrator ("taylor") and its automatic
+    choice ("auto", from the measured work-precision front per case and tolerance), and
+    scipy's solve_ivp on an independent NumPy field ("scipy-*", the reference).
+
+    Returns
+    -------
+    tuple of str
+        The method names, in that order; the first, "dop853", is the default.
+
+    Examples
+    --------
+    >>> import solvers
+    >>> m = solvers.methods()
+    >>> m[0], "vern9" in m, "gauss4" in m, "scipy-radau" in m
+    ('dop853', True, True, True)
+    """
     return (*compiled_methods(), *symmetric_methods(), *TAYLOR_METHODS, *SCIPY_METHODS)
 
 
 @dataclass
 class SimulationResult:
+    """One run of `simulate`: the sampled trajectory, its invariants and how it went.
+
+    Attributes
+    ----------
+    case : str
+        The case id.
+    params : dict of str to float
+        Every parameter of the run, the optional ones with their defaults.
+    state_labels : tuple of str
+        The names of the state's components: ("M1", "M2", "M3", "g1", "g2", "g3") for
+        (M, gamma), the angular momentum about the contact point and the unit normal in
+        body axes; ("M1", "M2", "M3", "r1", "r2") for the flat-base cases.
+    t : numpy.ndarray, shape (n,)
+        The sample times; fewer than asked when the run stopped early.
+    state : numpy.ndarray, shape (n, len(state_labels))
+        The state at the sample times.
+    invariants : dict of str to numpy.ndarray
+        Every first integral the case carries at the sample times, "energy" first
+        ("gamma2" is |gamma|^2 for (M, gamma)).
+    stats : dict
+        How the run went: steps, rejected steps, right-hand-side calls, the method, field
+        and kernel that ran, the tolerances, and "drift", the drift of every invariant.
+    status : {"ok", "singular", "budget"}
+        "singular": the run met a singularity and stopped there (see `message`);
+        "budget": it ran out of steps (max_steps).
+    message : str
+        Why the run stopped early; empty when status is "ok".
+    ok : bool
+        status == "ok".
+
+    Examples
+    --------
+    >>> import solvers
+    >>> spec = solvers.cases()["plane/chaplygin-ball"]
+    >>> res = solvers.simulate(spec.id, spec.example, spec.state, t_end=2.0, samples=5)
+    >>> res.ok, res.t.shape, res.state.shape, res.state_labels
+    (True, (5,), (5, 6), ('M1', 'M2', 'M3', 'g1', 'g2', 'g3'))
+    >>> list(res.invariants), res.drift("area") < 1e-10
+    (['energy', 'gamma2', 'area', 'M2'], True)
+    >>> sorted(res.to_json())[:4]
+    ['case', 'invariants', 'message', 'params']
+    """
+
     case: str
     params: dict[str, float]
     state_labels: tuple[str, ...]
@@ -74,16 +138,39 @@ class SimulationResult:
 
     @property
     def ok(self) -> bool:
+        """status == "ok"."""
         return self.status == "ok"
 
     def drift(self, name: str) -> float:
-        """max |F(t) - F(0)| / max(|F(0)|, 1) along the run."""
+        """The drift of invariant `name` along the run: max |F(t) - F(0)| / max(|F(0)|, 1).
+
+        Parameters
+        ----------
+        name : str
+            An invariant of the run (a key of `invariants`).
+
+        Returns
+        -------
+        float
+            0.0 for a run without samples.
+        """
         v = self.invariants[name]
         return float(np.max(np.abs(v - v[0])) / max(abs(v[0]), 1.0)) if len(v) else 0.0
 
     def to_json(self, arrays: bool = False) -> dict:
-        """Plain data for JSON; arrays=True leaves t, state and the invariants as numpy
-        arrays (for a serializer that writes them directly, such as orjson)."""
+        """The result as plain data for JSON (what `rolling simulate --json` prints).
+
+        Parameters
+        ----------
+        arrays : bool, default False
+            Leave t, state and the invariants as numpy arrays, for a serializer that
+            writes them directly (such as orjson); else nested lists.
+
+        Returns
+        -------
+        dict
+            case, params, status, message, state_labels, t, state, invariants, stats.
+        """
         conv = (lambda a: a) if arrays else (lambda a: a.tolist())
         return {
             "case": self.case,
@@ -255,13 +342,75 @@ def simulate(case: str, params: dict | None, state0, t_end: float, *,
              samples: int = 201, project: bool = False, max_steps: int = 50_000_000,
              allow_any_inertia: bool = False, step: float | None = None,
              field: str = "auto", precision: str | None = None) -> SimulationResult:
-    """Integrate `case` from `state0` over [0, t_end]; see the module docstring.
+    """Integrate a case from an initial state over [0, t_end] and check its invariants.
 
-    field: the vector field of the compiled Runge-Kutta methods (FIELDS): "auto" (the
-    generated field for a plain run, else the general one), "generated", or "general" (the
-    reference). stats["field"] and stats["kernel"] say which ran. precision (method
-    "taylor" only): "double", "long double" or "quad"; None chooses
-    (solvers/integrate/taylor_backend.py)."""
+    Every input is validated before anything runs (InputError). The equations of motion
+    are eq1.1 with eq1.2 on a plane, eq1.3 on a sphere. A run that meets a singularity
+    returns what it computed up to there with status "singular", never NaN.
+
+    Parameters
+    ----------
+    case : str
+        A case id, a key of `cases()`, e.g. "plane/chaplygin-ball".
+    params : dict of str to float, or None
+        The case's parameters by name (`CaseSpec.required`; the `CaseSpec.optional` ones
+        default). `CaseSpec.example` is a valid set.
+    state0 : sequence of float
+        The initial state, in the order of `SimulationResult.state_labels`: (M, gamma)
+        with |gamma| = 1, or (M, r1, r2) for the flat-base cases. `CaseSpec.state` is one.
+    t_end : float
+        The end time, positive.
+    method : str, default "dop853"
+        One of `methods()`.
+    rtol, atol : float, default 1e-10, 1e-12
+        Relative and absolute tolerances of the adaptive methods; rtol in [1e-16, 0.1],
+        atol in (0, 1].
+    samples : int, default 201
+        The number of equally spaced output times in [0, t_end], from 2 to 200 000.
+    project : bool, default False
+        Project the state back onto the level set of the invariants after every step
+        (compiled adaptive methods only).
+    max_steps : int, default 50 000 000
+        The step budget; a run that exhausts it returns with status "budget".
+    allow_any_inertia : bool, default False
+        Accept a tensor of inertia that no rigid body has (the triangle inequalities).
+    step : float or None, default None
+        The step of a symmetric fixed-step method (gauss4, gauss6, gauss8), required there
+        and refused elsewhere.
+    field : {"auto", "generated", "general"}, default "auto"
+        The vector field of the compiled Runge-Kutta methods: "auto" runs the case's
+        generated field for a plain run (dop853 or vern9, no projection) and the general
+        one otherwise; "general" is the reference. stats["field"] and stats["kernel"] say
+        which ran.
+    precision : {"double", "long double", "quad"} or None, default None
+        The floating-point precision of method "taylor"; None chooses
+        (solvers/integrate/taylor_backend.py).
+
+    Returns
+    -------
+    SimulationResult
+        The samples, the invariants along them, stats (with stats["drift"]) and status.
+
+    Raises
+    ------
+    InputError
+        Unknown case or parameter, a missing parameter, a non-finite number, a body that
+        cannot exist, a state off |gamma| = 1, or an option out of range.
+
+    Examples
+    --------
+    >>> import solvers
+    >>> spec = solvers.cases()["plane/chaplygin-ball"]
+    >>> res = solvers.simulate(spec.id, spec.example, spec.state, t_end=1.0, samples=3)
+    >>> res.status, res.state.shape
+    ('ok', (3, 6))
+    >>> res.drift("energy") < 1e-10 and res.stats["drift"]["M2"] < 1e-10
+    True
+    >>> solvers.simulate(spec.id, {"m": 1.0}, spec.state, t_end=1.0)
+    Traceback (most recent call last):
+    ...
+    solvers.errors.InputError: missing parameters I1, I2, I3, R for case plane/chaplygin-ball ...
+    """
     model, codes, key = _model(case, params, allow_any_inertia)
     y0 = _initial(model, key, state0)
     auto = None

@@ -42,8 +42,49 @@ PILOT_TAUS = 2000.0       # a trajectory that does not return within 2000 rotati
 
 @dataclass(frozen=True)
 class MapSpec:
-    """The map: energy level E0, section g = g0 crossed with g increasing (direction +1),
-    decreasing (-1) or both (0), and how many points per trajectory."""
+    """What map to draw: the energy level E0, the section g = g0 in Andoyer-Deprit
+    variables (eq an-dp), the direction of crossing, the points per trajectory, and the
+    integration options. Frozen: a field is changed by dataclasses.replace.
+
+    Attributes
+    ----------
+    energy : float
+        The energy level E0 of the map.
+    g0 : float, default 0.0
+        The section g = g0 (radians).
+    direction : {1, -1, 0}, default 1
+        Crossings with g increasing (+1), decreasing (-1), or both (0).
+    points : int, default 200
+        Crossings per trajectory, from 1 to 100 000.
+    method : str, default "dop853"
+        A compiled adaptive Runge-Kutta method of `methods()` ("dop853", "vern9",
+        "rk45").
+    rtol, atol : float, default 1e-10, 1e-12
+        Tolerances; rtol in [1e-14, 1e-3].
+    max_steps : int, default 20 000 000
+        The step budget of one trajectory.
+    samples_per_crossing : int, default 32
+        Dense samples per mean return time for the missed-crossing check, at least 8.
+    check : bool, default True
+        Check that no crossing was missed, and run a trajectory again with shorter steps
+        if one was (module docstring).
+    generated : bool or None, default None
+        Run the case's generated field (True) or the general one (False); None: the
+        integrator's default.
+    kernel : {"auto", "small", "general"}, default "auto"
+        The compiled kernel; "auto" chooses by the map's size (`map_kernel`).
+
+    Examples
+    --------
+    >>> import solvers
+    >>> spec = solvers.MapSpec(energy=1.0, points=50, direction=0)
+    >>> spec.g0, spec.rtol
+    (0.0, 1e-10)
+    >>> solvers.MapSpec(energy=1.0, direction=2).validate()
+    Traceback (most recent call last):
+    ...
+    solvers.errors.InputError: direction = 2: must be +1, -1 or 0
+    """
 
     energy: float
     g0: float = 0.0
@@ -59,6 +100,7 @@ class MapSpec:
     kernel: str = "auto"              # small | general | auto: by the map's size (map_kernel)
 
     def validate(self) -> None:
+        """Raise InputError for a value out of range (`poincare` calls it first)."""
         if not math.isfinite(self.energy):
             raise InputError(f"energy = {self.energy!r}: must be a finite number")
         if not math.isfinite(self.g0):
@@ -235,9 +277,9 @@ class _Tracer:
 # Which kernel runs a map's trajectories. The small kernel with sections (solvers/kernels/
 # small.py: the case's generated field in local variables; integrate(kernel="small")) runs
 # a map's trajectory in less time than the general kernel (bench/results/
-# map_kernel_gain.txt), but compiles once per case structure (~10-14 s of CPU on 2 cores,
-# then numba's disk cache), while the general kernel serves every case and is compiled by
-# the warm-up. "auto" takes the small kernel for a map of at least SMALL_MAP_CROSSINGS
+# map_kernel_gain.txt), but compiles once per case structure (then numba's disk cache),
+# while the general kernel serves every case and is compiled by the warm-up. "auto" takes
+# the small kernel for a map of at least SMALL_MAP_CROSSINGS
 # crossings in all (trajectories x points), where the time saved is of the order of that
 # compile; a smaller map runs the general kernel. The request alone decides (never what is
 # compiled), so the same request gives the same bits: "auto" is resolved once for the
@@ -420,6 +462,42 @@ def map_model(case: str, params: dict | None, *, allow_any_inertia=False) -> Mod
 
 @dataclass
 class PoincareResult:
+    """A map drawn by `poincare`.
+
+    Attributes
+    ----------
+    case : str
+        The case id.
+    params : dict of str to float
+        Every parameter of the case, the optional ones with their defaults.
+    spec : MapSpec
+        The map, with its kernel decided.
+    trajectories : list of MapTrajectory
+        One per start. Each has `initial` (the start's (L/G, H/G, l)), `state0`, `t` (the
+        crossing times), `states` (the states (M, gamma) there), `points` (the map points
+        (L/G, H/G, l), shape (k, 3)), `status` ("ok", "singular", "budget" or
+        "no-return"), `message`, and `check` (the missed-crossing check: "missed",
+        "extra", "unresolved_intervals", ...).
+    integral_names : tuple of str
+        The first integrals the case carries, "energy" first.
+
+    Examples
+    --------
+    >>> import solvers
+    >>> ball = {"I1": 1.0, "I2": 2.0, "I3": 3.0, "m": 1.0, "R": 1.0}
+    >>> res = solvers.poincare("plane/chaplygin-ball", ball, solvers.MapSpec(energy=1.0,
+    ...                        points=4), trajectories=1)
+    >>> res.integral_names
+    ('energy', 'gamma2', 'area', 'M2')
+    >>> (tr,) = res.trajectories
+    >>> tr.status, tr.points.shape, tr.check["missed"]
+    ('ok', (4, 3), 0)
+    >>> res.integral_spread()[0]["energy"] < 1e-8
+    True
+    >>> sorted(res.to_json())[:3]
+    ['atol', 'case', 'coordinates']
+    """
+
     case: str
     params: dict
     spec: MapSpec
@@ -427,6 +505,8 @@ class PoincareResult:
     integral_names: tuple[str, ...]
 
     def integral_spread(self) -> list[dict[str, float]]:
+        """Per trajectory: (max - min) / |mean| over its crossings of every integral the
+        case carries, and the absolute spread of H/G (`integral_spread` below)."""
         model = map_model(self.case, self.params, allow_any_inertia=True)
         return [integral_spread(model, tr) for tr in self.trajectories]
 
@@ -438,6 +518,9 @@ class PoincareResult:
                 "kernel": self.spec.kernel}
 
     def to_json(self) -> dict:
+        """The map as plain data for JSON: the header (case, params, energy, section,
+        coordinates, points, method, tolerances, kernel) and every trajectory with its
+        points, check and integral spread."""
         trs = []
         for tr, sp in zip(self.trajectories, self.integral_spread(), strict=True):
             trs.append({**tr.to_json(), "spread": sp})
@@ -476,11 +559,63 @@ def poincare(case: str, params: dict | None, spec: MapSpec, *, trajectories: int
              initial=None, states=None, seed: int = 0,
              progress: Callable[[int, int], None] | None = None,
              allow_any_inertia: bool = False, workers: int | None = None) -> PoincareResult:
-    """The map of `case` on the level spec.energy: `trajectories` sampled starts (seeded),
-    or the given `initial` map points (L/G, H/G, l), or full `states` (M, gamma) taken
-    as they are (their own energy is reported). All trajectories run together, one
-    compiled parallel call per round on `workers` threads (trace_checked_all; the kernel
-    by the map's size, map_kernel); progress(done, total) as they finish."""
+    """Draw the three-dimensional point map of a case on one energy level.
+
+    The successive crossings of trajectories on the level E0 = spec.energy with the
+    section g = spec.g0 in Andoyer-Deprit variables (eq an-dp), as points (L/G, H/G, l);
+    no crossing is missed (module docstring). All trajectories run together, one compiled
+    parallel call per round.
+
+    Parameters
+    ----------
+    case : str
+        A case with the state (M, gamma): a key of `cases()` other than the flat-base
+        cases.
+    params : dict of str to float, or None
+        The case's parameters by name, as for `simulate`.
+    spec : MapSpec
+        The map: energy level, section, points per trajectory, integration options.
+    trajectories : int, default 8
+        The number of starts sampled on the level and the section, (L/G, H/G) uniform in
+        [-0.95, 0.95]^2 and l uniform, from 1 to 1000; ignored with `initial` or `states`.
+    initial : sequence of (float, float, float), optional
+        Starts given as map points (L/G, H/G, l), with |L/G| < 1 and |H/G| < 1.
+    states : sequence of sequence of float, optional
+        Starts given as full states (M, gamma), taken as they are (their own energy).
+    seed : int, default 0
+        The seed of the sampled starts.
+    progress : callable (done, total), optional
+        Called as trajectories finish.
+    allow_any_inertia : bool, default False
+        As for `simulate`.
+    workers : int or None, default None
+        Threads of the compiled parallel call; None: numba's default.
+
+    Returns
+    -------
+    PoincareResult
+        One MapTrajectory per start, with its points, status and missed-crossing check.
+
+    Raises
+    ------
+    InputError
+        Bad parameters or map options, a flat-base case, or an energy level below the
+        potential energy on the section.
+
+    Examples
+    --------
+    The Chaplygin ball carries the area integral H = (M, gamma) and |M|^2 = G^2, so
+    along each trajectory of its map H/G stays constant:
+
+    >>> import solvers
+    >>> ball = {"I1": 1.0, "I2": 2.0, "I3": 3.0, "m": 1.0, "R": 1.0}
+    >>> res = solvers.poincare("plane/chaplygin-ball", ball,
+    ...                        solvers.MapSpec(energy=1.0, points=5), trajectories=2)
+    >>> [(tr.status, len(tr.points), tr.check["missed"]) for tr in res.trajectories]
+    [('ok', 5, 0), ('ok', 5, 0)]
+    >>> max(sp["H/G"] for sp in res.integral_spread()) < 1e-8
+    True
+    """
     spec.validate()
     model = map_model(case, params, allow_any_inertia=allow_any_inertia)
     starts = starts_for(model, spec, trajectories=trajectories, initial=initial,

@@ -34,6 +34,29 @@ from solvers.errors import InputError
 
 
 class DaskSettings(BaseSettings):
+    """Where a sweep runs; each field can be set by an environment variable
+    ROLLING_DASK_<FIELD> (e.g. ROLLING_DASK_SCHEDULER), read when the settings are made.
+
+    Attributes
+    ----------
+    scheduler : str or None, default None
+        The address of a running dask scheduler (e.g. "tcp://head:8786"); None: a
+        LocalCluster on this machine.
+    workers : int, default 2
+        The LocalCluster's workers.
+    threads_per_worker : int, default 1
+        Threads per LocalCluster worker.
+    processes : bool, default True
+        LocalCluster workers as processes; False: as threads of this process.
+
+    Examples
+    --------
+    >>> import solvers
+    >>> s = solvers.DaskSettings(workers=1, processes=False)
+    >>> s.scheduler is None, s.workers, s.threads_per_worker
+    (True, 1, 1)
+    """
+
     model_config = SettingsConfigDict(env_prefix="ROLLING_DASK_", extra="ignore")
 
     scheduler: str | None = None      # address of a running scheduler; None: LocalCluster
@@ -44,7 +67,43 @@ class DaskSettings(BaseSettings):
 
 @dataclass(frozen=True)
 class MapTask:
-    """One map of a sweep; `label` names the swept value (e.g. 'lambda=0.5')."""
+    """One map of a sweep, as `parameter_tasks` and `energy_tasks` make them.
+
+    Attributes
+    ----------
+    case : str
+        The case id (with the state (M, gamma), as for `poincare`).
+    params : dict of str to float
+        The case's parameters.
+    energy : float
+        The energy level E0.
+    label : str
+        Names the swept value, e.g. "lambda=0.5" or "E0=1".
+    g0 : float, default 0.0
+        The section g = g0.
+    direction : {1, -1, 0}, default 1
+        The direction of crossing (`MapSpec`).
+    trajectories : int, default 4
+        Starts sampled on the level and the section.
+    points : int, default 200
+        Crossings per trajectory.
+    rtol, atol : float, default 1e-10, 1e-12
+        Tolerances.
+    seed : int, default 0
+        The seed of the starts; `sweep` replaces it with one spawned from its own seed.
+    keep_points : bool, default False
+        Keep every trajectory's map points in the result (else only its summary).
+    threads : int, default 1
+        Threads of the task's compiled parallel call.
+
+    Examples
+    --------
+    >>> import solvers
+    >>> (task,) = solvers.energy_tasks("plane/chaplygin-ball", {"I1": 1, "I2": 2, "I3": 3,
+    ...                                "m": 1, "R": 1}, [2.0], points=10)
+    >>> task.label, task.energy, task.points, task.trajectories
+    ('E0=2', 2.0, 10, 4)
+    """
 
     case: str
     params: dict
@@ -63,6 +122,36 @@ class MapTask:
 
 @dataclass
 class SweepResult:
+    """The maps of a sweep, in task order.
+
+    Attributes
+    ----------
+    tasks : list of MapTask
+        The tasks as run (with their spawned seeds).
+    results : list of dict
+        Per task: "label", "wall_s" and "trajectories", one dict per trajectory with
+        "initial" (its start (L/G, H/G, l)), "n" (map points), "status", "missed" (the
+        missed-crossing check), "spread" (of every integral and of H/G, as
+        `PoincareResult.integral_spread`), "D2" (the correlation dimension of its points,
+        with at least 50 of them, else None) and, with keep_points, "points".
+    wall_s : float
+        Wall time of the tasks (after the workers loaded the kernels).
+    workers : int
+        The dask workers that ran them.
+    scheduler : str
+        The scheduler's address, or a description of the LocalCluster.
+    extra : dict
+        Other figures of the run ("warm_s": the workers' kernel loading).
+
+    Examples
+    --------
+    See `sweep`.
+
+    >>> import solvers
+    >>> solvers.SweepResult([], [], 0.0, 1, "none").to_json()["tasks"]
+    []
+    """
+
     tasks: list[MapTask]
     results: list[dict]
     wall_s: float
@@ -122,13 +211,70 @@ def seeded(tasks: Sequence[MapTask], seed: int) -> list[MapTask]:
 
 def parameter_tasks(case: str, params: dict, name: str, values: Sequence[float],
                     energy: float, **kw) -> list[MapTask]:
-    """One map per value of parameter `name` (the others from `params`)."""
+    """The tasks of a sweep over one parameter: one map per value.
+
+    Parameters
+    ----------
+    case : str
+        The case id (with the state (M, gamma)).
+    params : dict of str to float
+        The case's other parameters.
+    name : str
+        The swept parameter, e.g. "lambda" of the ellipsoid (eq2.29).
+    values : sequence of float
+        Its values, one map each.
+    energy : float
+        The energy level E0 of every map.
+    **kw
+        Further `MapTask` fields (trajectories, points, g0, direction, rtol, atol,
+        keep_points, threads).
+
+    Returns
+    -------
+    list of MapTask
+        Labelled "<name>=<value>".
+
+    Examples
+    --------
+    >>> import solvers
+    >>> ellipsoid = {"m": 1.0, "b1": 1.0, "b2": 2.0, "b3": 3.0, "mu": 1.0}
+    >>> tasks = solvers.parameter_tasks("plane/ellipsoid", ellipsoid, "lambda",
+    ...                                 [0.0, 0.5], energy=1.0, trajectories=2, points=30)
+    >>> [t.label for t in tasks], tasks[1].params["lambda"], tasks[1].points
+    (['lambda=0', 'lambda=0.5'], 0.5, 30)
+    """
     return [MapTask(case, {**params, name: float(v)}, float(energy), f"{name}={v:g}", **kw)
             for v in values]
 
 
 def energy_tasks(case: str, params: dict, energies: Sequence[float], **kw) -> list[MapTask]:
-    """A Poincare atlas: one map per energy level."""
+    """The tasks of a Poincare atlas: one map per energy level.
+
+    Parameters
+    ----------
+    case : str
+        The case id (with the state (M, gamma)).
+    params : dict of str to float
+        The case's parameters.
+    energies : sequence of float
+        The energy levels E0, one map each.
+    **kw
+        Further `MapTask` fields (trajectories, points, g0, direction, rtol, atol,
+        keep_points, threads).
+
+    Returns
+    -------
+    list of MapTask
+        Labelled "E0=<energy>".
+
+    Examples
+    --------
+    >>> import solvers
+    >>> routh = {"I1": 2, "I3": 3, "m": 1, "R": 1, "a": 0.3, "g": 1}
+    >>> tasks = solvers.energy_tasks("plane/routh-ball", routh, [1.0, 2.0])
+    >>> [t.label for t in tasks], tasks[1].energy
+    (['E0=1', 'E0=2'], 2.0)
+    """
     return [MapTask(case, dict(params), float(e), f"E0={e:g}", **kw) for e in energies]
 
 
@@ -168,7 +314,54 @@ def validate(tasks: Sequence[MapTask]) -> None:
 
 def sweep(tasks: Sequence[MapTask], *, seed: int = 0, settings: DaskSettings | None = None,
           client=None, progress: Callable[[int, int], None] | None = None) -> SweepResult:
-    """Run the tasks on dask.distributed (module docstring); results in task order."""
+    """Run the maps of a sweep on dask.distributed; the results in task order.
+
+    Every task gets its own seed, spawned from `seed` in task order, so a fixed seed
+    gives the same numbers on any number of workers (module docstring). All tasks are
+    validated here before any is shipped.
+
+    Parameters
+    ----------
+    tasks : sequence of MapTask
+        From `parameter_tasks` or `energy_tasks`, or made directly.
+    seed : int, default 0
+        The sweep's seed.
+    settings : DaskSettings or None, default None
+        Where to run; None: DaskSettings() (from the environment, else a LocalCluster of
+        two worker processes).
+    client : dask.distributed.Client or None, default None
+        A client to run on (the sweep then leaves it open); None: one made from
+        `settings` and closed at the end.
+    progress : callable (done, total), optional
+        Called with done = 0 once the cluster is up, then after every finished task.
+
+    Returns
+    -------
+    SweepResult
+        The summary of every task's map (and its points with keep_points).
+
+    Raises
+    ------
+    InputError
+        No task, or a task with bad input.
+
+    Examples
+    --------
+    Two energy levels of the Chaplygin ball, on one worker thread of this process:
+
+    >>> import solvers
+    >>> ball = {"I1": 1.0, "I2": 2.0, "I3": 3.0, "m": 1.0, "R": 1.0}
+    >>> tasks = solvers.energy_tasks("plane/chaplygin-ball", ball, [0.5, 1.0],
+    ...                              trajectories=1, points=5)
+    >>> out = solvers.sweep(tasks, seed=1,
+    ...                     settings=solvers.DaskSettings(workers=1, processes=False))
+    >>> [r["label"] for r in out.results], out.workers
+    (['E0=0.5', 'E0=1'], 1)
+    >>> [(t["status"], t["n"], t["missed"]) for r in out.results for t in r["trajectories"]]
+    [('ok', 5, 0), ('ok', 5, 0)]
+    >>> max(t["spread"]["energy"] for r in out.results for t in r["trajectories"]) < 1e-8
+    True
+    """
     from dask.distributed import as_completed
 
     settings = settings or DaskSettings()

@@ -28,6 +28,52 @@ class IntegralSpec(BaseModel):
 
 
 class CaseSpec(BaseModel):
+    """One case of the registry (solvers/models/cases.yaml): a body, the surface it rolls
+    on, its parameters with an example set, and the first integrals it carries.
+
+    Attributes
+    ----------
+    id : str
+        The case id, "<surface>/<body>", e.g. "plane/chaplygin-ball".
+    title : str
+        A one-line description.
+    surface : {"plane", "sphere"}
+        What the body rolls on.
+    body : str
+        How the parameters make the body's surface (solvers/models/bodies.py): "ball",
+        "routh", "disk", "ellipsoid", "revolution", "general", "flat" or "rattleback".
+    symmetry : {"none", "axial", "spherical"}
+        The dynamical symmetry of the tensor of inertia.
+    fixed_k : str or None
+        "2/R" for the cases whose curvature k is fixed by R (k is then not a parameter).
+    required : list of str
+        The parameters `simulate` needs.
+    optional : dict of str to float or None
+        The other parameters with their defaults (None: I2 equal to I1).
+    example : dict of str to float
+        A valid parameter set.
+    state : list of float
+        A valid initial state for `example`.
+    integrals : list
+        The first integrals the case carries beyond the energy and under which
+        parameters (each has a name, `when`: the parameters that must be zero, and
+        `any_nonzero`).
+    in_tables : bool
+        Whether the case is a column of the paper's Tables 1-2 (with claims in
+        catalogue/); False for a case the text only mentions, such as the rattleback.
+    param_names : list of str
+        required, then the optional ones.
+
+    Examples
+    --------
+    >>> import solvers
+    >>> ball = solvers.cases()["plane/chaplygin-ball"]
+    >>> ball.surface, ball.required
+    ('plane', ['I1', 'I2', 'I3', 'm', 'R'])
+    >>> ball.optional["g"], ball.example["I3"], len(ball.state)
+    (0.0, 3.0, 6)
+    """
+
     model_config = ConfigDict(extra="forbid")
     id: str
     title: str
@@ -58,6 +104,32 @@ def registry() -> dict[str, CaseSpec]:
 
 def case_ids() -> list[str]:
     return list(registry())
+
+
+def cases() -> dict[str, CaseSpec]:
+    """The cases `simulate` runs, by id, with their parameters and example values.
+
+    The sixteen columns of the paper's Tables 1 (rolling on a plane) and 2 (rolling on a
+    sphere), then the cases the text only mentions (`CaseSpec.in_tables` False).
+
+    Returns
+    -------
+    dict of str to CaseSpec
+        Case id -> its specification, in the registry's order: Table 1, then Table 2,
+        then the others. A fresh copy: changing it changes no run.
+
+    Examples
+    --------
+    >>> import solvers
+    >>> every = solvers.cases()
+    >>> list(every)[:3]
+    ['plane/chaplygin-ball', 'plane/unbalanced-ball', 'plane/ellipsoid']
+    >>> sum(c.in_tables for c in every.values()), every["plane/rattleback"].in_tables
+    (16, False)
+    >>> every["plane/round-disk"].required
+    ['I1', 'I3', 'm', 'R']
+    """
+    return {cid: spec.model_copy(deep=True) for cid, spec in registry().items()}
 
 
 def table_case_ids() -> list[str]:

@@ -72,10 +72,51 @@ def _run_claim(catalogue, case, claim) -> list[Record]:
 
 
 def verify(case: str | None = None, claim: str | None = None) -> list[dict]:
-    """Records for every claim (of one case, or one record id: a claim, its correction
-    `<claim>/corrected` or a table cell `<case>/cell/<row>`), as JSON-ready dicts with at
-    least case, claim, kind, verdict, residual, printed, level ("formula" or "cell") and
-    qualifier (solvers.verify.levels)."""
+    """Check the paper's claims (the catalogue) and return one record per verdict.
+
+    Each claim of the catalogue (a printed formula, integral, invariant measure,
+    Hamiltonian form, reduction or statement of nonexistence of Tables 1-2 and their
+    sections) is checked by computation; the table cells get records of their own, judged
+    on the best evidence (solvers/verify/levels.py).
+
+    Parameters
+    ----------
+    case : str or None, default None
+        Only the claims and cells of this case (a key of `cases()` with
+        `CaseSpec.in_tables`); None: every case.
+    claim : str or None, default None
+        Only this record id: a claim id such as "plane/chaplygin-ball/measure", the
+        project's correction of one, "<claim>/corrected", or a table cell,
+        "<case>/cell/<row>" (a cell record comes with the formula records it rests on).
+
+    Returns
+    -------
+    list of dict
+        JSON-ready records with at least "case", "claim" (the record id), "kind",
+        "verdict" ("verified", "fails", "evidence" or "unchecked"), "residual" (the
+        largest normalised residual, or None), "printed" (the LaTeX as printed), "label"
+        (the paper's equation number), "level" ("formula" or "cell"), "qualifier" and
+        "mark" (what kind of verdict it is, e.g. "as-printed", "after-correction",
+        "fails"), "mark_note" and "message".
+
+    Raises
+    ------
+    InputError
+        An unknown case or record id.
+
+    Examples
+    --------
+    The invariant measure of the Chaplygin ball, eq2.17, holds as printed; the reduction
+    of the Borisov-Fedorov case to the Chaplygin sphere as printed, eq3.13, does not:
+
+    >>> import solvers
+    >>> (measure,) = solvers.verify(claim="plane/chaplygin-ball/measure")
+    >>> measure["label"], measure["verdict"], measure["mark"], float(measure["residual"]) < 1e-10
+    ('eq2.17', 'verified', 'as-printed', True)
+    >>> (reduction,) = solvers.verify(claim="sphere/borisov-fedorov/reduction/to-chaplygin")
+    >>> reduction["label"], reduction["verdict"], reduction["qualifier"]
+    ('eq3.13', 'fails', 'refuted')
+    """
     from solvers.verify import levels
 
     cat = load_catalogue()
