@@ -32,7 +32,7 @@ from starlette.middleware.trustedhost import TrustedHostMiddleware
 
 from app import __version__
 from app.api.main import api_router
-from app.api.routes import pages, poincare, reader, scenes, work_precision
+from app.api.routes import guide, pages, poincare, reader, scenes, work_precision
 from app.core import compress, errors
 from app.core.config import Settings, get_settings
 from app.core.guards import CSP, HeadAsGet, HeaderLimit, RequestGuard, SecurityHeaders
@@ -230,6 +230,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     app.include_router(poincare.pages)
     app.include_router(scenes.pages)
     app.include_router(work_precision.pages)
+    app.include_router(guide.router)
     # static files compressed once (Brotli or gzip), the routes' answers by GZipMiddleware
     app.state.assets = compress.AssetCache(settings.cache_dir)
     app.mount("/static", compress.CompressedStaticFiles(

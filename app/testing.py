@@ -26,7 +26,10 @@ from app.core.config import Settings
 TEST_SETTINGS = {"verify_on_start": False, "use_verdict_cache": False, "workers": 2,
                  "precompress": False, "warm_kernels": False, "kernels_warm": True,
                  "deadline_s": 20.0, "log_level": "warning",
-                 "allowed_hosts": ["127.0.0.1", "localhost", "::1", "testserver"]}
+                 "allowed_hosts": ["127.0.0.1", "localhost", "::1", "testserver"],
+                 # /guide/ as on a machine without the built guide, whatever site/ holds
+                 # (a test that wants the built guide names its directory)
+                 "guide_dir": str(Path(tempfile.gettempdir()) / "rolling-hierarchy-no-guide")}
 
 
 def settings_for_tests(**overrides) -> Settings:

@@ -78,6 +78,9 @@ class Settings(BaseSettings):
     # origins besides the server's own whose pages may POST (JSON in ROLLING_ALLOWED_ORIGINS)
     allowed_origins: list[str] = Field(default_factory=list)
     static_dir: Path = Path(__file__).resolve().parents[1] / "static"   # inside the package
+    # the built user guide served at /guide/ (`mkdocs build` from docs/); None: site/ at the
+    # repository root. Not built: /guide/ says how to build it (app/api/routes/guide.py)
+    guide_dir: Path | None = None
     log_level: str = "info"
 
     def trusted_hosts(self) -> list[str]:

@@ -1,6 +1,8 @@
-"""Write the tables of docs/verdict-changes.md from two `rolling verify --json` outputs.
+"""Compare two `rolling verify --json` outputs: the records whose verdict changed, the failing
+formula records with their kind, the table cells whose verdict differs from the mark their
+claims gave, and the new record ids (docs/verdict-levels.md).
 
-    python docs/verdict_changes.py BEFORE.json AFTER.json > docs/verdict-changes-tables.md
+    PYTHONPATH=$PWD python scripts/verdict_changes.py BEFORE.json AFTER.json > changes.md
 """
 
 import json
