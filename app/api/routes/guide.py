@@ -42,7 +42,7 @@ pages in <code>docs/</code> of the repository, with <code>mkdocs.yml</code> at i
 Build it there with</p>
 <pre><code>mkdocs build</code></pre>
 <p>(<code>pip install -e ".[docs]"</code> installs mkdocs; <code>./dev serve</code> builds
-the guide before it starts the explorer). The explorer serves the built guide from
+the guide while the explorer starts). The explorer serves the built guide from
 <code>site/</code> at the repository root, or from the directory the setting
 <code>ROLLING_GUIDE_DIR</code> names; reload this page once it is built.</p>
 <p>Meanwhile, <a href="/how-we-check">How we check</a> says what each check computes,
