@@ -142,9 +142,11 @@ def _claim_docs() -> list[dict]:
             public = {"id": c.id, "case": case.id, "case_title": case.title,
                       "kind": c.kind.value, "plain": cite(c.plain), "number": number,
                       "href": href, "body": spec.body, "surface": spec.surface}
-            text = " ".join(x for x in (cite(c.plain), cite(c.where), cite(c.remarks),
-                                        cite(c.convention_note)) if x)
-            names = " ".join([c.id, _words(c.id), _authors(c.attribution), number or ""])
+            # the snippet comes from the text: what the claim's header shows; the notes
+            # (which may name records) are searched with the names
+            text = " ".join(x for x in (cite(c.plain), cite(c.where)) if x)
+            names = " ".join([c.id, _words(c.id), _authors(c.attribution), number or "",
+                              cite(c.remarks) or "", cite(c.convention_note) or ""])
             docs.append({"type": "claim", "id": c.id, "title": f"{case.title}: {name}",
                          "url": href, "case": case.id, "kind": c.kind.value,
                          **_spec_facets(case.id), "_public": public,

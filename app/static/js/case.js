@@ -259,7 +259,8 @@ async function showCite() {
   }
   decorateClaims(CITE, C, anchor);
   $("citebox").innerHTML = caseCiteHtml(CITE, C);
-  $("checkedbox").innerHTML = checkedHtml(C, HOW, anchor);
+  $("checkedbox").innerHTML = C.claims.length ? checkedHtml(C, HOW, anchor)
+    : "<p>No claims on this page: nothing is checked.</p>";
   document.body.dataset.cite = "1";
 }
 
