@@ -112,14 +112,15 @@ def _case_docs() -> list[dict]:
     for case in load_catalogue().cases():
         spec = registry()[case.id]
         head = views.case_summary(case)
+        # the remarks (which cite by keys) are searched with the names, not shown
         names = [case.id, _words(case.id), *(_authors(c.attribution) for c in case.claims),
-                 *(_authors(c.attribution) for c in case.cells.values())]
+                 *(_authors(c.attribution) for c in case.cells.values()),
+                 *(cite(r) or "" for r in case.remarks)]
         docs.append({"type": "case", "id": case.id, "title": case.title,
                      "url": head["href"], "case": case.id, "kind": None,
                      **_spec_facets(case.id), "_public": head,
                      # the cells' words are its claims' (a long row ranks low in bm25)
-                     "_cols": (case.title, " ".join(cite(r) or "" for r in case.remarks),
-                               f"{cite(spec.title)} {_SURFACE_WORDS[spec.surface]}",
+                     "_cols": (case.title, cite(spec.title), _SURFACE_WORDS[spec.surface],
                                " ".join(names), f"case {spec.body} {_words(spec.body)}")})
     for cid in beyond_table_ids():
         spec = registry()[cid]
