@@ -71,7 +71,8 @@ ALIASES = {"chaplygin sphere": ("chaplygin sphere", "chaplygin ball"),
 STOPWORDS = frozenset("a an and are as at be by for from has have in into is it its of on "
                       "or that the their this to what when which with".split())
 MAX_TERMS = 24        # a query's words beyond these are ignored (q is at most 200 chars)
-_WORD = re.compile(r"\w+(?:[-'’]\w+)*")
+# a word: letters and digits, joined by hyphens or apostrophes, or a printed number (2.24)
+_WORD = re.compile(r"\w+(?:(?:[-'’]|(?<=\d)\.(?=\d))\w+)*")
 _DYNAMIC = 1_000_000  # rowids of the rows from verdicts start here
 
 
@@ -346,8 +347,8 @@ def terms(q: str) -> list[tuple[str, ...]]:
                 i += n
                 break
         else:
-            # a hyphenated word is a phrase of its parts ("no-such-word" stays together)
-            out.append((_phrase(re.split(r"[-']", tokens[i])),))
+            # a hyphenated word or a number is a phrase of its parts ("no-such-word", 2.24)
+            out.append((_phrase(re.split(r"[-'.]", tokens[i])),))
             i += 1
     return list(dict.fromkeys(out))
 
