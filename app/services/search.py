@@ -12,11 +12,13 @@ verdicts (errata, conventions, findings) are replaced when the verdicts change.
 A query is words, never FTS5 syntax: quotes, operators, `*`, `:` and brackets are only
 separators. Words are matched by their stems, and a few words by what a researcher means by
 them (SYNONYMS: "density" finds a measure, "disc" a disk, "Celtic stone" the rattleback).
-Every word must match (AND); when no result has them all, results with any of them are
-ranked instead (OR), and the answer says so (`match`)."""
+Every word must match (AND); when fewer than TOO_FEW results have them all, the best
+results with some of them follow (OR), and the answer says which (`match`: all, or any when
+none has every word); a word nothing in the index has is left out and named (`ignored`)."""
 
 from __future__ import annotations
 
+import logging
 import math
 import re
 import sqlite3
@@ -34,6 +36,7 @@ from catalogue.schema import ClaimKind
 from solvers.models.cases import CaseSpec, beyond_table_ids, registry
 from solvers.verify import marks as vocab
 
+log = logging.getLogger(__name__)
 SURFACES = ("plane", "sphere")
 BODIES = tuple(get_args(CaseSpec.model_fields["body"].annotation))
 KINDS = tuple(k.value for k in ClaimKind)
@@ -50,9 +53,10 @@ TOO_FEW = 5           # fewer results with every word: those with some words fol
 MAX_SOME = 20         # ... at most these many
 
 # What a researcher means by a word: each group's members find each other. A member is one
-# word or a phrase (matched as consecutive words); stems, not forms ("integrals" is
-# "integral"). "sphere" is no synonym of "ball": it is the surface a body rolls on (a
-# facet), except in "Chaplygin sphere", the literature's name of the Chaplygin ball.
+# word or a phrase (matched as consecutive words of the query, a plural as its singular);
+# the index then matches each member by its stem. "sphere" is no synonym of "ball": it is
+# the surface a body rolls on (a facet; "disc on a sphere" puts the sphere's results
+# first), except in "Chaplygin sphere", the literature's name of the Chaplygin ball.
 SYNONYMS: tuple[tuple[str, ...], ...] = (
     ("measure", "density", "invariant measure"),
     ("integral", "first integral", "conserved", "conservation law", "constant of motion"),
@@ -232,26 +236,27 @@ class _Index:
         self.lock = threading.Lock()
         self.db = sqlite3.connect(":memory:", check_same_thread=False)
         self.db.execute(
-            "CREATE VIRTUAL TABLE docs USING fts5(title, text, context, names, tags, "
+            f"CREATE VIRTUAL TABLE docs USING fts5({', '.join(COLUMNS)}, "
             "tokenize = 'porter unicode61 remove_diacritics 2')")
         self.docs: dict[int, dict] = {}
-        self.static = self._insert(docs, 1)
+        self._insert(docs, 1)
         self.dynamic_key: tuple = ()
 
-    def _insert(self, docs: list[dict], start: int) -> list[int]:
-        ids = []
+    def _insert(self, docs: list[dict], start: int) -> None:
         for i, d in enumerate(docs, start):
-            self.db.execute("INSERT INTO docs(rowid, title, text, context, names, tags) "
-                            "VALUES (?, ?, ?, ?, ?, ?)", (i, *d["_cols"]))
+            self.db.execute(f"INSERT INTO docs(rowid, {', '.join(COLUMNS)}) "
+                            f"VALUES (?, {', '.join('?' * len(COLUMNS))})", (i, *d["_cols"]))
             self.docs[i] = d
-            ids.append(i)
-        return ids
 
     def set_dynamic(self, key: tuple, make) -> None:
         """Replace the rows from verdicts when `key` (what they are made of) changed."""
         if key == self.dynamic_key:
             return
-        docs = make()
+        try:
+            docs = make()
+        except Exception:          # the rest of the index still answers
+            log.exception("search: the errata, conventions and findings are not indexed")
+            docs = []
         self.db.execute("DELETE FROM docs WHERE rowid >= ?", (_DYNAMIC,))
         for i in [i for i in self.docs if i >= _DYNAMIC]:
             del self.docs[i]
@@ -333,7 +338,7 @@ def _singular(word: str) -> str:
 def terms(q: str) -> list[tuple[str, ...]]:
     """The query as terms, one per word or synonym group: each the quoted FTS5 phrases
     that stand for it (any one of them matches it). Never FTS5 syntax from q: the words
-    are runs of letters and digits, joined by hyphens or apostrophes."""
+    are runs of letters and digits, joined by hyphens or apostrophes, and numbers."""
     units = [u.replace("’", "'") for u in _WORD.findall(_fold(q))[:MAX_TERMS * 2]]
     units = [u for u in units if u not in STOPWORDS] or units
     # a plural finds a synonym group as its singular does ("integrals", "Celtic stones")
@@ -360,9 +365,9 @@ def _surface_said(q: str) -> str | None:
     return said[0] if len(said) == 1 else None
 
 
-def _ranked(q: str, idx: _Index) -> tuple[list[tuple[int, float, str]], str, list]:
-    """(rowid, score, snippet) of the rows matching q, best first; how they match (all
-    | any | none) and the terms nothing in the index has (left out).
+def _ranked(q: str, idx: _Index) -> tuple[list[tuple[int, float, str, bool]], list]:
+    """(rowid, score, snippet, has every term) of the rows matching q, best first, and
+    the terms nothing in the index has (left out).
 
     A row's score is bm25's sum over the terms, and a term scores by its best synonym
     (a row that says both "measure" and "density" is not counted twice). The rows with
@@ -389,20 +394,19 @@ def _ranked(q: str, idx: _Index) -> tuple[list[tuple[int, float, str]], str, lis
     known = [(t, b) for t, b in zip(ts, per_term, strict=True) if b]
     ignored = [t for t, b in zip(ts, per_term, strict=True) if not b]
     if not known:
-        return [], "none", ignored
+        return [], ignored
 
     def total(i: int) -> float:
         return sum(b.get(i, 0.0) for _, b in known)
 
     every = set.intersection(*(set(b) for _, b in known))
     rows = sorted(every, key=lambda i: (-total(i), i))
-    how = "all" if rows else "any"
     if len(rows) < TOO_FEW and len(known) > 1:
         some = set.union(*(set(b) for _, b in known)) - every
         rows += sorted(some, key=lambda i: (-sum(i in b for _, b in known), -total(i), i)
                        )[:MAX_SOME]
     snips = idx.snippets(" OR ".join(a for t, _ in known for a in t), set(rows))
-    return [(i, total(i), snips.get(i, "")) for i in rows], how, ignored
+    return [(i, total(i), snips.get(i, ""), i in every) for i in rows], ignored
 
 
 def _idf(n_rows: int, n_having: int) -> float:
@@ -446,11 +450,12 @@ def search(q: str = "", body: str = "", surface: str = "", kind: str = "", verdi
     with idx.lock:
         idx.set_dynamic(_records_key(by_claim),
                         lambda: _verdict_docs(list(by_claim.values())))
-        if _WORD.search(q or ""):
-            rows, how, ignored = _ranked(q, idx)
+        words = bool(_WORD.search(q or ""))
+        if words:
+            rows, ignored = _ranked(q, idx)
         else:
-            rows, how, ignored = [(i, 0.0, "") for i in idx.order()], "none", []
-        docs = [(idx.docs[i], score, snip) for i, score, snip in rows]
+            rows, ignored = [(i, 0.0, "", True) for i in idx.order()], []
+        docs = [(idx.docs[i], score, snip, full) for i, score, snip, full in rows]
 
     def verdict_of(cid: str) -> tuple[str, str]:
         if cid in by_claim:
@@ -463,7 +468,7 @@ def search(q: str = "", body: str = "", surface: str = "", kind: str = "", verdi
     claim_filter = bool(kind or verdict or mark)
     said = None if surface else _surface_said(q)
     kept = []
-    for d, score, snip in docs:
+    for d, score, snip, full in docs:
         if (body and d["body"] != body) or (surface and d["surface"] != surface):
             continue
         if type and d["type"] != type:
@@ -475,17 +480,21 @@ def search(q: str = "", body: str = "", surface: str = "", kind: str = "", verdi
                 continue
         elif d["type"] != "case" and claim_filter:
             continue
-        kept.append((d, score, snip, v, m))
+        kept.append((d, score, snip, v, m, full))
 
     # a case stays under a claim filter when it has a claim that passes it
     if claim_filter:
         with_claims = _cases_with_claims(kind, verdict, mark, verdict_of)
         kept = [k for k in kept if k[0]["type"] != "case" or k[0]["id"] in with_claims]
-    if said and how != "none":                  # "disc on a sphere": that surface first
+    if said and words:                          # "disc on a sphere": that surface first
         kept.sort(key=lambda k: k[0]["surface"] not in (said, None))
+    # every word matched by some result (all), only some words by each (any), no word to
+    # match (none: the filters alone)
+    how = "none" if not words or not (kept or rows) else (
+        "all" if any(k[5] for k in kept) or (not kept and any(r[3] for r in rows)) else "any")
 
     results, cases, claims = [], [], []
-    for d, score, snip, v, m in kept:
+    for d, score, snip, v, m, _ in kept:
         snippet = snip or _first_words(d["_cols"][1]) or _first_words(d["_cols"][2])
         results.append({"type": d["type"], "id": d["id"], "title": d["title"],
                         "snippet": snippet, "url": d["url"], "case": d["case"],
