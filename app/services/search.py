@@ -51,6 +51,7 @@ COLUMNS = ("title", "text", "context", "names", "tags")
 WEIGHTS = (8.0, 3.0, 1.5, 2.0, 1.5)
 TOO_FEW = 5           # fewer results with every word: those with some words follow
 MAX_SOME = 20         # ... at most these many
+CASE_OF_CLAIM = 0.8   # a case whose claim matches scores this fraction of the claim's score
 
 # What a researcher means by a word: each group's members find each other. A member is one
 # word or a phrase (matched as consecutive words of the query, a plural as its singular);
@@ -240,6 +241,7 @@ class _Index:
             "tokenize = 'porter unicode61 remove_diacritics 2')")
         self.docs: dict[int, dict] = {}
         self._insert(docs, 1)
+        self.cases = {d["id"]: i for i, d in self.docs.items() if d["type"] == "case"}
         self.dynamic_key: tuple = ()
 
     def _insert(self, docs: list[dict], start: int) -> None:
@@ -400,13 +402,21 @@ def _ranked(q: str, idx: _Index) -> tuple[list[tuple[int, float, str, bool]], li
         return sum(b.get(i, 0.0) for _, b in known)
 
     every = set.intersection(*(set(b) for _, b in known))
-    rows = sorted(every, key=lambda i: (-total(i), i))
+    score = {i: total(i) for i in every}
+    # a case holds its claims: it matches with its best claim, a little below it
+    for i in list(every):
+        d = idx.docs[i]
+        if d["type"] == "claim" and d["case"] in idx.cases:
+            c = idx.cases[d["case"]]
+            score[c] = max(score.get(c, 0.0), CASE_OF_CLAIM * score[i])
+    every = set(score)
+    rows = sorted(every, key=lambda i: (-score[i], i))
     if len(rows) < TOO_FEW and len(known) > 1:
         some = set.union(*(set(b) for _, b in known)) - every
         rows += sorted(some, key=lambda i: (-sum(i in b for _, b in known), -total(i), i)
                        )[:MAX_SOME]
     snips = idx.snippets(" OR ".join(a for t, _ in known for a in t), set(rows))
-    return [(i, total(i), snips.get(i, ""), i in every) for i in rows], ignored
+    return [(i, score.get(i) or total(i), snips.get(i, ""), i in every) for i in rows], ignored
 
 
 def _idf(n_rows: int, n_having: int) -> float:

@@ -11,7 +11,7 @@ from app.services.verdicts import VERDICTS, summary
 from catalogue.load import load_catalogue
 from catalogue.numbering import cite, cite_latex, printed
 from catalogue.plain_words import cite_names, phrases
-from catalogue.schema import Attribution, Case, Cell, Claim, Table
+from catalogue.schema import Attribution, Case, Cell, Claim, StateVariables, Table
 from solvers.models.bodies import STATE_LABELS
 from solvers.models.cases import CaseSpec, beyond_table_ids, registry
 from solvers.verify import marks as vocab
@@ -242,7 +242,8 @@ def beyond_detail(spec: CaseSpec) -> dict:
     note = spec.note or "Not a case of the paper's Tables 1 and 2."
     return {**beyond_summary(spec),
             "model": {"support": spec.surface, "body": spec.body,
-                      "state": ", ".join(run["state_labels"]), "equations": [],
+                      "state": (StateVariables.M_GAMMA.value if len(run["state_labels"]) == 6
+                                else ", ".join(run["state_labels"])), "equations": [],
                       "equation_numbers": [], "conditions": {}, "conditions_text": []},
             "remarks": [note], "cells": [], "claims": [], "runnable": run,
             "verdicts": {v: 0 for v in SHOWN}, "marks": {}, "cell_marks": {},

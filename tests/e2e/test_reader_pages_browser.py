@@ -143,8 +143,10 @@ def test_the_rattleback_has_a_case_page_beyond_the_tables(page, server):
     expect(page.locator("#case-title")).to_contain_text("Rattleback (Celtic stone)")
     expect(page.locator("#crumb-table")).to_have_text("beyond the tables")
     expect(page.locator("#facts")).to_contain_text("beyond Tables 1 and 2")
-    expect(page.get_by_test_id("beyond-tables")).to_contain_text(
+    expect(page.locator("#mark-summary")).to_contain_text(
         "Not a case of the paper's Tables 1 and 2")
+    expect(page.get_by_test_id("beyond-tables")).to_contain_text("No column of Tables 1 and 2")
+    expect(page.locator("#facts")).to_contain_text("state (M, γ)")
     expect(page.locator("#reverify")).to_be_hidden()
     expect(page.locator("#checkedbox")).to_contain_text("nothing is checked")
     expect(page.locator("#cite")).to_contain_text("a case beyond the tables")

@@ -63,7 +63,10 @@ function showHead() {
   $("crumb-table").innerHTML = C.in_tables === false ? "beyond the tables"
     : `<a href="/#table-${C.surface}">Table ${C.table}</a>`;
   $("crumb-case").textContent = C.in_tables === false ? C.id : `column ${C.column}`;
-  if (C.in_tables === false) $("reverify").hidden = true;   // no claims to check
+  if (C.in_tables === false) {                     // no cells, no claims to check
+    $("reverify").hidden = true;
+    $("h-in-table").textContent = "Not in the paper's tables";
+  }
   const m = C.model;
   // the conditions in words (conditions_text), not the data's key: value pairs
   const cond = (m.conditions_text || []).map(escapeHtml).join("; ");
@@ -83,8 +86,8 @@ function showTally() {
   const state = C.verification === "running"
     ? " · being checked now on this server; the page updates when the check finishes" : "";
   $("tally").innerHTML = `<p class="mark-summary" id="mark-summary">${escapeHtml(C.summary || "")}</p>` +
-    `<span>cells: ${tallyHtml(C.cell_marks || {})}</span> <span>claims: ${tallyHtml(C.marks || {})}</span>` +
-    `<span class="hint">${state}</span>`;
+    (C.in_tables === false ? "" : `<span>cells: ${tallyHtml(C.cell_marks || {})}</span> <span>claims: ${tallyHtml(C.marks || {})}</span>` +
+    `<span class="hint">${state}</span>`);
   $("nclaims").textContent = `(${C.claims.length})`;
 }
 
@@ -148,7 +151,7 @@ function showCells() {
       `<td class="shade-${c.shade}">${textHtml(c.printed)}${sub}${att}${refs}${merged}${why}${prop}${mark}</td></tr>`;
   });
   $("cells").innerHTML = rows.length ? `<table class="cells"><tbody>${rows.join("")}</tbody></table>`
-    : `<p class="status" data-testid="beyond-tables">${escapeHtml(C.note || "No cell of the paper's tables.")}</p>`;
+    : `<p class="status" data-testid="beyond-tables">No column of Tables 1 and 2 holds this body: it has no cells to show.</p>`;
 }
 
 function stamp(v) {
