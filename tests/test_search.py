@@ -14,7 +14,7 @@ from solvers.models.cases import case_ids, registry
 
 pytestmark = pytest.mark.filterwarnings("ignore::DeprecationWarning")
 
-# real verdicts of a few claims (one claim checks in seconds): two misprints, a printed
+# real verdicts of a few claims (each checked on its own): two misprints, a printed
 # form that holds under another convention, a refuted conjecture
 CHECKED = ("plane/spherical-inertia/measure/omega", "plane/routh-ball/integral/routh_K1",
            "plane/chaplygin-ball/hamiltonian-after-time-change",
