@@ -6,7 +6,7 @@ from fastapi.testclient import TestClient
 from app.main import create_app
 from app.testing import settings_for_tests
 from catalogue.load import load_catalogue
-from solvers.models.cases import table_case_ids
+from solvers.models.cases import beyond_table_ids, case_ids, table_case_ids
 
 pytestmark = pytest.mark.filterwarnings("ignore::DeprecationWarning")
 
@@ -21,8 +21,10 @@ def test_list_has_every_case_in_the_papers_order(client):
     r = client.get("/api/cases")
     assert r.status_code == 200
     ids = [c["id"] for c in r.json()]
-    assert ids == [c.id for c in load_catalogue().cases()]
-    assert sorted(ids) == sorted(table_case_ids())
+    # the columns of Tables 1 and 2, then the runnable cases beyond them (the rattleback)
+    assert ids == [c.id for c in load_catalogue().cases()] + beyond_table_ids()
+    assert sorted(ids) == sorted(case_ids())
+    assert [c["in_tables"] for c in r.json()] == [cid in table_case_ids() for cid in ids]
     first = r.json()[0]
     assert first["href"] == "/case/plane/chaplygin-ball" and first["table"] == 1
 

@@ -93,6 +93,10 @@ def _sentence(err: dict) -> str:
     reason = _REASONS.get(kind) or err.get("msg", "is invalid").replace(
         "Input should be", "must be").replace("Value error, ", "")
     field = _field(err.get("loc", ()))
+    if kind == "literal_error" and "''" in str(err.get("ctx", {}).get("expected", "")):
+        # a filter that may be empty (any): the values it accepts, without the empty one
+        allowed = str(err["ctx"]["expected"]).replace("'', ", "", 1)
+        reason = f"must be one of {allowed} (or empty: any)"
     if kind == "missing" or "input" not in err or isinstance(err["input"], dict):
         return f"{field} {reason}" if kind in _REASONS else f"{field}: {reason}"
     return f"{field} = {_short(err['input'])}: {reason}"

@@ -38,12 +38,15 @@ class CaseHead(BaseModel):
 
     id: str
     title: str
-    table: int
-    column: int
+    table: int | None = Field(description="1 or 2; null for a case beyond the tables")
+    column: int | None = Field(description="the column in its table; null beyond the tables")
     surface: str
     body: str
     model_title: str
     href: str
+    in_tables: bool = Field(True, description="a column of the paper's Tables 1 and 2; false "
+                            "for a runnable case the paper only mentions (the rattleback)")
+    note: str | None = Field(None, description="for a case beyond the tables: what it is")
 
 
 class CaseSummary(CaseHead):

@@ -11,9 +11,9 @@ from app.services.verdicts import VERDICTS, summary
 from catalogue.load import load_catalogue
 from catalogue.numbering import cite, cite_latex, printed
 from catalogue.plain_words import cite_names, phrases
-from catalogue.schema import Attribution, Case, Cell, Claim, Table
+from catalogue.schema import Attribution, Case, Cell, Claim, StateVariables, Table
 from solvers.models.bodies import STATE_LABELS
-from solvers.models.cases import CaseSpec, registry
+from solvers.models.cases import CaseSpec, beyond_table_ids, registry
 from solvers.verify import marks as vocab
 
 UNCHECKED_MSG = "no verdict: the check has not run on this server (see /api/health, verification)"
@@ -195,7 +195,36 @@ def case_summary(case: Case) -> dict:
     return {"id": case.id, "title": case.title, "table": table_of(case.id).number,
             "column": case.column, "surface": spec.surface, "body": spec.body,
             "model_title": cite(spec.title), "href": case_href(case.id),
-            "claims": len(case.claims)}
+            "claims": len(case.claims), "in_tables": True, "note": None}
+
+
+def beyond_summary(spec: CaseSpec) -> dict:
+    """A runnable case that is no column of Tables 1-2 (the rattleback): no table, no
+    column, no claims; its note says what it is instead."""
+    return {"id": spec.id, "title": spec.title, "table": None, "column": None,
+            "surface": spec.surface, "body": spec.body, "model_title": cite(spec.title),
+            "href": case_href(spec.id), "claims": 0, "in_tables": False, "note": spec.note}
+
+
+def case_summaries() -> list[dict]:
+    """Every case: the columns of Tables 1 and 2 in the paper's order, then the runnable
+    cases beyond the tables."""
+    return ([case_summary(c) for c in load_catalogue().cases()]
+            + [beyond_summary(registry()[cid]) for cid in beyond_table_ids()])
+
+
+def is_case(case_id: str) -> bool:
+    """A column of the tables or a runnable case beyond them."""
+    return case_id in registry() and (not registry()[case_id].in_tables
+                                      or _in_catalogue(case_id))
+
+
+def _in_catalogue(case_id: str) -> bool:
+    try:
+        load_catalogue().case(case_id)
+    except KeyError:
+        return False
+    return True
 
 
 def _cited_model(case: Case) -> dict:
@@ -206,8 +235,26 @@ def _cited_model(case: Case) -> dict:
             "conditions_text": phrases(conds)}
 
 
+def beyond_detail(spec: CaseSpec) -> dict:
+    """A case beyond the tables as its page and GET /api/cases/{id} show it: what runs,
+    and the note in place of cells and claims (nothing to check: verification done)."""
+    run = runnable(spec)
+    note = spec.note or "Not a case of the paper's Tables 1 and 2."
+    return {**beyond_summary(spec),
+            "model": {"support": spec.surface, "body": spec.body,
+                      "state": (StateVariables.M_GAMMA.value if len(run["state_labels"]) == 6
+                                else ", ".join(run["state_labels"])), "equations": [],
+                      "equation_numbers": [], "conditions": {}, "conditions_text": []},
+            "remarks": [note], "cells": [], "claims": [], "runnable": run,
+            "verdicts": {v: 0 for v in SHOWN}, "marks": {}, "cell_marks": {},
+            "summary": note, "verification": "done"}
+
+
 def case_detail(case_id: str, by_claim: dict[str, dict], corrections: dict[str, list[dict]],
                 verification: str) -> dict:
+    spec = registry()[case_id]
+    if not spec.in_tables:
+        return beyond_detail(spec)
     case = load_catalogue().case(case_id)
     t = table_of(case_id)
     labels = {r.key: r.plain for r in t.rows}

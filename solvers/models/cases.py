@@ -90,6 +90,8 @@ class CaseSpec(BaseModel):
     # a column of the paper's Tables 1-2 (with claims in catalogue/); False for a case the
     # text only mentions, such as the rattleback (Celtic stone)
     in_tables: bool = True
+    # for a case beyond the tables: what its page says it is, instead of a table column
+    note: str | None = None
 
     @property
     def param_names(self) -> list[str]:
@@ -135,6 +137,11 @@ def cases() -> dict[str, CaseSpec]:
 def table_case_ids() -> list[str]:
     """The cases that are columns of Tables 1-2 (each has claims in the catalogue)."""
     return [cid for cid, c in registry().items() if c.in_tables]
+
+
+def beyond_table_ids() -> list[str]:
+    """The runnable cases that are no column of Tables 1-2 (no claims in the catalogue)."""
+    return [cid for cid, c in registry().items() if not c.in_tables]
 
 
 def get_case(case_id: str) -> CaseSpec:

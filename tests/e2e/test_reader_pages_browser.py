@@ -133,6 +133,27 @@ def test_search_finds_both_chaplygin_balls(page, server):
     expect(results.locator('a[href="/case/sphere/borisov-fedorov"]')).to_be_visible()
 
 
+def test_the_rattleback_has_a_case_page_beyond_the_tables(page, server):
+    """Before: /case/plane/rattleback was a 404 though the case runs. Its page says it is
+    no case of the paper's tables, has no cells and claims to check, and runs."""
+    errors = []
+    page.on("pageerror", lambda e: errors.append(str(e)))
+    page.goto(server + "/case/plane/rattleback")
+    ready(page)
+    expect(page.locator("#case-title")).to_contain_text("Rattleback (Celtic stone)")
+    expect(page.locator("#crumb-table")).to_have_text("beyond the tables")
+    expect(page.locator("#facts")).to_contain_text("beyond Tables 1 and 2")
+    expect(page.locator("#mark-summary")).to_contain_text(
+        "Not a case of the paper's Tables 1 and 2")
+    expect(page.get_by_test_id("beyond-tables")).to_contain_text("No column of Tables 1 and 2")
+    expect(page.locator("#facts")).to_contain_text("state (M, γ)")
+    expect(page.locator("#reverify")).to_be_hidden()
+    expect(page.locator("#checkedbox")).to_contain_text("nothing is checked")
+    expect(page.locator("#cite")).to_contain_text("a case beyond the tables")
+    assert not developer_words(page.evaluate(READER_TEXT))
+    assert not errors, errors
+
+
 def test_glossary_tooltip_opens_on_click(page, server):
     page.goto(server + "/case/plane/chaplygin-ball")
     ready(page)

@@ -1,4 +1,5 @@
-"""GET /api/cases and GET /api/cases/{id}: the sixteen cases of Tables 1 and 2."""
+"""GET /api/cases and GET /api/cases/{id}: the sixteen cases of Tables 1 and 2, and the
+runnable cases beyond them (the rattleback)."""
 
 from fastapi import APIRouter, HTTPException
 from fastapi.responses import RedirectResponse
@@ -7,15 +8,15 @@ from app.api.deps import VerdictsDep
 from app.schemas.cases import CasePublic, CaseSummary
 from app.schemas.common import NOT_FOUND
 from app.services import views
-from catalogue.load import load_catalogue
 
 router = APIRouter(tags=["cases"])
 
 
 @router.get("/cases", response_model=list[CaseSummary])
 async def list_cases() -> list[dict]:
-    """Every case (a column of Table 1 or 2), in the paper's order."""
-    return [views.case_summary(c) for c in load_catalogue().cases()]
+    """Every case: the columns of Tables 1 and 2 in the paper's order, then the runnable
+    cases the tables do not have (`in_tables` false, no table and column)."""
+    return views.case_summaries()
 
 
 @router.get("/cases/{case_id:path}", response_model=CasePublic, responses=NOT_FOUND)
@@ -25,9 +26,7 @@ async def get_case(case_id: str, verdicts: VerdictsDep) -> dict | RedirectRespon
     if not case_id or case_id.endswith("/"):   # a trailing slash: the same, redirected
         return RedirectResponse(f"/api/cases/{case_id.rstrip('/')}".rstrip("/"),
                                 status_code=308)
-    try:
-        load_catalogue().case(case_id)
-    except KeyError:
-        raise HTTPException(404, f"unknown case {case_id!r}; GET /api/cases lists them") from None
+    if not views.is_case(case_id):
+        raise HTTPException(404, f"unknown case {case_id!r}; GET /api/cases lists them")
     return views.case_detail(case_id, verdicts.by_claim(), verdicts.corrections(),
                              verdicts.case_state(case_id))

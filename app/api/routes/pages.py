@@ -11,7 +11,6 @@ from app.api.deps import PagesDep, SettingsDep, VerdictsDep
 from app.core.errors import not_found_page
 from app.services import ssr, views
 from app.services.reader_pages import render_page
-from catalogue.load import load_catalogue
 
 router = APIRouter(include_in_schema=False)
 _ONE_DAY = {"Cache-Control": "public, max-age=86400"}
@@ -44,9 +43,7 @@ async def case_page(case_id: str, settings: SettingsDep, verdicts: VerdictsDep,
                     pages: PagesDep):
     if case_id.endswith("/") and case_id.rstrip("/"):
         return RedirectResponse(f"/case/{case_id.rstrip('/')}", status_code=308)
-    try:
-        load_catalogue().case(case_id)
-    except KeyError:
+    if not views.is_case(case_id):
         return not_found_page(settings.static_dir, "No such case",
                               f"{case_id!r} names no case of Tables 1 and 2.")
     path = settings.static_dir / "case.html"

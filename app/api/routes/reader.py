@@ -4,13 +4,14 @@ and their data under /api: printed numbers, glossary, references, search, the ch
 from __future__ import annotations
 
 from html import escape
-from typing import Annotated
+from typing import Annotated, Literal
 
 from fastapi import APIRouter, Query
 from fastapi.responses import HTMLResponse
 
 from app.api.deps import VerdictsDep
 from app.services import howcheck, reader_pages
+from app.services import search as search_service
 from app.services.search import facets, search
 from catalogue.glossary import load_glossary
 from catalogue.load import load_catalogue
@@ -19,7 +20,6 @@ from solvers.verify import marks as vocab
 
 router = APIRouter(tags=["reader"])
 pages = APIRouter(include_in_schema=False)
-MAX_FILTER = 60       # the longest facet value is 29 characters
 
 
 @router.get("/printed-numbers")
@@ -64,18 +64,35 @@ async def how_we_check_api() -> dict:
                          for v, m, t in howcheck.VERDICTS]}
 
 
-# a filter names one of the facets (GET /api/search lists them): a few words at most
-Filter = Annotated[str, Query(max_length=MAX_FILTER)]
+# a filter is one of its facet's values (search.facets()), or empty for any: anything else
+# is a 422 that names the field and the values it accepts (app/core/errors.py)
+def _facet(values, what: str):
+    return Annotated[Literal[("", *values)], Query(description=what)]  # type: ignore[misc]
+
+
+Body = _facet(search_service.BODIES, "the body: " + ", ".join(search_service.BODIES))
+Surface = _facet(search_service.SURFACES, "the surface it rolls on: plane or sphere")
+Kind = _facet(search_service.KINDS, "the kind of claim (of an erratum, a convention, "
+              "a finding)")
+Verdict = _facet(search_service.VERDICTS, "the coarse verdict of a claim")
+Mark = _facet(search_service.MARKS, "the mark a claim shows on its case page "
+              "(solvers/verify/marks.yaml)")
+Type = _facet(search_service.TYPES, "the type of result")
 
 
 @router.get("/search")
 async def search_api(verdicts: VerdictsDep, q: str = Query("", max_length=200),
-                     body: Filter = "", surface: Filter = "", kind: Filter = "",
-                     verdict: Filter = "", mark: Filter = "") -> dict:
-    """Cases and claims matching every word of q, filtered by body, surface, kind, verdict
-    and mark (solvers/verify/marks.yaml: the mark each claim shows on its case page)."""
+                     body: Body = "", surface: Surface = "", kind: Kind = "",
+                     verdict: Verdict = "", mark: Mark = "", type: Type = "") -> dict:
+    """Search the cases (the rattleback included), claims, errata, conventions, findings,
+    scenes and the glossary: `results` ranked by a full-text index (word forms and a few
+    synonyms match: "density" finds a measure, "disc" a disk), each with its type, title,
+    snippet, url, facets and mark; `cases` and `claims` the same results as before. Every
+    word must match; when nothing has them all, results with some of them (`match`: any).
+    Filtered by body, surface, kind, verdict, mark (the mark each claim shows on its case
+    page) and type; an empty filter is any."""
     return search(q, body, surface, kind, verdict, verdicts.by_claim(), verdicts.pending(),
-                  mark)
+                  mark, type)
 
 
 @pages.get("/how-we-check", response_class=HTMLResponse)
@@ -107,11 +124,26 @@ def _mark_html(m) -> str:
             f'data-mark="{escape(m.id)}">{escape(m.shape)} {escape(m.word)}</span>')
 
 
+TYPE_NAMES = {"case": "case", "claim": "claim", "erratum": "misprint",
+              "convention": "convention", "finding": "finding", "scene": "scene",
+              "glossary": "glossary"}
+
+
+def _hit_html(x: dict, marks: dict) -> str:
+    """One ranked result: its type, its title as a link, its snippet, its mark."""
+    mark = _mark_html(marks[x["mark"]]) if x.get("mark") in marks else ""
+    return (f'<li data-type="{escape(x["type"])}"><span class="chip">'
+            f'{escape(TYPE_NAMES[x["type"]])}</span> <a href="{escape(x["url"])}">'
+            f'{escape(x["title"])}</a> {mark}<br><span class="hint">{escape(x["snippet"])}'
+            "</span></li>")
+
+
 @pages.get("/search", response_class=HTMLResponse)
 async def search_page(verdicts: VerdictsDep, q: str = Query("", max_length=200),
-                      body: Filter = "", surface: Filter = "", kind: Filter = "",
-                      verdict: Filter = "", mark: Filter = "") -> str:
-    r = search(q, body, surface, kind, verdict, verdicts.by_claim(), verdicts.pending(), mark)
+                      body: Body = "", surface: Surface = "", kind: Kind = "",
+                      verdict: Verdict = "", mark: Mark = "", type: Type = "") -> str:
+    r = search(q, body, surface, kind, verdict, verdicts.by_claim(), verdicts.pending(), mark,
+               type)
     f = facets()
     marks = vocab.by_id()
     # the marks by their names (the value is the API's `mark` id); a verdict in the query
@@ -123,14 +155,25 @@ async def search_page(verdicts: VerdictsDep, q: str = Query("", max_length=200),
                    if verdict else "")
     form = (f'<form class="searchform" role="search" action="/search" method="get">'
             f'<label><span>text</span><input type="search" name="q" value="{escape(q)}" '
-            'placeholder="e.g. Chaplygin"></label>'
+            'placeholder="e.g. invariant measure sphere"></label>'
             + "".join(_select(n, f[n], v) for n, v in (("body", body), ("surface", surface),
                                                        ("kind", kind)))
             + f'<label><span>mark</span><select name="mark"><option value="">any</option>'
             f'{mark_opts}</select></label>{old_verdict}'
+            + _select("type", f["type"], type)
             + '<button type="submit">Search</button></form>')
+    said = []
+    if r["match"] == "any":
+        said.append("No result has every word; these have some of them, best first.")
+    if r["ignored"]:
+        said.append("Not found anywhere, left out: " + ", ".join(r["ignored"]) + ".")
+    note = f'<p class="status" data-testid="match-note">{escape(" ".join(said))}</p>' \
+        if said else ""
+    best = "".join(_hit_html(x, marks) for x in r["results"][:10]) if q.strip() else ""
+    best_html = (f'<h2 id="best">Best matches</h2><ol class="results" '
+                 f'data-testid="ranked-results">{best}</ol>' if best else "")
     cases = "".join(f'<li><a href="{escape(c["href"])}">{escape(c["title"])}</a> '
-                    f'<span class="hint">Table {c["table"]}, {escape(c["surface"])}, '
+                    f'<span class="hint">{_place(c)}, {escape(c["surface"])}, '
                     f'{escape(c["body"])}</span></li>' for c in r["cases"])
     claims = "".join(
         f'<li><a href="{escape(c["href"])}">{escape(c["case_title"])}</a>: '
@@ -138,8 +181,22 @@ async def search_page(verdicts: VerdictsDep, q: str = Query("", max_length=200),
         f'{_mark_html(marks[c["mark"]])}</li>'
         for c in r["claims"][:200])
     more = (f"<p>First 200 of {len(r['claims'])} claims.</p>" if len(r["claims"]) > 200 else "")
-    body_html = (form + f'<h2 id="cases">Cases ({len(r["cases"])})</h2>'
+    sections = ""
+    for title, anchor, types in (("Errata, conventions and findings", "errata",
+                                  ("erratum", "convention", "finding")),
+                                 ("Scenes", "scenes", ("scene",)),
+                                 ("Glossary", "glossary", ("glossary",))):
+        hits = [x for x in r["results"] if x["type"] in types]
+        if hits:
+            sections += (f'<h2 id="{anchor}">{title} ({len(hits)})</h2>'
+                         f'<ul class="results" data-testid="{anchor}-results">'
+                         + "".join(_hit_html(x, marks) for x in hits[:200]) + "</ul>")
+    body_html = (form + note + best_html + f'<h2 id="cases">Cases ({len(r["cases"])})</h2>'
                  f'<ul class="results" data-testid="case-results">{cases}</ul>'
                  f'<h2 id="claims">Claims ({len(r["claims"])})</h2>{more}'
-                 f'<ul class="results" data-testid="claim-results">{claims}</ul>')
+                 f'<ul class="results" data-testid="claim-results">{claims}</ul>' + sections)
     return reader_pages.layout("Search cases and claims", body_html, "/search")
+
+
+def _place(c: dict) -> str:
+    return f"Table {c['table']}" if c.get("table") else "beyond the tables"

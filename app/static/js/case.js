@@ -58,17 +58,24 @@ function greekWords(text) {
 function showHead() {
   document.title = `${C.title} — Rolling hierarchy`;
   $("case-title").textContent = C.title;
-  $("crumb-table").innerHTML = `<a href="/#table-${C.surface}">Table ${C.table}</a>`;
-  $("crumb-case").textContent = `column ${C.column}`;
+  // a runnable case beyond the tables (the rattleback) has no table and column
+  const place = C.in_tables === false ? "beyond Tables 1 and 2" : `Table ${C.table}, column ${C.column}`;
+  $("crumb-table").innerHTML = C.in_tables === false ? "beyond the tables"
+    : `<a href="/#table-${C.surface}">Table ${C.table}</a>`;
+  $("crumb-case").textContent = C.in_tables === false ? C.id : `column ${C.column}`;
+  if (C.in_tables === false) {                     // no cells, no claims to check
+    $("reverify").hidden = true;
+    $("h-in-table").textContent = "Not in the paper's tables";
+  }
   const m = C.model;
   // the conditions in words (conditions_text), not the data's key: value pairs
   const cond = (m.conditions_text || []).map(escapeHtml).join("; ");
   $("facts").innerHTML = [
-    `Table ${C.table}, column ${C.column}`,
+    place,
     `support: ${C.surface}`,
     `body: ${escapeHtml(String(m.body).replaceAll("-", " "))}`,
     `state ${escapeHtml(greekWords(m.state))}`,
-    `equations ${(m.equation_numbers || []).join(", ")}`,
+    (m.equation_numbers || []).length ? `equations ${m.equation_numbers.join(", ")}` : "",
     cond ? `conditions: ${cond}` : "",
   ].filter(Boolean).map((f) => `<span class="chip">${f}</span>`).join("");
   showTally();
@@ -79,8 +86,8 @@ function showTally() {
   const state = C.verification === "running"
     ? " · being checked now on this server; the page updates when the check finishes" : "";
   $("tally").innerHTML = `<p class="mark-summary" id="mark-summary">${escapeHtml(C.summary || "")}</p>` +
-    `<span>cells: ${tallyHtml(C.cell_marks || {})}</span> <span>claims: ${tallyHtml(C.marks || {})}</span>` +
-    `<span class="hint">${state}</span>`;
+    (C.in_tables === false ? "" : `<span>cells: ${tallyHtml(C.cell_marks || {})}</span> <span>claims: ${tallyHtml(C.marks || {})}</span>` +
+    `<span class="hint">${state}</span>`);
   $("nclaims").textContent = `(${C.claims.length})`;
 }
 
@@ -143,7 +150,8 @@ function showCells() {
     return `<tr id="row-${c.row}"><th scope="row">${escapeHtml(c.row_label)}</th>` +
       `<td class="shade-${c.shade}">${textHtml(c.printed)}${sub}${att}${refs}${merged}${why}${prop}${mark}</td></tr>`;
   });
-  $("cells").innerHTML = `<table class="cells"><tbody>${rows.join("")}</tbody></table>`;
+  $("cells").innerHTML = rows.length ? `<table class="cells"><tbody>${rows.join("")}</tbody></table>`
+    : `<p class="status" data-testid="beyond-tables">No column of Tables 1 and 2 holds this body: it has no cells to show.</p>`;
 }
 
 function stamp(v) {
@@ -238,7 +246,8 @@ function claimHtml(c) {
 }
 
 function showClaims() {
-  $("claimlist").innerHTML = C.claims.map(claimHtml).join("");
+  $("claimlist").innerHTML = C.claims.length ? C.claims.map(claimHtml).join("")
+    : `<p class="status">No claims: ${escapeHtml(C.in_tables === false ? "this case is not in the paper's tables." : "none catalogued.")}</p>`;
   showCite();
 }
 
@@ -253,7 +262,8 @@ async function showCite() {
   }
   decorateClaims(CITE, C, anchor);
   $("citebox").innerHTML = caseCiteHtml(CITE, C);
-  $("checkedbox").innerHTML = checkedHtml(C, HOW, anchor);
+  $("checkedbox").innerHTML = C.claims.length ? checkedHtml(C, HOW, anchor)
+    : "<p>No claims on this page: nothing is checked.</p>";
   document.body.dataset.cite = "1";
 }
 

@@ -51,7 +51,9 @@ function boxHtml(data, url, note, what) {
 /** The case page's Cite box, with the link to the case's JSON record. */
 export function caseCiteHtml(data, c) {
   const json = `/api/cases/${c.id}`;
-  return boxHtml(data, pageUrl(), `${c.title}: Table ${c.table}, column ${c.column} of Borisov and Mamaev (2002), checked by computation`, "this case page") +
+  const what = c.in_tables === false ? `${c.title}: a case beyond the tables of Borisov and Mamaev (2002), run by computation`
+    : `${c.title}: Table ${c.table}, column ${c.column} of Borisov and Mamaev (2002), checked by computation`;
+  return boxHtml(data, pageUrl(), what, "this case page") +
     `<p class="jsonlink">The case's record as data: <a href="${escapeHtml(json)}" type="application/json">${escapeHtml(json)}</a> (JSON: every claim with its printed formula, verdict and residual).</p>`;
 }
 
