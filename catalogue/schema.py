@@ -550,31 +550,61 @@ class Table(Strict):
         return self
 
 
+SourceKind = Literal["the paper's published reference list", "another paper's reference list",
+                     "the publisher's record"]
+
+
+class CheckedIn(Strict):
+    """Where an entry's bibliographic data was read: the page's address, what kind of source
+    it is, and how much of it could be read (full: the whole list or record; abstract: the
+    record's abstract page; snippet: only the part of a reference list that holds the entry)."""
+
+    source: str  # what the page is, e.g. "the reference list of <paper>"
+    kind: SourceKind
+    url: str
+    access: Literal["full", "abstract", "snippet"]
+
+    @field_validator("url")
+    @classmethod
+    def _url(cls, v: str) -> str:
+        if not re.match(r"^https?://\S+$", v):
+            raise ValueError(f"checked_in url must be an http(s) address, got {v!r}")
+        return v
+
+
 class Reference(Strict):
     id: str  # the \cite key when there is one
     cite_key: str | None  # None: a name the paper mentions without \cite
-    authors: list[str]  # as the seed prints them (empty if the seed never names them)
-    authors_source: Literal["text", "table", "key", "seed"]
+    # complete entries: the authors as the checked source prints them (authors_source
+    # "checked"); otherwise as the seed prints them, empty if the seed never names them
+    authors: list[str]
+    authors_source: Literal["text", "table", "key", "seed", "checked"]
     years: list[int] = []  # every year the seed gives (more than one: the seed disagrees)
     year_note: str | None = None
+    year: int | None = None  # the year of the publication as the checked source gives it
     title: str | None = None
     title_source: str | None = None
-    journal: str | None = None  # journal or book series, only as the seed gives it
+    journal: str | None = None  # journal, or book with its publisher, as the source gives it
     volume: str | None = None
     number: str | None = None
     pages: str | None = None
     doi: str | None = None
-    # complete: authors, title, journal and year are known; unresolved: the seed lacks one
-    # of them (it has no reference list), and `missing` says which
+    translation: str | None = None  # a translation or reprint the source names beside it
+    checked_in: list[CheckedIn] = []  # where the entry was read; none: nothing was checked
+    identity: str | None = None  # why the \cite key is this work (the seed's context)
+    candidate: str | None = None  # unresolved: a work a source lists and why it is not taken
+    # complete: authors, title, journal and year are known and a checked source is named;
+    # unresolved otherwise, and `missing` says what is lacking
     status: Literal["complete", "unresolved"]
     cited_for: list[str]
     remarks: str | None = None
 
     @property
     def missing(self) -> list[str]:
-        """What a full bibliographic entry needs and the seed does not give."""
+        """What a full bibliographic entry needs and no checked source gave."""
         have = {"authors": bool(self.authors), "title": bool(self.title),
-                "journal": bool(self.journal), "year": bool(self.years)}
+                "journal": bool(self.journal), "year": bool(self.year or self.years),
+                "checked source": bool(self.checked_in)}
         return [k for k, ok in have.items() if not ok]
 
     @model_validator(mode="after")
@@ -586,6 +616,11 @@ class Reference(Strict):
         if (self.status == "complete") != (not self.missing):
             raise ValueError(f"reference {self.id}: status {self.status!r} but missing "
                              f"{self.missing or 'nothing'}")
+        if self.status == "complete" and self.id != "this-paper" and not self.identity:
+            raise ValueError(f"reference {self.id}: a complete entry says why the key is "
+                             "this work (identity)")
+        if self.status == "complete" and self.candidate:
+            raise ValueError(f"reference {self.id}: a complete entry has no candidate")
         return self
 
 
