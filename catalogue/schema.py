@@ -551,7 +551,8 @@ class Table(Strict):
 
 
 SourceKind = Literal["the paper's published reference list", "another paper's reference list",
-                     "the publisher's record"]
+                     "the publisher's record", "the preprint's record",
+                     "a bibliographic database's record", "the article itself"]
 
 
 class CheckedIn(Strict):
@@ -621,6 +622,54 @@ class Reference(Strict):
                              "this work (identity)")
         if self.status == "complete" and self.candidate:
             raise ValueError(f"reference {self.id}: a complete entry has no candidate")
+        return self
+
+
+class SinceNote(Strict):
+    """What is known since 2002 about one open cell, open claim, refuted conjecture or
+    non-existence result (catalogue/since_2002.yaml). `record` is a claim id or a cell
+    record id `<case>/cell/<row>`; `references` are ids of complete entries of
+    references.yaml or of the file's own `literature` (later results, or the context a note
+    names when none was found); `access` is the least that was read of them (abstract: only
+    abstracts or records; none: the note cites nothing)."""
+
+    record: str
+    kind: Literal["open cell", "open claim", "refuted conjecture", "non-existence"]
+    note: str
+    found_later: bool  # a later result on this question was found in the sources read
+    references: list[str] = []
+    access: Literal["full", "abstract", "snippet", "none"]
+    project: str | None = None  # where the project's own result appears new, with its scope
+
+    @model_validator(mode="after")
+    def _consistent(self) -> SinceNote:
+        if not self.note.strip():
+            raise ValueError(f"since-2002 note {self.record}: empty note")
+        if self.found_later and not self.references:
+            raise ValueError(f"since-2002 note {self.record}: a later result needs its "
+                             "reference")
+        if (self.access == "none") != (not self.references):
+            raise ValueError(f"since-2002 note {self.record}: access 'none' exactly when "
+                             "the note cites nothing")
+        if not self.found_later and "no later result found in the sources checked" \
+                not in self.note.lower():
+            raise ValueError(f"since-2002 note {self.record}: say 'no later result found "
+                             "in the sources checked'")
+        return self
+
+
+class Since2002(Strict):
+    """catalogue/since_2002.yaml: the later literature (complete entries, each with where
+    it was read) and the notes."""
+
+    literature: list[Reference]
+    notes: list[SinceNote]
+
+    @model_validator(mode="after")
+    def _complete(self) -> Since2002:
+        for r in self.literature:
+            if r.status != "complete":
+                raise ValueError(f"since-2002 literature {r.id}: only complete entries")
         return self
 
 

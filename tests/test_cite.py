@@ -18,7 +18,7 @@ from catalogue.schema import Reference
 pytestmark = pytest.mark.filterwarnings("ignore::DeprecationWarning")
 
 # entries resolved from a source that was read (catalogue/references.yaml, `checked_in`)
-COMPLETE = sum(r.status == "complete" for r in load_catalogue().references)
+COMPLETE = 7
 KINDS = ("the paper's published reference list", "another paper's reference list",
          "the publisher's record")
 

@@ -10,10 +10,11 @@ from html import escape
 from pathlib import Path
 
 from app import __version__
-from app.services import howcheck, site_shell
+from app.services import howcheck, site_shell, ssr
 from catalogue.glossary import load_glossary
 from catalogue.load import load_catalogue
 from catalogue.numbering import cite, printed
+from catalogue.since_2002 import load_since_2002, note_json
 
 PAPER_DOI = "10.1070/RD2002v007n02ABEH000204"   # the seed's \doi{...}
 
@@ -262,6 +263,24 @@ def _reference_html(r) -> str:
             f"{seed_years}{extra}{checked}<p>Cited for:</p><ul>{used}</ul>{remark}</li>")
 
 
+def _since_2002_html() -> str:
+    """The later literature and the 'since 2002' notes (catalogue/since_2002.yaml), each
+    note linked to its claim or cell on the case page."""
+    data = load_since_2002()
+    notes = "".join(
+        f'<li class="since-note" data-record="{escape(n.record)}">'
+        f'<a href="/case/{escape("/".join(n.record.split("/")[:2]))}#'
+        f'{escape(ssr._anchor(n.record))}"><code>{escape(n.record)}</code></a>'
+        f"{ssr.since_html(note_json(n))}</li>" for n in data.notes)
+    return ('<h2 id="since-2002">Since 2002</h2><p>What later work says about every open '
+            "cell, open claim, refuted conjecture and non-existence result, with how much of "
+            "each work could be read; where nothing later was found the note says so. The "
+            f"later works ({len(data.literature)}), each with where it was read:</p>"
+            f'<ol class="refs later">{"".join(_reference_html(r) for r in data.literature)}'
+            f'</ol><h3 id="since-notes">The notes ({len(data.notes)})</h3>'
+            f'<ul class="since-notes">{notes}</ul>')
+
+
 def bibliography() -> str:
     refs = load_catalogue().references
     unresolved = sum(r.status == "unresolved" for r in refs)
@@ -274,5 +293,5 @@ def bibliography() -> str:
             f'<span class="refcounts">{len(refs) - unresolved} complete, {unresolved} '
             "unresolved.</span></p>" + cite_box("/bibliography") +
             f'<h2 id="refs">References ({len(refs)})</h2><ol class="refs">'
-            f'{"".join(_reference_html(r) for r in refs)}</ol>')
+            f'{"".join(_reference_html(r) for r in refs)}</ol>' + _since_2002_html())
     return layout("Bibliography", body, "/bibliography")
