@@ -252,7 +252,7 @@ def _reference_html(r) -> str:
                     for cls, label, text in (
                         ("translation", "", r.translation),
                         ("identity", "Why this work: ", r.identity),
-                        ("candidate", "Not taken: ", r.candidate)) if text)
+                        ("candidate", "Candidate: ", r.candidate)) if text)
     checked = (f'<p>Checked in:</p><ul class="checkedin">'
                f'{"".join(_checked_html(c) for c in r.checked_in)}</ul>'
                if r.checked_in else '<p class="checkedin none">No source read gives it.</p>')
