@@ -2,6 +2,7 @@
 BibTeX of the paper (with its DOI) and of the explorer (author, year, version, URL, access
 date), search results that link to the claim's anchor."""
 
+import html
 import re
 
 import pytest
@@ -16,6 +17,11 @@ from catalogue.schema import Reference
 
 pytestmark = pytest.mark.filterwarnings("ignore::DeprecationWarning")
 
+# entries resolved from a source that was read (catalogue/references.yaml, `checked_in`)
+COMPLETE = 7
+KINDS = ("the paper's published reference list", "another paper's reference list",
+         "the publisher's record")
+
 
 @pytest.fixture(scope="module")
 def client():
@@ -28,14 +34,27 @@ def test_every_reference_is_complete_or_marked_unresolved(client):
     assert len(refs) == len(load_catalogue().references) > 30
     for r in refs:
         assert r["status"] in ("complete", "unresolved"), r["id"]
-        full = r["authors"] and r["title"] and r["journal"] and r["years"]
+        full = (r["authors"] and r["title"] and r["journal"] and (r["year"] or r["years"])
+                and r["checked_in"])
         assert (r["status"] == "complete") == bool(full), r["id"]
         assert (r["missing"] == []) == (r["status"] == "complete"), r["id"]
     paper = next(r for r in refs if r["id"] == "this-paper")
     assert paper["status"] == "complete" and paper["doi"] == reader_pages.PAPER_DOI
     assert paper["journal"] == "Regular and Chaotic Dynamics" and paper["volume"] == "7"
-    # the seed has no reference list: nothing else can be complete, and nothing is guessed
-    assert [r["id"] for r in refs if r["status"] == "complete"] == ["this-paper"]
+    # complete only from a source that was read, named with its kind, address and access
+    complete = [r for r in refs if r["status"] == "complete"]
+    assert len(complete) == COMPLETE
+    for r in complete:
+        assert r["checked_in"], r["id"]
+        for c in r["checked_in"]:
+            assert c["kind"] in KINDS and c["access"] in ("full", "abstract", "snippet")
+            assert c["url"].startswith(("http://", "https://")) and c["source"], r["id"]
+        assert r["id"] == "this-paper" or r["identity"], r["id"]
+        assert not r["candidate"], r["id"]
+    # an unresolved entry says what is missing, and a candidate is never counted
+    for r in refs:
+        if r["status"] == "unresolved":
+            assert r["missing"], r["id"]
     assert not any("suggests" in (r["remarks"] or "") for r in refs)
 
 
@@ -44,11 +63,21 @@ def test_a_status_that_does_not_match_the_entry_is_refused():
             "years": [1900], "cited_for": ["a test"]}
     with pytest.raises(ValueError, match="missing"):
         Reference.model_validate({**base, "status": "complete"})     # no title, no journal
-    with pytest.raises(ValueError, match="missing nothing"):
+    checked = [{"source": "a list", "kind": "the publisher's record",
+                "url": "http://example.org/x", "access": "abstract"}]
+    with pytest.raises(ValueError, match="checked source"):     # all fields, nothing read
+        Reference.model_validate({**base, "title": "T", "journal": "J", "status": "complete"})
+    with pytest.raises(ValueError, match="identity"):           # read, but not tied to the key
         Reference.model_validate({**base, "title": "T", "journal": "J",
-                                  "status": "unresolved"})
+                                  "checked_in": checked, "status": "complete"})
+    with pytest.raises(ValueError, match="missing nothing"):
+        Reference.model_validate({**base, "title": "T", "journal": "J", "identity": "why",
+                                  "checked_in": checked, "status": "unresolved"})
+    with pytest.raises(ValueError, match="http"):
+        Reference.model_validate({**base, "status": "unresolved",
+                                  "checked_in": [{**checked[0], "url": "somewhere"}]})
     assert Reference.model_validate({**base, "status": "unresolved"}).missing == [
-        "title", "journal"]
+        "title", "journal", "checked source"]
 
 
 def test_bibliography_page_says_complete_or_unresolved(client):
@@ -58,7 +87,12 @@ def test_bibliography_page_says_complete_or_unresolved(client):
                       re.S)
         assert m and m[1] == r.status, r.id
         if r.status == "unresolved":
-            assert "unresolved" in m[2] and "not in the seed: " + ", ".join(r.missing) in m[2]
+            assert "unresolved" in m[2] and "missing: " + ", ".join(r.missing) in m[2]
+    n = len(load_catalogue().references)
+    assert f"{COMPLETE} complete, {n - COMPLETE} unresolved." in page
+    for r in load_catalogue().references:
+        for c in r.checked_in:      # every complete entry shows where it was checked
+            assert f'href="{html.escape(c.url)}"' in page, r.id
     assert "Key suggests" not in page
     assert "authors not named in the paper … Key" not in page
 

@@ -109,4 +109,9 @@ class CasePublic(CaseHead):
     cell_marks: dict[str, int] = Field(default_factory=dict, description="number of this "
                                        "case's table cells per mark")
     summary: str = Field("", description="the cell and claim counts by mark, in words")
+    since_2002: list[dict[str, Any]] = Field(
+        default_factory=list, description="what is known since 2002 about this case's open "
+        "cells and claims, refuted conjectures and non-existence results "
+        "(catalogue/since_2002.yaml): record, kind, note, found_later, access, project, "
+        "references resolved to their citations")
     verification: str = Field(description="done | running | idle | unavailable | failed")

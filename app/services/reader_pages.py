@@ -10,10 +10,11 @@ from html import escape
 from pathlib import Path
 
 from app import __version__
-from app.services import howcheck, site_shell
+from app.services import howcheck, site_shell, ssr
 from catalogue.glossary import load_glossary
 from catalogue.load import load_catalogue
 from catalogue.numbering import cite, printed
+from catalogue.since_2002 import load_since_2002, note_json
 
 PAPER_DOI = "10.1070/RD2002v007n02ABEH000204"   # the seed's \doi{...}
 
@@ -218,9 +219,18 @@ def cite_box(url: str = "/") -> str:
             '<script type="module" src="/static/js/cite.js"></script></section>')
 
 
+def _checked_html(c) -> str:
+    """One place an entry was read: its kind, what it is, how much was read, its address."""
+    access = {"full": "read in full", "abstract": "abstract page read",
+              "snippet": "only a snippet of the list read"}[c.access]
+    return (f'<li class="checked" data-kind="{escape(c.kind)}" data-access="{c.access}">'
+            f"{escape(c.kind)}: {escape(c.source)} ({access}), "
+            f'<a href="{escape(c.url)}" rel="nofollow noopener">{escape(c.url)}</a></li>')
+
+
 def _reference_html(r) -> str:
     who = ", ".join(r.authors) or "authors not named in the paper"
-    years = ", ".join(str(y) for y in r.years) or "year not given"
+    years = (str(r.year) if r.year else ", ".join(str(y) for y in r.years)) or "year not given"
     title = f"<cite>{escape(r.title)}</cite>. " if r.title else ""
     src = ", ".join(x for x in (r.journal, r.volume and f"vol. {r.volume}",
                                 r.number and f"no. {r.number}",
@@ -233,23 +243,55 @@ def _reference_html(r) -> str:
         status = '<span class="refstatus complete">complete</span>'
     else:
         status = ('<span class="refstatus unresolved">unresolved</span> '
-                  f'<span class="hint">not in the seed: {escape(", ".join(r.missing))}</span>')
+                  f'<span class="hint">missing: {escape(", ".join(r.missing))}</span>')
+    seed_years = ""
+    if r.year and r.years and r.years != [r.year]:
+        seed_years = (f'<p class="seedyears">The seed dates it '
+                      f'{escape(", ".join(str(y) for y in r.years))}.</p>')
+    extra = "".join(f'<p class="{cls}">{label}{escape(cite(text))}</p>'
+                    for cls, label, text in (
+                        ("translation", "", r.translation),
+                        ("identity", "Why this work: ", r.identity),
+                        ("candidate", "Candidate: ", r.candidate)) if text)
+    checked = (f'<p>Checked in:</p><ul class="checkedin">'
+               f'{"".join(_checked_html(c) for c in r.checked_in)}</ul>'
+               if r.checked_in else '<p class="checkedin none">No source read gives it.</p>')
     used = "".join(f"<li>{escape(cite(x))}</li>" for x in r.cited_for)
     remark = f"<p>{escape(cite(r.remarks))}</p>" if r.remarks else ""
     return (f'<li id="ref-{escape(r.id)}" data-status="{r.status}">{status}<br>'
             f"<strong>{escape(who)}</strong> ({years}). {title}{src}{doi}{key}"
-            f"<ul>{used}</ul>{remark}</li>")
+            f"{seed_years}{extra}{checked}<p>Cited for:</p><ul>{used}</ul>{remark}</li>")
+
+
+def _since_2002_html() -> str:
+    """The later literature and the 'since 2002' notes (catalogue/since_2002.yaml), each
+    note linked to its claim or cell on the case page."""
+    data = load_since_2002()
+    notes = "".join(
+        f'<li class="since-note" data-record="{escape(n.record)}">'
+        f'<a href="/case/{escape("/".join(n.record.split("/")[:2]))}#'
+        f'{escape(ssr._anchor(n.record))}"><code>{escape(n.record)}</code></a>'
+        f"{ssr.since_html(note_json(n))}</li>" for n in data.notes)
+    return ('<h2 id="since-2002">Since 2002</h2><p>What later work says about every open '
+            "cell, open claim, refuted conjecture and non-existence result, with how much of "
+            "each work could be read; where nothing later was found the note says so. The "
+            f"later works ({len(data.literature)}), each with where it was read:</p>"
+            f'<ol class="refs later">{"".join(_reference_html(r) for r in data.literature)}'
+            f'</ol><h3 id="since-notes">The notes ({len(data.notes)})</h3>'
+            f'<ul class="since-notes">{notes}</ul>')
 
 
 def bibliography() -> str:
     refs = load_catalogue().references
     unresolved = sum(r.status == "unresolved" for r in refs)
     body = ("<p>Every reference the catalogue cites, resolved from its key. The paper's LaTeX "
-            "(the seed) has no reference list: authors and years come from its text and "
-            "tables. An entry is <em>complete</em> when the seed gives its authors, title, "
-            "journal and year, and <em>unresolved</em> otherwise, saying what is missing; "
-            f"nothing is guessed. {len(refs) - unresolved} complete, {unresolved} unresolved."
-            "</p>" + cite_box("/bibliography") +
+            "(the seed) has no reference list. An entry is <em>complete</em> when a source "
+            "that was read (another paper's reference list, or the publisher's record; named "
+            "under the entry with how much of it was read) gives its authors, title, journal "
+            "or book and year, and the seed's own context ties the key to that work; it is "
+            "<em>unresolved</em> otherwise, saying what is missing. Nothing is guessed. "
+            f'<span class="refcounts">{len(refs) - unresolved} complete, {unresolved} '
+            "unresolved.</span></p>" + cite_box("/bibliography") +
             f'<h2 id="refs">References ({len(refs)})</h2><ol class="refs">'
-            f'{"".join(_reference_html(r) for r in refs)}</ol>')
+            f'{"".join(_reference_html(r) for r in refs)}</ol>' + _since_2002_html())
     return layout("Bibliography", body, "/bibliography")

@@ -63,10 +63,44 @@ def claim_html(c: dict) -> str:
             f'{escape(residual)}.</p>{note}{where}{msg}</article>')
 
 
+ACCESS_WORDS = {"full": "read in full", "abstract": "only abstracts or records read",
+                "snippet": "only a first page or a snippet read", "none": "nothing cited"}
+
+
+def since_html(n: dict) -> str:
+    """A 'since 2002' note (catalogue/since_2002.yaml) beside its claim or cell: what later
+    work says, cited, with how much of it was read, and where the project's own result
+    appears new."""
+    refs = "".join(f'<li><a href="{escape(r["href"])}">{escape(r["citation"])}</a></li>'
+                   for r in n["references"])
+    refs = f'<ul class="since-refs">{refs}</ul>' if refs else ""
+    project = (f'<p class="since-project"><strong>The project:</strong> '
+               f'{escape(n["project"])}</p>') if n.get("project") else ""
+    return (f'<aside class="since-2002" data-record="{escape(n["record"])}" '
+            f'data-kind="{escape(n["kind"])}" data-access="{escape(n["access"])}">'
+            f'<p><strong>Since 2002</strong> ({escape(n["kind"])}; '
+            f'{ACCESS_WORDS[n["access"]]}): {escape(n["note"])}</p>{refs}{project}</aside>')
+
+
+def _with_since(claim_html_text: str, c: dict, notes: dict) -> str:
+    n = notes.get(c["id"])
+    return claim_html_text.replace("</article>", since_html(n) + "</article>", 1) \
+        if n else claim_html_text
+
+
 def case_page(template: str, detail: dict) -> str:
-    """case.html with the case's title, its counts by mark and its claims filled in."""
+    """case.html with the case's title, its counts by mark and its claims filled in; each
+    claim and open cell with its 'since 2002' note, if it has one."""
     title = escape(detail["title"])
-    claims = "".join(claim_html(c) for c in detail["claims"])
+    notes = {n["record"]: n for n in detail.get("since_2002") or []}
+    claims = "".join(_with_since(claim_html(c), c, notes) for c in detail["claims"])
+    cells = [n for n in notes.values() if "/cell/" in n["record"]]
+    if cells:
+        claims += ('<section class="since-cells ssr" id="since-2002"><h3>Since 2002: the '
+                   'table\'s open cells</h3>' +
+                   "".join(f'<div id="{_anchor(n["record"])}"><p>Cell '
+                           f'{escape(n["record"].split("/cell/")[1].replace("_", " "))}:</p>'
+                           f'{since_html(n)}</div>' for n in cells) + "</section>")
     summary = escape(detail.get("summary") or "")
     return (template
             .replace("<title>Case — Rolling hierarchy</title>",

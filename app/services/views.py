@@ -12,6 +12,7 @@ from catalogue.load import load_catalogue
 from catalogue.numbering import cite, cite_latex, printed
 from catalogue.plain_words import cite_names, phrases
 from catalogue.schema import Attribution, Case, Cell, Claim, StateVariables, Table
+from catalogue.since_2002 import note_json, notes_for
 from solvers.models.bodies import STATE_LABELS
 from solvers.models.cases import CaseSpec, beyond_table_ids, registry
 from solvers.verify import marks as vocab
@@ -276,6 +277,7 @@ def case_detail(case_id: str, by_claim: dict[str, dict], corrections: dict[str, 
             "verdicts": {v: verdicts.count(v) for v in SHOWN},
             "marks": claim_marks, "cell_marks": cell_marks,
             "summary": case_sentence(cell_marks, claim_marks),
+            "since_2002": [note_json(n) for n in notes_for(case_id)],
             "verification": verification}
 
 
