@@ -119,7 +119,7 @@ class CheckName(StrEnum):
     NEGATIVE_MEASURE = "negative_measure"  # evidence of no smooth measure (attractors, ...)
     NEGATIVE_INTEGRAL = "negative_integral"  # evidence of no further integral (3D maps)
     NO_MEASURE = "no_measure"  # proof of no smooth measure: exact obstruction at a rest point
-    # formula-free: a property tested without any printed formula (issue 10, item 2)
+    # formula-free: a property tested without any printed formula
     LINEAR_INTEGRALS_RETURN = "linear_integrals_return"  # two integrals linear in M: (M, gamma)
     # and M3 return to the same values at every crossing of one level of gamma3
     # nothing to compute; recorded so the catalogue lists them
@@ -382,7 +382,7 @@ class Claim(Strict):
     origin: Origin = Origin.PAPER  # project: `printed` is the assertion, the formula ours
     convention_note: str | None = None
     remarks: str | None = None
-    # verdict layer (issue 10): how this record relates to others of its case
+    # verdict layer: how this record relates to others of its case
     establishes: list[str] = []  # a formula-free test of the property these claims state
     inherits: str | None = None  # fails only through this (failing) claim's formula
     holds_under: str | None = None  # the convention under which the printed form holds

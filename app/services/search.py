@@ -1,6 +1,6 @@
 """Search and filter the cases and claims by text, body, surface, kind, mark and verdict
 (GET /api/search, the page /search). Each claim carries its mark (solvers/verify/marks.yaml,
-as on its case page), not only the coarse verdict (issue 17: one mark per meaning). Text
+as on its case page), not only the coarse verdict (one mark per meaning). Text
 matches every word, case- and accent-blind, against what a reader sees: titles, plain
 statements, printed numbers, credited authors."""
 

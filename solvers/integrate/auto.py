@@ -127,8 +127,9 @@ def choose(case_id: str, model: int, rtol: float, t_end: float, project: bool = 
 
 
 # --- the estimate of this run's error, and tightening until it meets the request ----------
-# The front is measured on one start per case; on other starts the chosen tolerance can
-# miss the requested error 8-16 times (issue 19). So auto checks its own run: it runs the
+# The front is measured on one start per case; on other starts the chosen tolerance can miss
+# the requested error several times over (bench/auto_coverage.py). So auto checks its own
+# run: it runs the
 # same method once more at a tolerance CHECK_FACTOR tighter and reports the difference of
 # the two (the benchmark's error measure, error_between) as the estimated global error of
 # the run it returns. With error roughly proportional to tol, the check run's own error is
@@ -167,7 +168,7 @@ def _rung(method: str, tol: float, precision: str | None, compensated: bool,
           t_end: float) -> dict:
     """One run auto may make. A Taylor run below its precision's floor widens precision
     (taylor_backend.choose_precision) up to long double (quad only if chosen before: it
-    costs ~100 times more), never narrows it."""
+    costs far more: software arithmetic), never narrows it."""
     if method == wp.TAYLOR:
         from solvers.integrate.taylor_backend import PRECISIONS, choose_precision
 

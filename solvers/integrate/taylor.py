@@ -152,7 +152,7 @@ def _fp(name: str):
 
 class Taylor:
     """heyoka's adaptive Taylor integrator on the rolling system (built once: the LLVM
-    compilation costs ~0.5-5 s; `compile_s` says how much)."""
+    compilation costs seconds; `compile_s` says how much)."""
 
     def __init__(self, model: int, p, y0, *, tol: float, fp: str = "float64",
                  compact_mode: bool = False):

@@ -13,8 +13,8 @@ Flat base on a sphere, state (M, r1, r2), gamma = e3 fixed, r = (r1, r2, z):
   (the paper prints eq3.15 with k = +1/R for the outside of the sphere, i.e. with gamma
   pointing out of the support; under CONVENTIONS.md the outside is k = -1/R0).
 
-The hot path is scalar code on tuples (no array is allocated per call: a call used to
-allocate ~15 small arrays, 95% of its cost); the array-filling functions
+The hot path is scalar code on tuples (no array is allocated per call: allocating
+many small arrays would be most of a call's cost); the array-filling functions
 `full_kinematics`, `flat_kinematics`, `contact_inertia` keep their signatures for the
 Python layer. Everything is complex-safe: the same source runs on complex128 states for
 the complex-step checks.

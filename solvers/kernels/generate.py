@@ -220,8 +220,9 @@ def equations(model: int, p, fold: bool = False):
         # r = lam gamma: m (r^2 E - r r^T) = s (|gamma|^2 E - gamma gamma^T), s = m lam^2 =
         # m c^2 / |gamma|^2, and s |gamma|^2 = m c^2, so I_Q = D - s gamma gamma^T with the
         # constant D = diag(I_i + m c^2): a rank-one change of a diagonal, solved by
-        # Sherman-Morrison instead of a 3x3 adjugate (issue 19: the plane's Chaplygin ball
-        # was 1.46x the scalar limit, whose field has this form). Exact for any gamma
+        # Sherman-Morrison instead of a 3x3 adjugate (with the adjugate the plane's
+        # Chaplygin ball was much slower than the scalar limit, whose field has this form:
+        # bench/limit.py, docs/performance.md). Exact for any gamma
         # (complex ones too), no square root:
         #   omega = u + (m c^2 (gamma, u) / q) v,   u = D^-1 M,   v = D^-1 gamma,
         #   q = sum_i I_i gamma_i v_i = |gamma|^2 (1 - s (gamma, v)),
@@ -526,8 +527,7 @@ def generated_integrator(model: int, p, fold: bool = False):
     general `fields.rhs`: the same source (tableau as data, dense output, projection,
     sections, statuses), written next to the generated field with only its `rhs` import
     changed, so every stage call is the lean field, inlined. `rk_integrate` has rk.py's
-    signature. One numba compile per structure (~32 s for the Chaplygin ball on 2 cores),
-    then numba's on-disk cache."""
+    signature. One numba compile per structure (a long one), then numba's on-disk cache."""
     field_mod = generated(model, p, fold)
 
     def source():

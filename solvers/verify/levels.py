@@ -1,4 +1,4 @@
-"""Two levels of verdicts (issue 10): printed formulas and the table cells they stand under.
+"""Two levels of verdicts: printed formulas and the table cells they stand under.
 
 A *formula* record judges one printed expression (a claim of the catalogue, or the project's
 correction of it). A *cell* record judges the property a cell of Table 1 or 2 states, with
@@ -66,7 +66,7 @@ QUALIFIERS = ("convention", "misprint", "inherited", "refuted-conjecture", "refu
               "formula-free")
 
 
-# How strong a record's check is (issue 18, item 5), strongest first: a proof (an exact
+# How strong a record's check is, strongest first: a proof (an exact
 # symbolic identity, an exact witness of a failure, the exact no-measure obstruction), an
 # exact certificate (Schwartz-Zippel at rational points), a pointwise check with exact
 # derivatives in floating point, evidence from trajectories. A cell's `rests_on` lists its

@@ -157,7 +157,7 @@ async def poincare(req: PoincareRequest, request: Request, pool: PoolDep,
 
     async def prepare():
         # the map's kernels compile (first use) in a job without a deadline; the map's
-        # one deadline starts after it (issue 19: app/services/kernel_prepare.py)
+        # one deadline starts after it (app/services/kernel_prepare.py)
         await kernel_prepare.prepare(pool, kernels, settings.kernels_warm, keys,
                                      poincare_jobs.prepare, job, starts[0])
         return anyio.current_time() + settings.deadline_s

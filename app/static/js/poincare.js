@@ -82,9 +82,9 @@ async function figures() {
 }
 
 // A figure is drawn when it comes near the screen, not on load: each is a 3D scatter of
-// ~800 KB of points, and drawing the four one after the other kept a browser without a
-// GPU (WebGL in software) busy ~5 s after the page had loaded, for figures below the fold
-// (issue 19: the same page opened by a dozen browser tests). Printing draws them all.
+// many points, and drawing the four one after the other kept a browser without a GPU
+// (WebGL in software) busy for seconds after the page had loaded, for figures below the
+// fold (and the browser tests open the same page many times). Printing draws them all.
 const PENDING = new Map();    // plot element -> its figure, not drawn yet
 const NEAR = "IntersectionObserver" in window ? new IntersectionObserver((entries) => {
   for (const e of entries) if (e.isIntersecting) draw(e.target);
@@ -257,7 +257,7 @@ document.getElementById("map-json").addEventListener("click", () => download(`${
   JSON.stringify({ request: lastMap.request, ...lastMap.result }, null, 1), "application/json"));
 
 // The form's defaults, per case (static/data/poincare_defaults.json): chosen so that every
-// trajectory of a case's default map returns to the section within a few seconds (issue 20)
+// trajectory of a case's default map returns to the section within a few seconds
 let DEFAULTS = { form: {}, cases: {} };
 
 function applyDefaults(form, caseId) {

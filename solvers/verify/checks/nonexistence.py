@@ -1,5 +1,5 @@
-"""Non-existence of a smooth invariant measure, proved in exact rational arithmetic
-(issue 18, item 3): the check `no_measure`.
+"""Non-existence of a smooth invariant measure, proved in exact rational arithmetic:
+the check `no_measure`.
 
 The systems it applies to are the zero-potential, gyrostat-free cases whose measure the
 paper doubts (the unbalanced ball on a plane, eq-d*1, and on a sphere, eq-d*-1; the body

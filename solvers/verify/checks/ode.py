@@ -211,7 +211,7 @@ def _good_run(P, y0, V):
     t = np.linspace(0.0, T_RUN, N_SAMPLES)
     # generated=False: the general field, compiled once for every case, as the section runs
     # of the other trajectory checks; the parameters drawn here have other structures than
-    # the examples the warm-up compiled, and their small kernels cost ~15 s of compile each
+    # the examples the warm-up compiled, and their small kernels would each cost a compile
     run = integrate(P.model.model, P.p, y0, t, method="dop853", rtol=RUN_RTOL, atol=RUN_RTOL,
                     generated=False)
     if not run.success or len(run.t) < len(t):

@@ -21,7 +21,7 @@ class Angle(Jet):
         g = None if u.g is None else tuple(-x / _val(s) for x in u.g)
         # d theta / d y_j = -u_j / sin theta: over the denominators of u (Q_u) and of
         # sin theta = P_s / Q_s it is -N_j Q_s / (Q_u P_s), degrees (n_u + d_s, d_u + n_s)
-        # (issue 18: the 1/sin theta was not counted)
+        # (the 1/sin theta counts too)
         n, d = (u.n + s.d, u.d + s.n) if isinstance(s, Jet) else (u.n, u.d)
         a = Angle(0, g, n, d, unknown=True)
         a.c, a.s = u.value(), s

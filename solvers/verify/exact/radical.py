@@ -206,7 +206,7 @@ def _norm(x: Radical):
     Only the zero function may be dropped without losing the degree bound: a coefficient c
     that is zero at the point (value and partials) but not identically is what a checked
     identity c1 - c2 looks like, and dropping it would state the degree of the rational part
-    alone (issue 18: 16 stated where the true degree is 8,693). Such a drop is recorded, so
+    alone, far below the true degree. Such a drop is recorded, so
     the record states no probability (or the strict mode keeps the radical)."""
     if not _zero(x.c):
         return x

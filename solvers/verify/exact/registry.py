@@ -18,7 +18,7 @@ CERTIFIERS = {
     "hamiltonian_field": (S.hamiltonian, False),
 }
 
-# Why the other checks stay numeric (issue 10: say why where no exact test applies).
+# Why the other checks stay numeric: where no exact test applies, the reason is stated.
 NUMERIC = {
     "solves_ode": "a printed solution with trigonometric/hyperbolic or hypergeometric "
                   "functions of the state (eq-**, eq3.21): not algebraic",
