@@ -2,7 +2,7 @@
 
 The system is the case's lean generated field (solvers/kernels/generate.py,
 `heyoka_system(fold=False)`): the same sympy equations as the generated numba field
-(eq1.1-eq1.3, eq3.14-eq3.15), zero terms dropped, the nonzero parameters heyoka runtime
+((1.1)-(1.3), (3.16)-(3.17)), zero terms dropped, the nonzero parameters heyoka runtime
 parameters `par[slot]`, so one compiled integrator serves every parameter value of a case
 *structure*. heyoka compiles it with LLVM (seconds a case, `bench/taylor_compile.py`); heyoka
 itself keeps nothing across processes, so the compiled integrator is kept process-wide per
@@ -31,7 +31,7 @@ able to deliver rtol over the run (rule in its docstring). The states come back 
 
 Singularities are heyoka terminal events (scaled, see EVENT_SCALE) on the generated
 field's own checks: det(E - k J)
-reaching 0 (the body stops fitting the sphere, eq1.3; only inside a cavity, k > 0) and
+reaching 0 (the body stops fitting the sphere, (1.3); only inside a cavity, k > 0) and
 g1^2 + g2^2 reaching FLAT_DISK^2 (the disk falls flat); heyoka's non-finite outcome is the
 third (det I_Q cannot reach 0: I_Q >= I). Each stops the run with the kernels' status
 code and message (layout.STATUS_TEXT): status "singular", the samples before the stop,
@@ -300,10 +300,10 @@ def _compile(model: int, p, precision: str, tol: float) -> Compiled:
     hvars, rhs, pars, checks = heyoka_system(model, p, fold=False, with_checks=True)
     neg = hy.event_direction.negative
     exprs, codes = [], []
-    if "edge" in checks:   # g1^2 + g2^2 reaches FLAT_DISK^2: the disk lies flat (eq2.71)
+    if "edge" in checks:   # g1^2 + g2^2 reaches FLAT_DISK^2: the disk lies flat (2.15)
         exprs.append(hvars[3] * hvars[3] + hvars[4] * hvars[4] - FLAT_DISK ** 2)
         codes.append(L.SING_EDGE)
-    # det(E - k J) reaches 0 (eq1.3): only inside a cavity (k > 0); outside a ball (k < 0)
+    # det(E - k J) reaches 0 (1.3): only inside a cavity (k > 0); outside a ball (k < 0)
     # E - k J >= E, as J = Hess h is positive semidefinite for a convex body
     # A ball (support c |gamma| + (a, gamma)) has the constant radius of curvature c, and a
     # ball that does not fit is refused before any run: no event (it doubled the cost of
@@ -314,7 +314,7 @@ def _compile(model: int, p, precision: str, tol: float) -> Compiled:
         exprs.append(checks["fit"])
         codes.append(L.SING_FIT)
     # det I_Q needs no event: I_Q = I + m (|r|^2 E - r r^T) >= I, positive definite for the
-    # positive moments the cases accept (eq1.6); every event costs time in every step
+    # positive moments the cases accept (1.6); every event costs time in every step
     events = [hy.t_event(EVENT_SCALE * e, direction=neg, fp_type=fp) for e in exprs]
     t0 = time.perf_counter()
     ta = hy.taylor_adaptive(list(zip(hvars, rhs, strict=True)), _cast(fp, [0.0] * len(hvars)),

@@ -1,4 +1,4 @@
-// The 3D point maps page: the paper's Figs ris-*1..ris-*4 (static/data/paper_figures.json,
+// The 3D point maps page: the paper's Figs. 3, 5, 6 and 7 (static/data/paper_figures.json,
 // written by bench/paper_figures.py) and maps computed on demand by POST /api/poincare
 // (?stream=true: NDJSON progress events, then the result).
 "use strict";

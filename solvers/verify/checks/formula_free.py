@@ -1,6 +1,6 @@
 """Formula-free checks: a property of a table cell tested without any printed formula.
 
-Where the paper's formula for a property is misprinted (eq3.10, eq3.11) or
+Where the paper's formula for a property is misprinted ((3.14), (3.15)) or
 missing, the property itself can still be decided from full runs of the equations of motion.
 
 * `linear_integrals_return`: a body of revolution on a sphere with the gyrostat S = (0, 0, s)
@@ -9,7 +9,7 @@ missing, the property itself can still be decided from full runs of the equation
   invariant under rotations about the axis -- A = (M, gamma) and B = M3 span them together
   with the velocity of nutation, which the energy fixes up to sign -- takes the SAME values at
   every crossing of one level gamma3 = c in the same direction. No formula of the paper is
-  used: only the full field (eq1.1, the sphere's Poisson equation) and these two projections.
+  used: only the full field ((1.1), the sphere's Poisson equation) and these two projections.
   The test must be able to fail: the same check runs a control with S moved off the axis
   (S1, S2 != 0), which breaks the symmetry and with it the integrals; the spread at the
   crossings must then be large. If the control does not break, the check cannot tell and

@@ -1,7 +1,7 @@
 """theta = arccos(gamma3) over the rationals: an angle whose value is transcendental but
 whose cosine, sine and derivatives are rational at our points.
 
-Reduced systems of the disk are printed in theta (eq2.8, eq2.9, eq2.21, eq3.4). gamma3 is
+Reduced systems of the disk are printed in theta ((2.16), (2.17), (2.33), (3.5)). gamma3 is
 rational, and so is sin theta = sqrt(1 - gamma3^2) by the Pythagorean choice of gamma
 (points.sphere_point), so sin, cos and d theta = -d gamma3 / sin theta are exact; theta
 itself is never used (a jet with an unknown value refuses to be multiplied).
