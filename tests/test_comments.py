@@ -19,6 +19,8 @@ SUFFIXES = {".py", ".js", ".html", ".css", ".yaml", ".yml", ".md", ".txt", ".tom
 DATE = re.compile(r"\b(?:19|20)\d\d-(?:0[1-9]|1[0-2])-(?:0[1-9]|[12]\d|3[01])\b")
 # "issue 19", "issues 17", "Issue #10", "(issue 18, item 3)": a tracker's number.
 ISSUE = re.compile(r"\bissues? #?\d+", re.IGNORECASE)
+# the same broken over two lines of a comment or docstring: "(issue\n# 17: ...)"
+ISSUE_SPLIT = re.compile(r"\bissues?[ \t]*\n[ \t]*(?:#|//|/?\*)?[ \t]*#?\d+", re.IGNORECASE)
 SHARED = re.compile(r"\.\./shared|shared/seeds")
 
 # Not held to it (yet): the prose of README.md and docs/ still names the folder.
@@ -46,6 +48,10 @@ def _hits(paths, patterns) -> list[str]:
                 m = rx.search(line)
                 if m:
                     out.append(f"{p.relative_to(ROOT)}:{n}: {name} {m.group(0)!r}")
+        if any(rx is ISSUE for _, rx in patterns):
+            for m in ISSUE_SPLIT.finditer(text):
+                n = text.count("\n", 0, m.start()) + 1
+                out.append(f"{p.relative_to(ROOT)}:{n}: issue {m.group(0)!r}")
     return out
 
 
@@ -83,12 +89,14 @@ def test_only_the_tests_refer_to_the_folder_beside_the_clone():
 
 
 def test_the_patterns_flag_what_they_mean_and_nothing_else():
-    flagged = ["(issue 19: no compile)", "Issue 10, item 2.", "issue 18's audit",
+    flagged = ["(issue 19: no compile)", "marks (issue\n# 17: one mark)", "(issue\n17)",
+               "Issue 10, item 2.", "issue 18's audit",
                "issues 17 and 18", "see issue #12", "dropped on 2026-11-27, README",
                "ROLLING_SEED or ../shared/seeds"]
     clean = ["Regular and Chaotic Dynamics 7(2), 177-200 (2002)", "published 2002",
              "the issue's flood", "eq2.17 is printed (2.17)", "tissue 12", "2x3 matrix",
-             "1e-12", "Table 2", "the shared cache"]
-    rx = (DATE, ISSUE, SHARED)
+             "1e-12", "Table 2", "the shared cache",
+             "JSON Schema 2020-12", "the issue\nof the journal"]
+    rx = (DATE, ISSUE, ISSUE_SPLIT, SHARED)
     assert all(any(r.search(s) for r in rx) for s in flagged)
     assert not [s for s in clean if any(r.search(s) for r in rx)]

@@ -26,8 +26,8 @@ Each formula record also gets a `qualifier` that says what kind of verdict it is
   formula-free        a project test of a cell's property that uses no printed formula
   None                nothing to qualify (verified as printed, evidence, unchecked)
 
-Every record, formula and cell, also gets a `mark` from the vocabulary of marks.yaml (issue
-17: one mark per meaning), with `mark_note` (one sentence: the convention, what an
+Every record, formula and cell, also gets a `mark` from the vocabulary of marks.yaml (one
+mark per meaning), with `mark_note` (one sentence: the convention, what an
 inconclusive check found, the misprint) and `errata` (the formula records whose correction
 holds, for "holds after correction"); `verdict` stays as it was for compatibility:
 

@@ -30,7 +30,7 @@ function layout3d(title) {
     legend: { font: { size: 11 }, itemsizing: "constant", ...LEGEND_BELOW },
     modebar: MODEBAR,
     scene: {
-      // five ticks an axis: the -1 of L/G and H/G no longer run into each other at the corner
+      // five ticks an axis: the -1 of L/G and H/G do not run into each other at the corner
       xaxis: { title: { text: "L/G" }, range: [-1, 1], nticks: 5 },
       yaxis: { title: { text: "H/G" }, range: [-1, 1], nticks: 5 },
       zaxis: { title: { text: "l" }, range: [0, 2 * Math.PI], nticks: 5 },

@@ -41,7 +41,7 @@ zero), in particular an open neighbourhood of the example. The drawn parameter s
 claim are proved the same way, each read as exact rationals (for the ellipsoid with B33
 moved by < 1% so that sqrt(gamma.B gamma) is rational at pos*: `at_point`).
 
-Why not an equilibrium with tr(dv/dx) != 0 (the criterion of the issue): with U = 0 the
+Why not an equilibrium with tr(dv/dx) != 0 (the usual criterion): with U = 0 the
 equilibria are the rest points (M = 0, where the linearisation vanishes) and steady
 rotations (M, pos) with dpos/dt = 0; at every steady rotation we located div v = 0 to
 round-off (a finding: tests/test_nonexistence.py pins it), so they decide nothing. The

@@ -171,8 +171,8 @@ def _complex_field(P, y):
 
 def _measure(catalogue, case, claim, negative):
     """The density in the variables the catalogue gives it; where that fails, the other
-    natural reading ((M, gamma) <-> (omega, gamma)) is tried too, as the issue asks for
-    densities whose variables the paper does not state."""
+    natural reading ((M, gamma) <-> (omega, gamma)) is tried too, for densities whose
+    variables the paper does not state."""
     fid = claim.check_args.formula
     V = _formula_vars(catalogue, fid)
     res = measure_residual(catalogue, case, claim, fid)
