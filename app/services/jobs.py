@@ -34,7 +34,7 @@ def _lower_priority() -> None:
 
 def warm() -> int:
     """Import the solvers and load the compiled kernels from numba's cache: one short run
-    of every case, so that no request pays for a first call (about a second on a sphere).
+    of every case, so that no request pays for a first call (a noticeable wait on a sphere).
     Only once the kernels are compiled (the warm-up done): before, `warm_imports`."""
     _lower_priority()
     from solvers.models.cases import registry

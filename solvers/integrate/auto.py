@@ -14,7 +14,7 @@ then a quarter decade apart, the Taylor backend's own grid, to 10^-13.75);
 the cheapest candidate wins and runs as the benchmark ran it: that run's tolerance
 (rtol = atol; compensated summation for dop853 / vern9; the run's precision for taylor).
 No interpolation: a log-log interpolation of the tolerance was tried and missed the error
-by up to 6x (a Taylor method's error is not a smooth power of tol, its order steps with
+several times over (a Taylor method's error is not a smooth power of tol, its order steps with
 it), so auto keeps to tolerances that were measured to deliver. The
 benchmark's run is 1000 time units (100 for the unbalanced ball): a longer run of the
 same case accumulates more error, a shorter one less.
@@ -138,8 +138,8 @@ def choose(case_id: str, model: int, rtol: float, t_end: float, project: bool = 
 # again, aiming at half the request) and checked again, at most MAX_ROUNDS rounds, all runs
 # together within the request's max_steps. Measured: bench/auto_coverage.py.
 # The Runge-Kutta pairs run in double: below RK_MIN_TOL their round-off, not the tolerance,
-# sets the error (bench/results/auto_coverage.txt, first run: vern9 at tol 1e-16 missed 1e-12
-# by up to 40x on the disk, and its check run at the same floor could not tell). A tighter
+# sets the error (bench/auto_coverage.py: vern9 at tol 1e-16 missed 1e-12 by more than an
+# order of magnitude on the disk, and its check run at the same floor could not tell). A tighter
 # run than that goes to the Taylor backend in extended precision where it can run (a
 # generated field, no projection, heyoka installed), as choose() does for levels beyond the
 # front; there the check run may go to TAYLOR_MIN_TOL in long double.
