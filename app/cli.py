@@ -43,7 +43,8 @@ def _write_json(obj) -> None:
 
 TimeoutOpt = Annotated[float | None, typer.Option(
     "--timeout", help="stop after this many seconds of wall time (exit 3; at most a week)")]
-# bounds of the inputs that size the machine's work (issue 21): a week of wall time (a
+# bounds of the inputs that size the machine's work (so that no input ties the machine up
+# without end): a week of wall time (a
 # larger timer overflows the watchdog's wait), 4 worker processes per core, and the seeds
 # the API accepts (app/schemas/poincare.py)
 MAX_TIMEOUT_S = 7 * 86400.0
@@ -185,8 +186,9 @@ def simulate(
                                        "methods: auto (the case's generated field for a "
                                        "plain run, else the general one: the same numbers "
                                        "whatever is compiled), generated (also with "
-                                       "--project, which compiles rk.py on it, ~40 s once "
-                                       "per structure), general (the reference)")] = "auto",
+                                       "--project, which compiles rk.py on it, a long "
+                                       "compile once per structure), general (the "
+                                       "reference)")] = "auto",
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
     timeout: TimeoutOpt = None,
 ):
@@ -486,7 +488,7 @@ def serve(
     s = get_settings()
     host, port = host or s.host, port or s.port
     typer.echo(f"rolling-hierarchy explorer on http://{host}:{port}/  (API docs: /docs)")
-    from app.core.server import run  # uvicorn with the bounds of issue 21
+    from app.core.server import run  # uvicorn with bounds on what a client can hold
     from app.main import STOP_SIGNALS_SEEN
 
     try:
@@ -494,8 +496,8 @@ def serve(
     except KeyboardInterrupt:
         # Ctrl-C, re-raised by uvicorn once it has shut down: the lifespan has killed the
         # workers and the warm-up (app/main.py), nothing is left to clean up, and the
-        # interpreter's own teardown (numba's and LLVM's compiled code) took 2-4 s more
-        # here (issue 19: stop within 1-2 s). SIGTERM ends the process the same way.
+        # interpreter's own teardown (numba's and LLVM's compiled code) takes seconds more,
+        # and the explorer should stop at once. SIGTERM ends the process the same way.
         _interrupted(130)
     if STOP_SIGNALS_SEEN:
         # stopped by a signal whose re-raise did nothing: the process started with SIGINT

@@ -68,7 +68,7 @@ def _validate_examples() -> None:
     """Validate every case's demo run, in a thread after the server answers: validation
     calls compiled functions (the support function, the fit on a sphere) whose first call
     loads them from numba's cache while holding the GIL, or on a fresh machine compiles
-    them (37 s measured at load 10 on 2 cores): the first page must not wait for that."""
+    them (tens of seconds on a loaded machine): the first page must not wait for that."""
     from solvers.models.cases import build, initial_state, registry
 
     for cid, spec in registry().items():

@@ -211,17 +211,14 @@ def label_map(seed_text: str) -> dict[str, str]:
     return out
 
 
-def find_seed() -> Path | None:
-    """ROLLING_SEED, else shared/seeds/<seed> next to the repository or any folder above."""
+def find_seed(path: str | Path | None = None) -> Path | None:
+    """The seed file (the paper's LaTeX): `path` when given, else the setting ROLLING_SEED,
+    else None. The repository holds no default location: the tests that read the paper's
+    text look for it beside the clone (tests/conftest.py)."""
+    if path:
+        return Path(path)
     env = os.environ.get("ROLLING_SEED")
-    if env:
-        return Path(env)
-    here = Path(__file__).resolve().parents[1]
-    for parent in [here, *here.parents]:
-        p = parent / "shared" / "seeds" / SEED_NAME
-        if p.is_file():
-            return p
-    return None
+    return Path(env) if env else None
 
 
 @cache

@@ -1,4 +1,4 @@
-"""The catalogue's conditions in the words a reader of the paper uses (issue 17, item 7).
+"""The catalogue's conditions in the words a reader of the paper uses.
 
 The data keeps compact values (`I: "I1!=I2!=I3!=I1"`, `S: zero`, `potential: any`) that the
 checks read; the pages show each condition as a phrase ("I1 ≠ I2 ≠ I3 ≠ I1", "no gyrostat

@@ -88,7 +88,7 @@ class ClaimKind(StrEnum):
     HAMILTONIAN_AFTER_TIME_CHANGE = "hamiltonian-after-time-change"
     NEGATIVE = "negative"
     IDENTITY = "identity"  # two printed expressions are equal (alternative forms, definitions)
-    STATIONARY = "stationary"  # families of permanent rotations (eq2.29, eq2-27)
+    STATIONARY = "stationary"  # families of permanent rotations ((2.40), (2.42))
 
 
 class CheckName(StrEnum):
@@ -119,7 +119,7 @@ class CheckName(StrEnum):
     NEGATIVE_MEASURE = "negative_measure"  # evidence of no smooth measure (attractors, ...)
     NEGATIVE_INTEGRAL = "negative_integral"  # evidence of no further integral (3D maps)
     NO_MEASURE = "no_measure"  # proof of no smooth measure: exact obstruction at a rest point
-    # formula-free: a property tested without any printed formula (issue 10, item 2)
+    # formula-free: a property tested without any printed formula
     LINEAR_INTEGRALS_RETURN = "linear_integrals_return"  # two integrals linear in M: (M, gamma)
     # and M3 return to the same values at every crossing of one level of gamma3
     # nothing to compute; recorded so the catalogue lists them
@@ -203,15 +203,15 @@ class StateVariables(StrEnum):
 
     M_GAMMA = "(M, gamma)"
     OMEGA_GAMMA = "(omega, gamma)"
-    K_GAMMA = "(K, gamma)"  # K = rho M, eq2b-*3
-    M_R = "(M, r1, r2)"  # flat base on a sphere, eq3.14-eq3.15
+    K_GAMMA = "(K, gamma)"  # K = rho M, (2.27)
+    M_R = "(M, r1, r2)"  # flat base on a sphere, (3.16)-(3.17)
     OMEGA_R = "(omega, r1, r2)"
-    GAMMA3_K1_K2_K3 = "(gamma3, K1, K2, K3)"  # eq2-*1
-    GAMMA3_K1_K2 = "(gamma3, K1, K2)"  # linear systems eq2.5, eq3.3, ...
-    THETA_K1_K2 = "(theta, K1, K2)"  # eq2.8
-    THETA_OMEGA3 = "(theta, omega3)"  # eq2.9, eq3.4
+    GAMMA3_K1_K2_K3 = "(gamma3, K1, K2, K3)"  # (2.6)
+    GAMMA3_K1_K2 = "(gamma3, K1, K2)"  # linear systems (2.13), (3.4), ...
+    THETA_K1_K2 = "(theta, K1, K2)"  # (2.16)
+    THETA_OMEGA3 = "(theta, omega3)"  # (2.17), (3.5)
     X_OMEGA3 = "(x, omega3)"  # hypergeometric form
-    U_K1_K2 = "(u, K1, K2)"  # eq3.19
+    U_K1_K2 = "(u, K1, K2)"  # (3.22)
     U_K1_K2_K3 = "(u, K1, K2, K3)"  # flat base reduced to 4 variables (hamiltonian_sphere.py)
     GAMMA = "(gamma)"  # shape of the body
     GAMMA3 = "(gamma3)"  # meridian of a body of revolution
@@ -255,7 +255,7 @@ class InertiaRestriction(StrEnum):
     AXIAL_I1_NE_I3 = "I1=I2!=I3"
     AXIAL_I3_2I1 = "I1=I2, I3=2*I1"
     SPHERICAL = "I1=I2=I3"
-    ELLIPSOID_FAMILY = "I=mu*E+lambda*m*B"  # eq2.29
+    ELLIPSOID_FAMILY = "I=mu*E+lambda*m*B"  # (2.40)
     FLAT_PLATE = "I3=I1+I2"
     WORONETZ = "I1=I2=I3/2"
 
@@ -291,7 +291,7 @@ class Conditions(Strict):
     potential: Potential | None = None
     S: Gyrostat | None = None
     I: InertiaRestriction | None = None
-    # offset of the centre of mass from the geometric centre (eq-d*1, 2-14*); for the
+    # offset of the centre of mass from the geometric centre ((2.28), (2.18)); for the
     # Borisov-Fedorov ball, "2R" is the paper's a = 2R (a: ball radius, R: fixed sphere)
     a: Literal["0", "nonzero", "any", "2R", "not 2R"] | None = None
     z: Literal["0", "nonzero", "any"] | None = None  # flat base: r = (r1, r2, z)
@@ -382,7 +382,7 @@ class Claim(Strict):
     origin: Origin = Origin.PAPER  # project: `printed` is the assertion, the formula ours
     convention_note: str | None = None
     remarks: str | None = None
-    # verdict layer (issue 10): how this record relates to others of its case
+    # verdict layer: how this record relates to others of its case
     establishes: list[str] = []  # a formula-free test of the property these claims state
     inherits: str | None = None  # fails only through this (failing) claim's formula
     holds_under: str | None = None  # the convention under which the printed form holds

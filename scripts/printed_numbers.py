@@ -1,7 +1,7 @@
 """Write catalogue/printed_numbers.yaml: the printed number of every labelled equation and
 figure of the seed (catalogue/numbering.py; the rule: docs/equation-numbers.md).
 
-    PYTHONPATH=. python scripts/printed_numbers.py [SEED]      # ROLLING_SEED or ../shared/seeds
+    PYTHONPATH=. python scripts/printed_numbers.py [SEED]      # SEED or the setting ROLLING_SEED
 """
 
 from __future__ import annotations
@@ -29,7 +29,7 @@ def build(seed: Path) -> dict:
 
 
 def main(argv: list[str]) -> int:
-    seed = Path(argv[1]) if len(argv) > 1 else find_seed()
+    seed = find_seed(argv[1] if len(argv) > 1 else None)
     if seed is None or not seed.is_file():
         print("error: seed not found (give its path or set ROLLING_SEED)", file=sys.stderr)
         return 2

@@ -6,15 +6,16 @@ The general kernels (one specialization per state dimension and method kind: pro
 sections, scenes, Poincare maps and the reference run on them), and the small kernels of
 every case structure (solvers/kernels/small.py: one compile per *structure*, the set of
 its nonzero parameter slots, and tableau), which `simulate()` runs for a plain run
-(field="auto" or "generated"): dop853's, the default method (WARM_SMALL; ~13 s of CPU
-each); vern9's (~17 s), which only method="auto" at tight tolerances or an explicit
+(field="auto" or "generated"): dop853's, the default method (WARM_SMALL; compile times
+in docs/performance.md); vern9's, which only method="auto" at tight tolerances or an explicit
 vern9 run takes, compiles on its first use (the explorer does it before the request's
 deadline starts: app/api/routes/simulate.py), or here with --all. They are compiled as tasks of
 parallel processes (ROLLING_WARMUP_JOBS, default the number of CPUs, at most 4): the
 general kernels are one task, each structure another; a structure whose small kernels are
 already in the cache is skipped. The big generated integrators (rk.py on a generated field,
-~32 s a structure, and their ensemble twins) are no longer compiled here: no default route
-needs them (`python -m solvers.warmup --generated` still compiles them).
+several times a small kernel's compile per structure, and their ensemble twins) are not
+compiled here: no default route needs them (`python -m solvers.warmup --generated` still
+compiles them).
 """
 
 import os
@@ -49,7 +50,7 @@ def _general() -> None:
         integral_gradient(ENERGY, m.model, m.p, y)
         # a scene (POST /api/scene, the teaching scenes): the scene model's run and the
         # planner's kinematics on the model's read-only parameters, which no run above
-        # calls (issue 19: the first scene after the warm-up compiled them in its request)
+        # calls (without this, the first scene after the warm-up compiled them in its request)
         scene(cid, case.example, case.state, 1e-3, frames=2)
 
 
@@ -188,10 +189,11 @@ def parts(generated: bool = False, only_pending: bool = True) -> list[tuple]:
     structure of _targets(), compiled or not), and the ensembles (generated: the big
     generated integrators instead, whose ensemble twins come after them)."""
     groups = pending(all_structures=not only_pending)
-    # the general kernels first (~60-90 s of CPU), the ensembles next: warm() runs them in
-    # the general part's process right after it (they need its rk_integrate: compiled
-    # beside it they compiled it twice, 114-125 s in all; last in the queue they compiled
-    # alone at the end, 139 s), while the other processes take the structures
+    # the general kernels first (the longest task), the ensembles next: warm() runs them in
+    # the general part's process right after it (they need its rk_integrate: compiled in
+    # another process beside it they compiled it a second time; last in the queue they
+    # compiled alone at the end, the longest wait of all: see docs/performance.md), while
+    # the other processes take the structures
     plan = [(GENERAL, [])]
     if not generated:   # with generated, warm() runs them after all the tasks (their
         plan.append((ENSEMBLES, []))    # generated twins need the generated integrators)
@@ -293,8 +295,8 @@ def _tiny_map(case_id: str, params: dict) -> None:
     (app/services/poincare_jobs.py): besides the ensemble, a map calls the integrals'
     kernels on the model's read-only parameters (integral_series; model_integral, which
     places the starts on the level), each its own numba specialization, which a bare
-    ensemble call does not compile (issue 19: a map after the warm-up compiled them in its
-    request)."""
+    ensemble call does not compile (without this, a map after the warm-up compiled them in
+    its request)."""
     from solvers.errors import InputError
     from solvers.kernels import layout as L
     from solvers.maps.poincare import (

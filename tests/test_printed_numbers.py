@@ -9,13 +9,13 @@ what the generator derives from the seed."""
 from __future__ import annotations
 
 import pytest
+from conftest import find_seed
 
 from catalogue.load import load_catalogue
 from catalogue.numbering import (
     cite,
     cite_latex,
     derive,
-    find_seed,
     label_map,
     printed,
     printed_numbers,

@@ -5,11 +5,12 @@ import re
 
 import pytest
 import yaml
+from conftest import find_seed
 from pydantic import ValidationError
 
 from catalogue.glossary import PATH, Glossary, load_glossary
 from catalogue.load import load_catalogue
-from catalogue.numbering import find_seed, printed
+from catalogue.numbering import printed
 from solvers.models.bodies import STATE_LABELS
 from solvers.models.cases import registry
 

@@ -1,11 +1,11 @@
-"""Compressed answers (issue 17 item 8): a case page moved 5.3 MB, 4.8 MB of it plotly.js
+"""Compressed answers: uncompressed, a case page moved megabytes, most of them plotly.js
 sent as it is.
 
 - Static files (/static/*, /vendor/plotly.min.js) are compressed once, off the event loop,
   and kept in memory and on disk under Settings.cache_dir/compressed (keyed by path, size
   and modification time, so an upgraded plotly is compressed again). Brotli (quality 11)
   when the client accepts it, else gzip (level 9). A file whose Brotli form is not made
-  yet is sent as gzip (made on demand in a thread, about 0.3 s for plotly.js) while the
+  yet is sent as gzip (made on demand in a thread, quick) while the
   Brotli form is made in the background; `precompress` makes them all at start-up.
 - Answers of the routes (HTML pages, JSON) pass through Starlette's GZipMiddleware at
   level 6 (bodies over 128 KiB are compressed in a thread). The Poincaré stream
@@ -34,8 +34,8 @@ COMPRESSIBLE = {".js", ".mjs", ".css", ".json", ".svg", ".html", ".txt", ".map",
                 ".md", ".xml", ".ttf", ".otf", ".eot"}
 MIN_SIZE = 1024
 MAX_SIZE = 32 << 20
-# Brotli quality 11 (the densest): plotly.min.js 1.111 MB against 1.234 MB at 9; made once per
-# file and kept on disk, it costs about 20 s of one core the first time (9: 1.3 s)
+# Brotli quality 11 (the densest: plotly.min.js a tenth smaller than at 9); made once per
+# file and kept on disk, its much longer compression is paid only the first time
 BROTLI_QUALITY = 11
 GZIP_LEVEL = 9
 NOT_COMPRESSED = (*DEFAULT_EXCLUDED_CONTENT_TYPES, "application/x-ndjson",

@@ -55,7 +55,7 @@ class Settings(BaseSettings):
     precompress: bool = True
     # request bodies above this many bytes get 413 before anything parses them
     max_body_bytes: int = Field(1 << 20, ge=1024)
-    # what one client may hold (app.core.server, issue 21): open connections (at most half
+    # what one client may hold (app.core.server): open connections (at most half
     # the file limit), the request line and headers in bytes and in fields, the time a
     # request head may take to arrive and the longest gap inside a body, the idle time of
     # a keep-alive connection, and how long a connection refused mid-body lingers; at the
@@ -67,8 +67,8 @@ class Settings(BaseSettings):
     body_timeout_s: float = Field(10.0, gt=0, le=3600)
     # longer than a client pool's idle expiry (httpx: 5 s): with equal times the server
     # closes a connection while the client sends its next request on it (bench/load.py
-    # --hostile: 4 unanswered at 5 s, 0 at 20 s); at the cap an idle one is evicted
-    # before anything that holds a request
+    # --hostile finds unanswered requests then, none at this value); at the cap an idle one
+    # is evicted before anything that holds a request
     keep_alive_s: float = Field(20.0, gt=0, le=3600)
     linger_s: float = Field(1.0, ge=0, le=60)
     stall_grace_s: float = Field(1.0, gt=0, le=60)

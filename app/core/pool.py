@@ -11,12 +11,12 @@ fresh one for the next job. The event loop never runs the work itself.
 A worker that dies in mid-job (killed from outside, out of memory) gives that job
 `WorkerCrashed` (503 with Retry-After); the death is logged and, as after a deadline,
 the pool starts and warms a new process at once (`refill`), so that the next request does
-not pay a cold start (issue 21: the pool stayed at one process and the next concurrent
-request waited 1.0-1.9 s).
+not pay a cold start (without the refill the pool stayed at one process and the next
+concurrent request waited for a new one).
 
 Idle workers are kept alive: anyio's pool kills a worker idle for 5 minutes, after which the
-next request would pay a cold start (a new process, the compiled kernels loaded again, about
-2 s). The number of processes is bounded by `workers` anyway, so keeping them costs nothing.
+next request would pay a cold start (a new process, the compiled kernels loaded again). The
+number of processes is bounded by `workers` anyway, so keeping them costs nothing.
 
 Stopping (Ctrl-C, SIGTERM: app.main): `kill_all()` kills every worker at once, running or
 idle, and the pool neither replaces them nor starts a job after that (a prepare job may

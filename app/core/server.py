@@ -1,12 +1,11 @@
 """The HTTP server of the explorer: uvicorn with a connection protocol that bounds what a
-client can hold (issue 21). `rolling serve` and app.testing.live_server start it through
+client can hold. `rolling serve` and app.testing.live_server start it through
 `run()`; `python -m app.core.server --port 8000` does the same.
 
 uvicorn's default parser (httptools) accepts headers of any size and keeps a connection
-that sent half a header or half a body open forever (measured: four 50 MB headers answered
-200 with the server 265 MB larger; 500 half-bodies and 200 half-heads still open after
-30 s). Its h11 parser has a size limit (`h11_max_incomplete_event_size`) and the rest is
-added here, on h11's protocol class:
+that sent half a header or half a body open forever (huge headers are answered and held in
+memory; half bodies and half heads stay open). Its h11 parser has a size limit
+(`h11_max_incomplete_event_size`) and the rest is added here, on h11's protocol class:
 
 - the request line and headers: at most `max_header_bytes` (431 and close), at most
   `max_headers` fields (431, app.core.guards.HeaderLimit), within `header_timeout_s` of
@@ -20,17 +19,17 @@ added here, on h11's protocol class:
   oldest first; then an idle keep-alive connection, idle longest first; last a body
   silent for less than the grace. A request read to its end whose answer is being made
   or sent is never evicted; with nothing to evict the new connection is closed at once.
-  The grace, 1 s: the legitimate clients of bench/load.py had their whole head within
-  0.5 s of the connection and no gap inside a body over 0.15 s at load 11-14, while the
-  issue's flood (500 sockets a second against a cap of 1000) leaves its own sockets 2 s
-  to age (bench/results/connection_cap.txt). A flood of stalled heads never pushes out
+  The grace, 1 s: the legitimate clients of bench/load.py have their whole head well
+  within it and no gap inside a body near it even on a loaded machine, while a flood of
+  stalled sockets at half the cap a second leaves its own sockets twice the grace to age
+  (bench/connection_cap.py; docs/performance.md). A flood of stalled heads never pushes out
   an idle client; one of half bodies does only if it brings more than the cap of them
   within the grace time (1000 a second). The candidates are kept in time order per
-  kind, so choosing one costs microseconds, not a scan of every connection (the scan it
-  replaced took 1.6-2.8 ms at the cap of 1000: most of a core at 500 new connections a
-  second). The soft file limit is raised towards the hard one, so that fd_bound does not
-  halve the cap; the app of a request with a small body starts once the body is in
-  (_DeferringLoop), so that the stalled half bodies the cap now admits cost no app run;
+  kind, so choosing one costs little, not a scan of every connection (a scan at the cap,
+  at every new connection of a flood, took most of a core). The soft file limit is raised
+  towards the hard one, so that fd_bound does not halve the cap; the app of a request with
+  a small body starts once the body is in (_DeferringLoop), so that the stalled half
+  bodies the cap now admits cost no app run;
 - closing while the client is still sending (a 413, a 431, a timeout): reading stops,
   the answer is flushed, the write side is shut (the client sees the end of the answer),
   and the socket is closed `linger_s` later. The unread bytes stay in the kernel's
@@ -224,9 +223,8 @@ class _DeferringLoop:
     not all arrived starts once it has (GuardedH11Protocol._release_app), and never if
     the connection goes first. The app reads such a body whole before anything else, so
     only a stalled half body sees a difference: it costs its parse, not a run of the
-    app's middleware. Measured (bench/connection_cap.py --body-cpu, load 10-15, noisy):
-    server CPU per stalled half body at the cap 440-760 us with this, 700-1200 us with
-    the app started at once, 510-570 us for main, which refused them."""
+    app's middleware: less server CPU per stalled half body at the cap than with the app
+    started at once (bench/connection_cap.py --body-cpu; docs/performance.md)."""
 
     def __init__(self, loop: asyncio.AbstractEventLoop, protocol: GuardedH11Protocol):
         self._loop = loop

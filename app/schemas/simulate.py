@@ -39,7 +39,7 @@ EXAMPLE = {"case": "plane/chaplygin-ball",
 
 GAUSS = [m for m in METHODS if m.startswith("gauss")]
 # the rules between fields, in the schema (JSON Schema 2020-12, as OpenAPI 3.1 has it), so
-# that a request valid by the schema is not refused for them (issue 21): `step` goes with
+# that a request valid by the schema is not refused for them: `step` goes with
 # the Gauss methods and only with them; without example = true, params and state are
 # required. Each case's own parameter names are in GET /api/cases/{id} (runnable.params):
 # a wrong name is a 422 that names it.

@@ -34,7 +34,7 @@ def _lower_priority() -> None:
 
 def warm() -> int:
     """Import the solvers and load the compiled kernels from numba's cache: one short run
-    of every case, so that no request pays for a first call (about a second on a sphere).
+    of every case, so that no request pays for a first call (a noticeable wait on a sphere).
     Only once the kernels are compiled (the warm-up done): before, `warm_imports`."""
     _lower_priority()
     from solvers.models.cases import registry
@@ -50,7 +50,7 @@ def warm_imports() -> int:
     kernel_warmup.py): the imports only, no run, so that it compiles nothing the warm-up
     is compiling; the routes prepare what a request needs (kernel_prepare.py)."""
     _lower_priority()
-    import pyarrow  # noqa: F401   (the Arrow answer's first use: ~0.3 s of imports)
+    import pyarrow  # noqa: F401   (the Arrow answer's first use: its imports are slow)
 
     import app.services.payloads  # noqa: F401
     import solvers.models.kinematics
@@ -89,8 +89,8 @@ def _run(req: dict, max_steps: int):
 
 def prepare_kernels(req: dict) -> int:
     """Compile (or load) the kernels a simulate request will run, on a tiny run of the same
-    case, parameters, method and options (issue 19: no request pays a compile inside its
-    deadline; the route runs this without a deadline: app/services/kernel_prepare.py);
+    case, parameters, method and options (no request pays a compile inside its deadline;
+    the route runs this without a deadline: app/services/kernel_prepare.py);
     methods "taylor" and "auto": kernel_prepare.prepare_run. A tiny run that fails (bad input) is
     left to the request itself to report. Returns how many runs completed."""
     _lower_priority()

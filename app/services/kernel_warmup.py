@@ -1,7 +1,7 @@
-"""The kernel warm-up in the background of a running explorer (issue 19: ready in a minute).
+"""The kernel warm-up in the background of a running explorer, so that it is ready soon.
 
 On a fresh machine nothing is compiled: `python -m solvers.warmup` takes minutes on 2 cores.
-The explorer no longer waits for it. The app's lifespan starts it as a subprocess
+The explorer does not wait for it. The app's lifespan starts it as a subprocess
 (`--progress`: one JSON line per finished part, solvers/warmup.py) at a lower CPU priority,
 and serves at once. This module reads those lines:
 
@@ -36,8 +36,8 @@ log = logging.getLogger("rolling.kernels")
 # WORKER_NICE): the event loop answers pages at once while it compiles.
 WARMUP_NICE = 10
 BAR = 20
-# Before any structure has been compiled here: the figure of solvers/kernels/small.py
-# (~13 s of CPU for dop853 at load 10 on 2 cores).
+# Before any structure has been compiled here: a rough figure for a dop853 small kernel's
+# compile (solvers/kernels/small.py; measured in docs/performance.md).
 DEFAULT_ESTIMATE_S = 15.0
 
 

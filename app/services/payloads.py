@@ -1,8 +1,9 @@
 """The bytes of a run: JSON (orjson straight from the numpy arrays), Arrow IPC, and the
-content negotiation between them (issue 12, item 7).
+content negotiation between them.
 
-A 2000-sample run took ~4 ms to integrate and ~100 ms to turn into JSON through Python
-lists (`ndarray.tolist()` then `json.dumps`); orjson writes the arrays themselves.
+Turning a run into JSON through Python lists (`ndarray.tolist()` then `json.dumps`) took
+many times longer than the run itself (docs/performance.md); orjson writes the arrays
+themselves.
 JSON stays strict: a non-finite number is `null`, as before (orjson writes NaN and
 +-inf as null, in arrays and scalars alike).
 

@@ -40,7 +40,7 @@ def claim_label(c: dict) -> str:
 
 def permalink_html(c: dict) -> str:
     """The claim's visible permalink, the same as the script draws (cite.js permalinkHtml):
-    with scripts off a reader can still link to one claim (issue 17, item 5)."""
+    with scripts off a reader can still link to one claim."""
     a = _anchor(c["id"])
     return (f'<a class="permalink" href="#{a}" title="Permalink to this claim" '
             f'aria-label="Permalink to the claim {escape(claim_label(c))}">¶</a>')

@@ -8,7 +8,7 @@
 served. WAL journal: readers never wait for the writer; writes go through one lock per
 process and `busy_timeout` between processes (two servers on one cache directory).
 
-The store heals (issue 21): a file that is not a database, is truncated or fails SQLite's
+The store heals: a file that is not a database, is truncated or fails SQLite's
 quick check is moved aside as `verdicts.sqlite3.corrupt-<time>` (kept for inspection) and
 a new one is built; a file or directory the process may not write is opened read-only
 (`mode`: "read-only"), served, and `save` stores nothing (logged once, clearly); a file

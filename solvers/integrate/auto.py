@@ -14,7 +14,7 @@ then a quarter decade apart, the Taylor backend's own grid, to 10^-13.75);
 the cheapest candidate wins and runs as the benchmark ran it: that run's tolerance
 (rtol = atol; compensated summation for dop853 / vern9; the run's precision for taylor).
 No interpolation: a log-log interpolation of the tolerance was tried and missed the error
-by up to 6x (a Taylor method's error is not a smooth power of tol, its order steps with
+several times over (a Taylor method's error is not a smooth power of tol, its order steps with
 it), so auto keeps to tolerances that were measured to deliver. The
 benchmark's run is 1000 time units (100 for the unbalanced ball): a longer run of the
 same case accumulates more error, a shorter one less.
@@ -127,8 +127,9 @@ def choose(case_id: str, model: int, rtol: float, t_end: float, project: bool = 
 
 
 # --- the estimate of this run's error, and tightening until it meets the request ----------
-# The front is measured on one start per case; on other starts the chosen tolerance can
-# miss the requested error 8-16 times (issue 19). So auto checks its own run: it runs the
+# The front is measured on one start per case; on other starts the chosen tolerance can miss
+# the requested error several times over (bench/auto_coverage.py). So auto checks its own
+# run: it runs the
 # same method once more at a tolerance CHECK_FACTOR tighter and reports the difference of
 # the two (the benchmark's error measure, error_between) as the estimated global error of
 # the run it returns. With error roughly proportional to tol, the check run's own error is
@@ -137,8 +138,8 @@ def choose(case_id: str, model: int, rtol: float, t_end: float, project: bool = 
 # again, aiming at half the request) and checked again, at most MAX_ROUNDS rounds, all runs
 # together within the request's max_steps. Measured: bench/auto_coverage.py.
 # The Runge-Kutta pairs run in double: below RK_MIN_TOL their round-off, not the tolerance,
-# sets the error (bench/results/auto_coverage.txt, first run: vern9 at tol 1e-16 missed 1e-12
-# by up to 40x on the disk, and its check run at the same floor could not tell). A tighter
+# sets the error (bench/auto_coverage.py: vern9 at tol 1e-16 missed 1e-12 by more than an
+# order of magnitude on the disk, and its check run at the same floor could not tell). A tighter
 # run than that goes to the Taylor backend in extended precision where it can run (a
 # generated field, no projection, heyoka installed), as choose() does for levels beyond the
 # front; there the check run may go to TAYLOR_MIN_TOL in long double.
@@ -167,7 +168,7 @@ def _rung(method: str, tol: float, precision: str | None, compensated: bool,
           t_end: float) -> dict:
     """One run auto may make. A Taylor run below its precision's floor widens precision
     (taylor_backend.choose_precision) up to long double (quad only if chosen before: it
-    costs ~100 times more), never narrows it."""
+    costs far more: software arithmetic), never narrows it."""
     if method == wp.TAYLOR:
         from solvers.integrate.taylor_backend import PRECISIONS, choose_precision
 

@@ -1,4 +1,4 @@
-"""Many initial states in one compiled call (issue 12, items 3 and 4).
+"""Many initial states in one compiled call.
 
 `integrate_ensemble(model, p, Y0, t_out, **options)` validates once, packs the options once
 and runs `solvers.kernels.ensemble.rk_ensemble`: `rk_integrate` for every row of Y0 in a
@@ -152,7 +152,7 @@ def _times(t_out, n_traj, n_out):
         # a copy, never the broadcast view: for one trajectory that view is already
         # contiguous, so ascontiguousarray kept it read-only, and a read-only table is
         # another numba specialization of rk_ensemble (a Poincare map, which passes a
-        # table, compiled its own after the warm-up had compiled this one: issue 19)
+        # table, compiled its own after the warm-up had compiled this one)
         T = np.array(np.broadcast_to(T.ravel(), (n_traj, T.size)))
     elif T.ndim != 2 or T.shape[0] != n_traj:
         raise ValueError(f"t_out: one row of output times, or one per trajectory "

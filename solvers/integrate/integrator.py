@@ -55,7 +55,7 @@ class Section:
         return c
 
 
-@dataclass(slots=True)   # not frozen: a frozen init costs ~3 us per call (thin entry)
+@dataclass(slots=True)   # not frozen: a frozen init costs more per call (the thin entry)
 class IntegrationResult:
     t: np.ndarray                 # output times reached (a prefix of t_out)
     y: np.ndarray                 # (len(t), n) states there
@@ -133,7 +133,7 @@ _CACHE_MAX = 1024
 
 def _f64(x) -> np.ndarray:
     """x as a fresh 1-D writable C float64 array (the one type the kernels are compiled
-    for: a read-only or strided input would be another ~12 s numba specialization); a 1-D
+    for: a read-only or strided input would be another numba specialization, compiled anew); a 1-D
     input's copy as it is (ravel only where there is something to flatten)."""
     a = np.array(x, dtype=np.float64)
     return a if a.ndim == 1 else a.ravel()
@@ -143,8 +143,8 @@ def _checked_times(t_out) -> np.ndarray:
     if type(t_out) is list and len(t_out) <= _FEW_TIMES:
         # a short list of Python floats (a run to T: [t0, T]) checked as it stands, before
         # any array exists, in place of the array, its list and the checks below: with p's
-        # bytes as the plan's key, the plain entry ~0.7 us shorter at a short run, right
-        # after other work (bench/entry_ab.py; the runs' spread is larger)
+        # bytes as the plan's key, the plain entry is shorter at a short run
+        # (bench/entry_ab.py; see docs/performance.md)
         prev = -math.inf
         for x in t_out:
             if type(x) is not float or not x > prev:
@@ -156,7 +156,7 @@ def _checked_times(t_out) -> np.ndarray:
     t = _f64(t_out)
     # strictly increasing (a NaN fails the comparison) with finite ends: all finite. A few
     # times (a run to T: [t0, T]) are compared as Python floats: NumPy's slices, ufunc and
-    # reduction cost ~2 us, most of a short run's entry (bench/limit.py --gap)
+    # reduction cost most of a short run's entry (bench/limit.py --gap; docs/performance.md)
     if t.size <= _FEW_TIMES:
         v = t.tolist()
         ok = bool(v) and math.isfinite(v[0]) and math.isfinite(v[-1]) \
@@ -221,8 +221,8 @@ def _option_arrays(iopt: tuple, fopt: tuple):
 # generated integrators: (model, p bytes) -> module, and whether a structure's compiled
 # code is ready (True), or not (the monotonic time until which that answer stands)
 # (rk.py's tableau loops on the generated field: the dop853 and vern9 stages written out
-# took ~1.1-1.2x less time per rhs call on this opt-in path and twice the compile, 66 s
-# against 32 s for the Chaplygin ball; they were dropped on 2026-11-27, README)
+# as straight-line code saved little time per rhs call on this opt-in path for twice the
+# compile, so they are not used: see docs/performance.md)
 _GEN_MODULES: dict = {}
 _GEN_READY: dict = {}
 NOT_READY_RECHECK_S = 30.0
@@ -290,7 +290,8 @@ def _mark_ready(model: int, p, key) -> None:
 
 
 # The tableaux with small kernels (solvers/kernels/small.py): a plain run of a model with a
-# generated field and one of these runs its small kernel, whatever is compiled (issue 19).
+# generated field and one of these runs its small kernel, whatever is compiled (so the same
+# request gives the same bits whatever the cache holds).
 SMALL_METHODS = ("dop853", "vern9")
 SMALL_SECTIONS = "small-sections"     # the kernel's name in a result (a plain run's: "small")
 SMALL_PROJECTION = "small-projection"
@@ -366,7 +367,8 @@ def integrate(model, p, y0, t_out, *, method="dop853", rtol=1e-10, atol=1e-12,
     the same bits whatever the cache holds (the small kernel equals the generated rk.py
     kernel bit for bit: tests/test_small.py). True: the generated field, by the small
     kernel for a plain run, else by rk.py's generated integrator (compiled on first use
-    of a structure, ~32 s); False: the general support-function field, the reference.
+    of a structure, a long compile); False: the general support-function field, the
+    reference.
     The result's `vector_field` says which field ran, `kernel` which compiled form.
     kernel: None (default) the rule above; "rk": rk.py's kernel whatever the run (the
     tests' reference for the small kernels); "small": the small kernel, a run with a
@@ -376,8 +378,7 @@ def integrate(model, p, y0, t_out, *, method="dop853", rtol=1e-10, atol=1e-12,
     integrator's bits, rk.py's own projection, "small-projection"), ValueError for a run
     no small kernel takes.
     A run with a section or a projection takes it only when asked (a Poincare map decides
-    by its size: solvers/maps/poincare.py map_kernel): it compiles once per structure
-    (~10-14 s on 2 cores).
+    by its size: solvers/maps/poincare.py map_kernel): it compiles once per structure.
     """
     if (kernel is None and generated is not False and method in SMALL_METHODS
             and h_fixed is None and section is None and dense_output
@@ -485,11 +486,11 @@ _S_ORDER = (rk.S_ACCEPTED, rk.S_REJECTED, rk.S_RHS, rk.S_SAMPLES, rk.S_CROSSINGS
 if _S_ORDER != (0, 1, 2, 3, 4):     # _result unpacks the counters in this order
     raise ImportError(f"rk.py's stats indices changed: {_S_ORDER}")
 
-# A plain run's entry (issue 19 item 4). The same checks, options and kernel as the general
-# entry's route to the small kernel, with what a plain run does not use left out: no
-# tableau arrays, section or crossing buffers, and the option vectors memoized. A short
-# run (|M| small, T = 200: ~20-50 us in the kernel) paid ~15 us in the general entry, a
-# third of its time (bench/results/limit_gap.txt).
+# A plain run's entry. The same checks, options and kernel as the general entry's route to
+# the small kernel, with what a plain run does not use left out: no tableau arrays, section
+# or crossing buffers, and the option vectors memoized. A short run (|M| small, T = 200)
+# spends little time in the kernel, and the general entry was a large part of its time
+# (bench/limit.py --gap; docs/performance.md).
 _PLAIN_FOPT: dict = {}
 _PLAIN_ATOL: dict = {}
 _NO_CROSSINGS_T = np.empty(0)
@@ -500,7 +501,7 @@ _NO_CROSSINGS_Y: dict = {}    # state dimension -> a read-only (0, n) array
 def _plain_fopt(rtol, control: StepControl) -> np.ndarray:
     """rk.py's packed float options (F_*) of a plain run, memoized (the kernel only reads
     them)."""
-    # keyed on the control's identity (its dataclass hash is Python code, ~1 us), the
+    # keyed on the control's identity (its dataclass hash is Python code, slower), the
     # control kept in the entry so that the identity stays its own
     key = (float(rtol), id(control))
     hit = _PLAIN_FOPT.get(key)
@@ -543,7 +544,7 @@ def _inputs(model, p, y0, t_out):
 # request's values (model, tableau, parameter bytes, rtol, a scalar atol and the step
 # control's identity): the kernel, its option vectors, the state dimension and the empty
 # crossings. One dictionary lookup in place of four (the kernel, fopt, atol, the empty
-# crossings), ~1 us of a short run's entry (bench/limit.py --gap).
+# crossings), a visible part of a short run's entry (bench/limit.py --gap).
 _PLANS: dict = {}
 
 
@@ -603,7 +604,7 @@ def _integrate_small(model, p, y0, t_out, method, rtol, atol, max_steps, compens
 def _result(t_out, Y, y_stop, stats, status, t_stop, wall, method, cross_t, cross_y, used,
             kernel, copy_crossings=True) -> IntegrationResult:
     # the counters as Python ints in one call, the fields positional, Y whole when every
-    # sample was reached: ~3 us less than five int() of NumPy scalars, keywords and views
+    # sample was reached: shorter than five int() of NumPy scalars, keywords and views
     # (a short plain run's entry, bench/limit.py --gap)
     accepted, rejected, calls, m, k = stats.tolist()      # rk.py's S_* order (_S_ORDER)
     if copy_crossings:
@@ -651,7 +652,7 @@ def solve_ivp_reference(model, p, y0, t_out, method="DOP853", rtol=1e-10, atol=1
     """scipy.integrate.solve_ivp on the same problem. `fun(t, y) -> dy/dt` defaults to a
     plain-Python wrapper of the compiled rhs (the lead's independent numpy field can be
     passed instead)."""
-    from scipy.integrate import solve_ivp  # lazily: scipy costs ~0.9 s of start-up
+    from scipy.integrate import solve_ivp  # lazily: scipy's import is slow to start
 
     t_out = np.asarray(t_out, dtype=np.float64)
     p = np.ascontiguousarray(p, dtype=np.float64)

@@ -1,5 +1,6 @@
-"""What a run will compile, from its request alone (issue 19: the explorer compiles it in a
-job without a deadline before the request's deadline starts: app/services/kernel_prepare.py).
+"""What a run will compile, from its request alone (the explorer compiles it in a job
+without a deadline before the request's deadline starts, so that no request pays a compile
+inside its deadline: app/services/kernel_prepare.py).
 
 A run of method "taylor" compiles heyoka's integrator of its case structure for the
 precision and the tol it runs in: taylor_backend.run picks them from rtol and the length
@@ -9,18 +10,18 @@ of the WHOLE run (choose_precision, snap_tol), so a tiny run would compile anoth
 A run of method "auto" (solvers/integrate/auto.py) runs its choice from the front, then a
 check run CHECK_FACTOR tighter (the Taylor backend, possibly in long double, where a
 Runge-Kutta pair cannot be checked), and, when the check finds the first run missed the
-request by at most CHECK_FACTOR / AIM (~16 times; issue 19 measured misses of 8-16 times on
-other starts than the front's), the check run becomes the run and one more check
+request by at most CHECK_FACTOR / AIM (misses of that size were measured on other starts
+than the front's: bench/auto_coverage.py), the check run becomes the run and one more check
 CHECK_FACTOR tighter follows. Those three rungs are fixed by the request; a larger miss,
 or a third round, tightens to a tolerance computed from the measured estimate, which no
 plan knows before the run (a Taylor run compiled then says so: stats "compiled").
 
 The third rung is prepared ahead of need (CHECKS_AHEAD = 2): it costs the first request of
-a structure and level its compile even when the first estimate meets the request. Measured
-(load ~12 on 2 cores): auto at rtol 1e-10 on the Chaplygin ball runs vern9 at 1e-12, checks
-with vern9 at 3.2e-14, and a second round's check is Taylor in double at 1e-15, a 10-12 s
-cold compile (once per machine: the disk cache); at rtol 1e-15 the three rungs are long
-double Taylor integrators of 1-2.5 s each (bench/results/taylor_compile.txt).
+a structure and level its compile even when the first estimate meets the request. For
+example auto at rtol 1e-10 on the Chaplygin ball runs vern9 at 1e-12, checks with vern9 at
+3.2e-14, and a second round's check is Taylor in double at 1e-15, a cold compile of its own
+(once per machine: the disk cache); at rtol 1e-15 the three rungs are long double Taylor
+integrators (their compile times: bench/taylor_compile.py, docs/performance.md).
 
 The Runge-Kutta kernels do not depend on the tolerance (compensated summation is a
 run-time flag of the same kernel), so their rungs name only the method.

@@ -1,7 +1,7 @@
 """The rolling field as a heyoka expression system: Taylor integration and the reference.
 
-An independent implementation of the same equations (CONVENTIONS.md, eq1.1-eq1.3,
-eq3.14-eq3.15) for heyoka's Taylor integrator (Biscani & Izzo, MNRAS 504 (2021) 2614):
+An independent implementation of the same equations (CONVENTIONS.md, (1.1)-(1.3),
+(3.16)-(3.17)) for heyoka's Taylor integrator (Biscani & Izzo, MNRAS 504 (2021) 2614):
 the body enters only through its support function
 
     h(gamma) = sqrt(gamma.B gamma) + c |gamma| + d sqrt(g1^2 + g2^2) + (a, gamma),
@@ -93,7 +93,7 @@ def system(model: int, p) -> tuple[list, list]:
         r1, r2 = hy.make_vars("r1", "r2")
         r = [r1, r2, _num(p[L.FLAT_Z]) + 0.0 * r1]
         w = _solve_sym(_contact_inertia(p, r), M)
-        rd = [w[1] / k, -w[0] / k, 0.0 * r1]                                 # eq3.15
+        rd = [w[1] / k, -w[0] / k, 0.0 * r1]                                 # (3.17)
         Md = [a + m * b for a, b in zip(_cross([M[i] + S[i] for i in range(3)], w),
                                         _cross(rd, _cross(w, r)), strict=True)]
         return [*M, r1, r2], [*Md, rd[0], rd[1]]
@@ -105,13 +105,13 @@ def system(model: int, p) -> tuple[list, list]:
     r = [hy.diff(h, gi) for gi in g]                                 # r = grad h
     J = [[hy.diff(r[i], g[j]) for j in range(3)] for i in range(3)]  # J = Hess h
     Js = (J[0][0], J[0][1], J[0][2], J[1][1], J[1][2], J[2][2])
-    w = _solve_sym(_contact_inertia(p, r), M)                        # eq1.6
+    w = _solve_sym(_contact_inertia(p, r), M)                        # (1.6)
     u = _cross(g, w)
     if k == 0.0:
-        gd = u                                                       # eq1.2
+        gd = u                                                       # (1.2)
     else:
         EkJ = tuple((1.0 if i in (0, 3, 5) else 0.0) - k * Js[i] for i in range(6))
-        gd = _solve_sym(EkJ, u)                                      # eq1.3
+        gd = _solve_sym(EkJ, u)                                      # (1.3)
     rd = [J[i][0] * gd[0] + J[i][1] * gd[1] + J[i][2] * gd[2] for i in range(3)]
     mg, eps = m * _num(p[L.GRAV]), _num(p[L.BRUN])
     Md = [a + m * b for a, b in zip(_cross([M[i] + S[i] for i in range(3)], w),
@@ -152,7 +152,7 @@ def _fp(name: str):
 
 class Taylor:
     """heyoka's adaptive Taylor integrator on the rolling system (built once: the LLVM
-    compilation costs ~0.5-5 s; `compile_s` says how much)."""
+    compilation costs seconds; `compile_s` says how much)."""
 
     def __init__(self, model: int, p, y0, *, tol: float, fp: str = "float64",
                  compact_mode: bool = False):

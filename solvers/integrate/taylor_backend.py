@@ -2,15 +2,15 @@
 
 The system is the case's lean generated field (solvers/kernels/generate.py,
 `heyoka_system(fold=False)`): the same sympy equations as the generated numba field
-(eq1.1-eq1.3, eq3.14-eq3.15), zero terms dropped, the nonzero parameters heyoka runtime
+((1.1)-(1.3), (3.16)-(3.17)), zero terms dropped, the nonzero parameters heyoka runtime
 parameters `par[slot]`, so one compiled integrator serves every parameter value of a case
-*structure*. heyoka compiles it with LLVM (1-10 s a case, `bench/taylor_compile.py`); heyoka
+*structure*. heyoka compiles it with LLVM (seconds a case, `bench/taylor_compile.py`); heyoka
 itself keeps nothing across processes, so the compiled integrator is kept process-wide per
 (structure, precision, tol) in a small LRU (`MAX_CACHED`) and on disk (`disk_dir()`: the
 integrator pickled by heyoka's own serialization, which carries the compiled object code,
-loaded in ~10-30 ms instead of compiled): a run pays the compile once per machine, and the
+loaded in a small fraction of a compile's time): a run pays the compile once per machine, and the
 explorer's prepare job (app/services/kernel_prepare.py) compiles in any worker what the
-request's worker then loads (issue 19: no compile inside a request's deadline).
+request's worker then loads (no compile inside a request's deadline).
 
 Tolerance: heyoka takes one `tol`; it picks the Taylor order ~ -ln(tol)/2 and a step
 that keeps the last terms of the series below tol * max(1, |y|_inf) (Jorba & Zou): an
@@ -20,9 +20,9 @@ The tol is compiled into the integrator (it fixes the order), so it is part of t
 to keep the number of compiles small it is snapped down to a quarter decade
 (`snap_tol`: 1e-10 stays 1e-10, 3e-10 becomes 1.78e-10), never looser than asked.
 
-LLVM code: unrolled for double (the fastest steps: 3x compact mode's on the Chaplygin
-ball, for a 2-7 s compile); compact mode for long double and quad, where it compiles in
-about a second instead of 18-65 s and runs no slower (bench/results/taylor_compile.txt).
+LLVM code: unrolled for double (the fastest steps, several times compact mode's, for a
+compile of seconds); compact mode for long double and quad, where unrolled code compiles
+far longer and runs no faster (bench/taylor_compile.py; docs/performance.md).
 
 Precision: "double" (float64), "long double" (x87 80-bit where numpy's longdouble has a
 64-bit mantissa) and "quad" (real128, in software, where heyoka was built with it);
@@ -31,7 +31,7 @@ able to deliver rtol over the run (rule in its docstring). The states come back 
 
 Singularities are heyoka terminal events (scaled, see EVENT_SCALE) on the generated
 field's own checks: det(E - k J)
-reaching 0 (the body stops fitting the sphere, eq1.3; only inside a cavity, k > 0) and
+reaching 0 (the body stops fitting the sphere, (1.3); only inside a cavity, k > 0) and
 g1^2 + g2^2 reaching FLAT_DISK^2 (the disk falls flat); heyoka's non-finite outcome is the
 third (det I_Q cannot reach 0: I_Q >= I). Each stops the run with the kernels' status
 code and message (layout.STATUS_TEXT): status "singular", the samples before the stop,
@@ -70,10 +70,11 @@ EPS = {"double": float(np.finfo(np.float64).eps), "long double": 2.0 ** -63,
 MAX_CACHED = 8
 # heyoka's step-size control reads the event functions' Taylor coefficients with the
 # state's, on purpose (bluescarni/heyoka PR #124, "Don't ignore the event equations when
-# determining the timestep"). Measured, heyoka 7.13, flat base, T = 1000: a t_event on
-# v0 - 1e10 takes it from 2078 steps and error 4e-10 to 447 steps and a wrong state; det I_Q
-# (size ~10) to 1907 steps and 15x the error. Scaled by 1e-30 the events keep their zeros
-# and leave the control to the state alone (2078 steps again).
+# determining the timestep"). An event function much larger than the state (a t_event on
+# v0 - 1e10; det I_Q, of size ten) takes over the step-size control: far fewer or other steps
+# than the state alone asks for, and a larger error or a wrong state. Scaled by 1e-30 the
+# events keep their zeros and leave the control to the state alone (the same steps as a
+# run without events).
 EVENT_SCALE = 1e-30
 # the precision rule (choose_precision): a tol below FLOOR * eps * sqrt(max(1, t_end)) asks
 # for less than the round-off a run of that length accumulates in that precision
@@ -299,10 +300,10 @@ def _compile(model: int, p, precision: str, tol: float) -> Compiled:
     hvars, rhs, pars, checks = heyoka_system(model, p, fold=False, with_checks=True)
     neg = hy.event_direction.negative
     exprs, codes = [], []
-    if "edge" in checks:   # g1^2 + g2^2 reaches FLAT_DISK^2: the disk lies flat (eq2.71)
+    if "edge" in checks:   # g1^2 + g2^2 reaches FLAT_DISK^2: the disk lies flat (2.15)
         exprs.append(hvars[3] * hvars[3] + hvars[4] * hvars[4] - FLAT_DISK ** 2)
         codes.append(L.SING_EDGE)
-    # det(E - k J) reaches 0 (eq1.3): only inside a cavity (k > 0); outside a ball (k < 0)
+    # det(E - k J) reaches 0 (1.3): only inside a cavity (k > 0); outside a ball (k < 0)
     # E - k J >= E, as J = Hess h is positive semidefinite for a convex body
     # A ball (support c |gamma| + (a, gamma)) has the constant radius of curvature c, and a
     # ball that does not fit is refused before any run: no event (it doubled the cost of
@@ -313,7 +314,7 @@ def _compile(model: int, p, precision: str, tol: float) -> Compiled:
         exprs.append(checks["fit"])
         codes.append(L.SING_FIT)
     # det I_Q needs no event: I_Q = I + m (|r|^2 E - r r^T) >= I, positive definite for the
-    # positive moments the cases accept (eq1.6); every event costs time in every step
+    # positive moments the cases accept (1.6); every event costs time in every step
     events = [hy.t_event(EVENT_SCALE * e, direction=neg, fp_type=fp) for e in exprs]
     t0 = time.perf_counter()
     ta = hy.taylor_adaptive(list(zip(hvars, rhs, strict=True)), _cast(fp, [0.0] * len(hvars)),

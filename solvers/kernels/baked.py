@@ -5,10 +5,9 @@ in with `set_provider(fn)`, fn() -> {name: (A, c, b, E, P, meth)} (integrator.me
 `tableaux_stamp` hashes their exact doubles into the names of the kernels that bake them,
 so a changed coefficient gives another module, never a stale cached one.
 
-(Until 2026-11-27 this module was solvers/kernels/unroll.py and also wrote rk.py's
-tableau loops out as straight-line code for the generated integrators: ~1.1-1.2x less time
-per rhs call on that opt-in path, for twice the compile; see the README, "Generated
-integrators".)"""
+rk.py's tableau loops are not written out as straight-line code for the generated
+integrators: that saved little time per rhs call on that opt-in path for twice the compile
+(docs/performance.md)."""
 
 from __future__ import annotations
 

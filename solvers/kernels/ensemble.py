@@ -1,5 +1,5 @@
 """Many trajectories in one compiled call: `rk_integrate` (rk.py) for every row of Y0 in a
-numba `prange` loop over the trajectories (issue 12, item 4).
+numba `prange` loop over the trajectories.
 
 Each trajectory is one unchanged call of the serial kernel on its own rows of the
 preallocated outputs, so a trajectory of the ensemble takes exactly the steps, and gives

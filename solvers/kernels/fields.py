@@ -4,17 +4,17 @@
 (a module-level global, so numba's on-disk cache works: no function passed as argument).
 
 Full model (CONVENTIONS.md), state (M, gamma):
-  omega = I_Q^-1 M,  I_Q = I + m (r^2 E - r r^T)                          eq1.6
-  (E - k J) dgamma/dt = gamma x omega,  dr/dt = J dgamma/dt                eq1.2 / eq1.3
-  dM/dt = (M + S) x omega + m dr/dt x (omega x r) + M_Q                   eq1.1
+  omega = I_Q^-1 M,  I_Q = I + m (r^2 E - r r^T)                          (1.6)
+  (E - k J) dgamma/dt = gamma x omega,  dr/dt = J dgamma/dt                (1.2) / (1.3)
+  dM/dt = (M + S) x omega + m dr/dt x (omega x r) + M_Q                   (1.1)
   M_Q = gamma x (E - k J^T)^-1 dU/dgamma,  U = m g (r, gamma) + eps/2 (I gamma, gamma)
 Flat base on a sphere, state (M, r1, r2), gamma = e3 fixed, r = (r1, r2, z):
-  0 = gamma x omega + k dr/dt  =>  dr/dt = (omega2, -omega1, 0) / k     eq3.15
-  (the paper prints eq3.15 with k = +1/R for the outside of the sphere, i.e. with gamma
+  0 = gamma x omega + k dr/dt  =>  dr/dt = (omega2, -omega1, 0) / k     (3.17)
+  (the paper prints (3.17) with k = +1/R for the outside of the sphere, i.e. with gamma
   pointing out of the support; under CONVENTIONS.md the outside is k = -1/R0).
 
-The hot path is scalar code on tuples (no array is allocated per call: a call used to
-allocate ~15 small arrays, 95% of its cost); the array-filling functions
+The hot path is scalar code on tuples (no array is allocated per call: allocating
+many small arrays would be most of a call's cost); the array-filling functions
 `full_kinematics`, `flat_kinematics`, `contact_inertia` keep their signatures for the
 Python layer. Everything is complex-safe: the same source runs on complex128 states for
 the complex-step checks.
@@ -63,7 +63,7 @@ def solve3_sym(a00, a01, a02, a11, a12, a22, b0, b1, b2):
 
 @kernel
 def omega_s(p, M0, M1, M2, r0, r1, r2):
-    """omega = I_Q^-1 M (eq1.6), I_Q = I + m (r^2 E - r r^T): (det I_Q, w0, w1, w2)."""
+    """omega = I_Q^-1 M (1.6), I_Q = I + m (r^2 E - r r^T): (det I_Q, w0, w1, w2)."""
     m = p[L.MASS]
     rr = m * (r0 * r0 + r1 * r1 + r2 * r2)
     return solve3_sym(p[L.I1] + rr - m * r0 * r0, -m * r0 * r1, -m * r0 * r2,
@@ -122,7 +122,7 @@ def full_field_wr(p, y, dydt):
         return st, w0, w1, w2, r0, r1, r2
     m = p[L.MASS]
     k = p[L.CURV]
-    # dr/dt = J dgamma/dt (eq1.3)
+    # dr/dt = J dgamma/dt (1.3)
     rd0 = J00 * gd0 + J01 * gd1 + J02 * gd2
     rd1 = J01 * gd0 + J11 * gd1 + J12 * gd2
     rd2 = J02 * gd0 + J12 * gd1 + J22 * gd2
@@ -145,7 +145,7 @@ def full_field_wr(p, y, dydt):
     c0 = w1 * r2 - w2 * r1
     c1 = w2 * r0 - w0 * r2
     c2 = w0 * r1 - w1 * r0
-    # dM/dt = (M + S) x omega + m dr/dt x (omega x r) + gamma x dU   (eq1.1)
+    # dM/dt = (M + S) x omega + m dr/dt x (omega x r) + gamma x dU   (1.1)
     dydt[0] = (a1 * w2 - a2 * w1) + m * (rd1 * c2 - rd2 * c1) + (g1 * dU2 - g2 * dU1)
     dydt[1] = (a2 * w0 - a0 * w2) + m * (rd2 * c0 - rd0 * c2) + (g2 * dU0 - g0 * dU2)
     dydt[2] = (a0 * w1 - a1 * w0) + m * (rd0 * c1 - rd1 * c0) + (g0 * dU1 - g1 * dU0)
@@ -253,7 +253,7 @@ def rhs(model, t, y, p, dydt):
     elif model == L.MODEL_FLAT:
         st = flat_field(p, y, dydt)
     elif model == L.MODEL_REV_REDUCED:
-        st = rev_reduced(p, y, dydt)  # eq2-*1, solvers.kernels.reduced
+        st = rev_reduced(p, y, dydt)  # (2.6), solvers.kernels.reduced
     elif model == L.MODEL_FULL_SCENE or model == L.MODEL_FLAT_SCENE:
         st = scene_field(model, p, y, dydt)
     else:

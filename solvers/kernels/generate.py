@@ -1,7 +1,7 @@
 """Per-case fields, generated: the equations written once in sympy for the case's structure,
 with common subexpressions eliminated, emitted as numba source and as heyoka expressions.
 
-The general field (solvers/kernels/fields.py) evaluates every term of eq1.1-eq1.3 for any
+The general field (solvers/kernels/fields.py) evaluates every term of (1.1)-(1.3) for any
 body: a square root and a full Hessian per support part, a general 3x3 solve, gravity,
 Brun and gyrostat terms whose parameters may be zero. Here the same equations
 (CONVENTIONS.md) are written symbolically for one *structure*: the set of parameter slots
@@ -14,7 +14,7 @@ What is derived here, not copied from fields.py:
   h(gamma)  the support function, only its nonzero parts (support.py's formula);
   r = grad h, J = Hess h by sympy's differentiation; |gamma| = 1 is never assumed
             (the field is also evaluated off the sphere, by the checks' complex steps);
-  omega = I_Q^-1 M (eq1.6), (E - k J) dgamma/dt = gamma x omega (eq1.2/eq1.3) by the
+  omega = I_Q^-1 M (1.6), (E - k J) dgamma/dt = gamma x omega ((1.2)/(1.3)) by the
             adjugate (Cramer), k = 0: dgamma/dt = gamma x omega without a solve;
   a ball    (h = c |gamma| + (a, gamma), no ellipsoid or disk part): J = lam (E - gamma
             gamma^T / |gamma|^2), lam = c / |gamma|, written out instead of differentiated.
@@ -32,8 +32,8 @@ What is derived here, not copied from fields.py:
   dU/dgamma = m g r + eps I gamma: the term m g J^T gamma of fields.py is dropped, since h
             is positively homogeneous of degree 1 and so Hess h . gamma = 0 identically
             (Euler), for any gamma, not only |gamma| = 1;
-  M_Q = gamma x (E - k J)^-1 dU (J symmetric), eq1.1;
-  flat base: r = (r1, r2, z), dr/dt = (omega2, -omega1, 0) / k (eq3.15), eq3.14.
+  M_Q = gamma x (E - k J)^-1 dU (J symmetric), (1.1);
+  flat base: r = (r1, r2, z), dr/dt = (omega2, -omega1, 0) / k (3.17), (3.16).
 The generated code returns the general field's status codes (layout.py) at the same
 places: the flat disk (sin theta < FLAT_DISK), a singular I_Q, det(E - k J) <= 0, and a
 non-finite derivative. tests/test_generated.py compares every case with the general
@@ -179,10 +179,10 @@ def equations(model: int, p, fold: bool = False):
              (P[L.B13], P[L.B23], P[L.B33]))
         h = sp.Integer(0)
         ellipsoid = any(p[s] != 0.0 for s in (L.B11, L.B22, L.B33))
-        if ellipsoid:                                             # ellipsoid, eq2.28
+        if ellipsoid:                                             # ellipsoid, (2.39)
             h += sp.sqrt(sum(B[i][j] * g[i] * g[j] for i in range(3) for j in range(3)))
-        h += P[L.BALL_C] * sp.sqrt(g[0] ** 2 + g[1] ** 2 + g[2] ** 2)   # ball, eq-d*1
-        if p[L.DISK_D] != 0.0:                                    # disk, eq2.71
+        h += P[L.BALL_C] * sp.sqrt(g[0] ** 2 + g[1] ** 2 + g[2] ** 2)   # ball, (2.28)
+        if p[L.DISK_D] != 0.0:                                    # disk, (2.15)
             checks["edge"] = sp.sqrt(g[0] ** 2 + g[1] ** 2)
             h += P[L.DISK_D] * checks["edge"]
         h += P[L.A1] * g[0] + P[L.A2] * g[1] + P[L.A3] * g[2]
@@ -220,8 +220,9 @@ def equations(model: int, p, fold: bool = False):
         # r = lam gamma: m (r^2 E - r r^T) = s (|gamma|^2 E - gamma gamma^T), s = m lam^2 =
         # m c^2 / |gamma|^2, and s |gamma|^2 = m c^2, so I_Q = D - s gamma gamma^T with the
         # constant D = diag(I_i + m c^2): a rank-one change of a diagonal, solved by
-        # Sherman-Morrison instead of a 3x3 adjugate (issue 19: the plane's Chaplygin ball
-        # was 1.46x the scalar limit, whose field has this form). Exact for any gamma
+        # Sherman-Morrison instead of a 3x3 adjugate (with the adjugate the plane's
+        # Chaplygin ball was much slower than the scalar limit, whose field has this form:
+        # bench/limit.py, docs/performance.md). Exact for any gamma
         # (complex ones too), no square root:
         #   omega = u + (m c^2 (gamma, u) / q) v,   u = D^-1 M,   v = D^-1 gamma,
         #   q = sum_i I_i gamma_i v_i = |gamma|^2 (1 - s (gamma, v)),
@@ -249,11 +250,11 @@ def equations(model: int, p, fold: bool = False):
         IQ = (Iv[0] + rr - mr[0] * r[0], -mr[0] * r[1], -mr[0] * r[2],
               Iv[1] + rr - mr[1] * r[1], -mr[1] * r[2], Iv[2] + rr - mr[2] * r[2])
     if IQ is not None:
-        checks["iq"], w = _solve_sym(prog, [prog.let(a) for a in IQ], M)   # eq1.6
+        checks["iq"], w = _solve_sym(prog, [prog.let(a) for a in IQ], M)   # (1.6)
     a = [M[i] + S[i] for i in range(3)]
     if model == L.MODEL_FLAT:
         ik = prog.let(1 / k)
-        rd = [prog.let(w[1] * ik), prog.let(-w[0] * ik), sp.Integer(0)]   # eq3.15
+        rd = [prog.let(w[1] * ik), prog.let(-w[0] * ik), sp.Integer(0)]   # (3.17)
         wr = [prog.let(e) for e in _cross(w, r)]
         Md = [x + m * y for x, y in zip(_cross(a, w), _cross(rd, wr), strict=True)]
         return prog, state, _used(P), [*Md, rd[0], rd[1]], checks
@@ -261,7 +262,7 @@ def equations(model: int, p, fold: bool = False):
     if sphere:
         # (gamma, gamma x omega) = 0 identically (for any gamma, complex ones too), so
         # J u = lam u, and E - k J has the eigenvalues 1 - k lam on the plane normal to
-        # gamma and 1 along it: no solve, det(E - k J) = (1 - k lam)^2 (eq1.2/eq1.3)
+        # gamma and 1 along it: no solve, det(E - k J) = (1 - k lam)^2 ((1.2)/(1.3))
         if k == 0:
             gd = u
         else:
@@ -273,7 +274,7 @@ def equations(model: int, p, fold: bool = False):
         # (m lam^2) dgamma/dt x (omega x gamma), m lam^2 = sg
         rd = [prog.let(sg * gi) for gi in gd] if centred else [prog.let(lam * gi) for gi in gd]
     elif k == 0:
-        gd = u                                                    # eq1.2
+        gd = u                                                    # (1.2)
         if disk:
             # J = (d/s) (P - rho rho^T / s^2) = (d/s^3) t t^T, P = diag(1, 1, 0), t = (-g2,
             # g1, 0) (the edge's tangent: no difference of near-equal vectors), so
@@ -282,7 +283,7 @@ def equations(model: int, p, fold: bool = False):
             rd = [prog.let(-rho[1] * tq), prog.let(rho[0] * tq), sp.Integer(0)]
     else:
         EkJ = tuple(prog.let((1 if i in (0, 3, 5) else 0) - k * Js[i]) for i in range(6))
-        checks["fit"], gd = _solve_sym(prog, EkJ, u, True)             # eq1.3
+        checks["fit"], gd = _solve_sym(prog, EkJ, u, True)             # (1.3)
     if not sphere and not disk:
         rd = [prog.let(J[i][0] * gd[0] + J[i][1] * gd[1] + J[i][2] * gd[2])
               for i in range(3)]
@@ -526,8 +527,7 @@ def generated_integrator(model: int, p, fold: bool = False):
     general `fields.rhs`: the same source (tableau as data, dense output, projection,
     sections, statuses), written next to the generated field with only its `rhs` import
     changed, so every stage call is the lean field, inlined. `rk_integrate` has rk.py's
-    signature. One numba compile per structure (~32 s for the Chaplygin ball on 2 cores),
-    then numba's on-disk cache."""
+    signature. One numba compile per structure (a long one), then numba's on-disk cache."""
     field_mod = generated(model, p, fold)
 
     def source():

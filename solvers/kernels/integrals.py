@@ -12,16 +12,16 @@ from solvers.kernels.fields import flat_kinematics_s, omega_s
 from solvers.kernels.jit import kernel
 from solvers.kernels.support import support_s
 
-ENERGY = 0      # H = (M, omega)/2 + U                                     eq1.7
-GEOM = 1        # gamma^2                                                  eq1.7
-M2 = 2          # M^2                                     eq2.17, eq3.12 (U = 0)
-AREA = 3        # (M, gamma)                                               eq2.17
-UNBALANCED = 4  # M^2 - m r^2 (M, omega)                       eq-d*2, eq-d*-2, eq*
-JELLETT = 5     # (M, r)                                         eq2.15 (K2 * R)
-ROUTH = 6       # omega3 / rho, rho = (I1 I3 + m (r, I r))^-1/2         eq2.15 (K1)
-GYRO_M2 = 7     # (M + S)^2                                       eq2-25 (Markeev)
-GYRO_AREA = 8   # (M + S, gamma)                                  eq2-25 (Markeev)
-BORISOV_FEDOROV = 9  # (M, Abar gamma), Abar = E - 2 (I + D)/tr(I + D), D = m R^2   eq3.13
+ENERGY = 0      # H = (M, omega)/2 + U                                     (1.7)
+GEOM = 1        # gamma^2                                                  (1.7)
+M2 = 2          # M^2                                     (2.24), (3.10) (U = 0)
+AREA = 3        # (M, gamma)                                               (2.24)
+UNBALANCED = 4  # M^2 - m r^2 (M, omega)                       (2.29), (3.13), (3.20)
+JELLETT = 5     # (M, r)                                         (2.20) (K2 * R)
+ROUTH = 6       # omega3 / rho, rho = (I1 I3 + m (r, I r))^-1/2         (2.20) (K1)
+GYRO_M2 = 7     # (M + S)^2                                       (2.38) (Markeev)
+GYRO_AREA = 8   # (M + S, gamma)                                  (2.38) (Markeev)
+BORISOV_FEDOROV = 9  # (M, Abar gamma), Abar = E - 2 (I + D)/tr(I + D), D = m R^2   (3.11)
 N_INTEGRAL_CODES = 10
 
 NAMES = ("energy", "gamma2", "M2", "area", "unbalanced_F", "jellett", "routh",

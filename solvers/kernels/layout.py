@@ -25,9 +25,9 @@ N_PARAMS = 22
 # --- models: which state and which vector field ---------------------------------------
 MODEL_TEST_OSC = 0            # y'' = -y in R^2 (integrator tests)
 MODEL_TEST_KEPLER = 1         # planar Kepler problem in R^4 (integrator tests)
-MODEL_FULL = 2                # state (M, gamma) in R^6, eq1.1-eq1.3 (plane and sphere)
-MODEL_FLAT = 3                # state (M, r1, r2) in R^5, eq3.14-eq3.15 (flat base on a sphere)
-MODEL_REV_REDUCED = 4         # state (gamma3, K1, K2, K3), eq2-*1 (body of revolution, plane)
+MODEL_FULL = 2                # state (M, gamma) in R^6, (1.1)-(1.3) (plane and sphere)
+MODEL_FLAT = 3                # state (M, r1, r2) in R^5, (3.16)-(3.17) (flat base on a sphere)
+MODEL_REV_REDUCED = 4         # state (gamma3, K1, K2, K3), (2.6) (body of revolution, plane)
 # The animation's models: the state above plus the orientation Q (body axes -> space, 9
 # entries row by row) and the centre of mass x_G, integrated along (solvers/models/kinematics.py:
 # dQ/dt = Q [omega]x, dx_G/dt = Q (r x omega)). Only scenes that animate need them.

@@ -1,19 +1,19 @@
-"""Reduced field of a body of revolution, state x = (gamma3, K1, K2, K3)   (eq2-*1).
+"""Reduced field of a body of revolution, state x = (gamma3, K1, K2, K3)   (2.6).
 
-Reduced variables (eq2.4 on the plane, eq3.2-1 on the sphere; K3 as in eq2.4 on both):
+Reduced variables ((2.5) on the plane, (3.3) on the sphere; K3 as in (2.5) on both):
   K1 = (M, r) (1 - k f1) / f1,   K2 = omega3 / rho0,
   K3 = (M2 g1 - M1 g2) / sqrt((1 - g3^2)(I1 + m r^2)),
-  rho0 = (I1 I3 + m (r, I r))^-1/2 = (I1 I3 + m I1 f1^2 (1-g3^2) + m I3 f2^2)^-1/2   (eq2.2)
+  rho0 = (I1 I3 + m (r, I r))^-1/2 = (I1 I3 + m I1 f1^2 (1-g3^2) + m I3 f2^2)^-1/2   (2.3)
 with the profile r = (f1 g1, f1 g2, f2) of `solvers.models.revolution` (phi family of support.py).
 
 Two paths:
-* plane (k = 0): eq2-*1 in closed form, as printed (verified against the full field,
+* plane (k = 0): (2.6) in closed form, as printed (verified against the full field,
   tests/test_reduced.py), with kappa = sqrt((1 - g3^2)/(I1 + m r^2)) (the paper's "k").
-  The gyrostat S = (0, 0, s) terms are the project's extension (eq2-*1 has none):
-  K1' += -s kappa K3, K2' += -m rho f1 f2 s kappa K3 (eq2.20), K3' += s kappa omega1 / sigma
+  The gyrostat S = (0, 0, s) terms are the project's extension ((2.6) has none):
+  K1' += -s kappa K3, K2' += -m rho f1 f2 s kappa K3 (2.32), K3' += s kappa omega1 / sigma
   (the torque S x omega), omega1 in the gauge gamma2 = 0.
 * sphere (k != 0): no closed form is printed ("bulkiness", section 3). The field is the
-  chain rule of the reduced map along the full field eq1.1/eq1.3, written in the gauge
+  chain rule of the reduced map along the full field (1.1)/(1.3), written in the gauge
   gamma = (sigma, 0, g3) with the closed-form curvatures: on the tangent plane
   J = f1 e2 e2^T + f2' t t^T, t = (g3, 0, -sigma) (parallel and meridian radii).
 
@@ -70,7 +70,7 @@ def _dU(p, u, dphi):
 
 @kernel
 def rev_reduced_plane(p, y, dydt):
-    """eq2-*1 (closed form, plane) plus the project's axial-gyrostat terms."""
+    """(2.6) (closed form, plane) plus the project's axial-gyrostat terms."""
     u = y[0]
     K1 = y[1]
     K2 = y[2]
@@ -107,7 +107,7 @@ def rev_reduced_plane(p, y, dydt):
 
 @kernel
 def rev_reduced_general(p, y, dydt):
-    """Chain rule of the reduced map (eq3.2-1, K3 of eq2.4) along the full field, any k."""
+    """Chain rule of the reduced map ((3.3), K3 of (2.5)) along the full field, any k."""
     u = y[0]
     K1 = y[1]
     K2 = y[2]
@@ -179,7 +179,7 @@ def rev_reduced_general(p, y, dydt):
 
 @kernel
 def rev_reduced(p, y, dydt):
-    """dx/dt of MODEL_REV_REDUCED: eq2-*1 on the plane, the chain-rule field on a sphere."""
+    """dx/dt of MODEL_REV_REDUCED: (2.6) on the plane, the chain-rule field on a sphere."""
     if y[0].real * y[0].real >= 1.0:
         return L.SING_REDUCED
     if p[L.CURV] == 0.0:

@@ -1,7 +1,7 @@
 """Nonlinear Poincare sections for `rk.rk_integrate`: value, gradient and acceptance.
 
 Section code SECTION_ANDOYER_G: the angle g of the Andoyer-Deprit variables (the paper's
-eq an-dp) equal to g0, state (M, gamma). Inverting eq an-dp: with
+(2.22)) equal to g0, state (M, gamma). Inverting (2.22): with
     m = M/G, u = (L/G sin l, L/G cos l, -sqrt(1 - (L/G)^2)), v = (cos l, -sin l, 0),
 gamma = (H/G) m + sqrt(1 - (H/G)^2) (cos g u + sin g v), so (G = |M|, rho^2 = M1^2 + M2^2)
     G rho sqrt(1 - (H/G)^2) sin g = Sg = G (gamma1 M2 - gamma2 M1)

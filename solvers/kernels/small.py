@@ -1,9 +1,9 @@
 """Small kernels: one Runge-Kutta run per case structure and tableau, shaped by what a plain
-run needs (issue 19).
+run needs.
 
 The generated integrator (generate.generated_integrator) is the general rk.py kernel
 specialised per structure: sections, projection, Henon steps, compensated sums, clipped
-and fixed steps, all compiled for every structure (~32 s each on 2 cores). A plain run
+and fixed steps, all compiled for every structure (a long compile each). A plain run
 (samples at the output times by dense output, the step budget, the statuses) needs none
 of that. Here that run is written out as straight-line numba code for one structure and
 one tableau:
@@ -27,16 +27,17 @@ does not change its answer.
 
 What it costs: numba's front end, not LLVM (bench/warmup_cost.py passes: of the first call
 of plane/chaplygin-ball's dop853 kernel, type inference, lowering and SSA reconstruction
-took ~6 of 8 s CPU, LLVM ~1 s). So the kernel is written to be cheap to type: the linear
+take most of the CPU time, LLVM a small part; docs/performance.md). So the kernel is written
+to be cheap to type: the linear
 combinations are calls of small shared functions (ops_module: axpyN, linN, dotN, chebN,
 typed once per process and inlined by LLVM) instead of hundreds of binary operators each
 resolved on its own, a singular stage leaves the step at once (every stage's variables
-then dominate their uses: 146 -> ~50 variables for numba's SSA reconstruction to rewrite),
+then dominate their uses: far fewer variables for numba's SSA reconstruction to rewrite),
 and the error and starting-step norms are one expression each. The operations and their
 order are unchanged (bench/small_side.py: the same bits as before, the same time per
-run): 8.1 -> 5.8 s CPU for that first call at load 1.3. The field is typed once and
-inlined by LLVM (forceinline: numba's own inline='always' retyped it at each of its 18
-call sites, twice the compile for the same speed).
+run), and that first call costs less CPU (docs/performance.md). The field is typed once and
+inlined by LLVM (forceinline: numba's own inline='always' retyped it at each of its call
+sites, a much longer compile for the same speed).
 
     module = small_kernel(model, p, "dop853")
     status, t_stop = module.run(p, y0, t_out, max_steps, compensated, fopt, atol, Y,
@@ -53,8 +54,8 @@ the stop after max_cross crossings (CROSSINGS_DONE). s and ds/dt at a step's end
 carried to the next step's start, where rk.py evaluates them again (the same bits). The
 state goes to small work vectors only where that code reads it. The crossing code is
 rk.py's own, on the general field: compiled once for every structure (a structure's
-kernel then compiles in 10-14 s of CPU, against ~22 s with the generated field's copy of
-it), so the steps, rejections, field calls and samples are the generated integrator's bit
+kernel then compiles in much less CPU time than with the generated field's copy of it),
+so the steps, rejections, field calls and samples are the generated integrator's bit
 for bit and the crossings agree with its to round-off (tests/test_generated_integrator.py).
 
     status, t_stop = module.run(p, y0, t_out, max_steps, compensated, fopt, atol, Y,
@@ -199,8 +200,8 @@ def kernel_source(model: int, p, method: str, tab, sections: bool = False,
             # status, not zeros: a caller that sees a status other than OK uses none of
             # them (a stage is rejected, the start stops), so the bits are the same, and the
             # derivatives do not wait on the check (returning zeros made LLVM select each
-            # of them on the sum of all: ~6 ns more per call on the Chaplygin ball, ~15%,
-            # bench/limit.py --gap)
+            # of them on the sum of all, a slower field call: bench/limit.py --gap,
+            # docs/performance.md)
             out += [f"{ind}if {what[0]}:", f"{ind}    return {what[1]}, {ds}"]
         else:
             out += [f"{ind}if {what[0]}:", f"{ind}    return {what[1]}, {zeros}"]

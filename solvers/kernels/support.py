@@ -3,14 +3,14 @@
 h(gamma) = sqrt(gamma.B gamma) + c |gamma| + d sqrt(g1^2 + g2^2) + (a, gamma)
 
 covers the paper's bodies with one formula (CONVENTIONS.md, r(gamma)):
-  ball of radius R, centre at a:       c = R                      r = R gamma + a   (eq-d*1)
-  ellipsoid (r, B^-1 r) = 1:           B                          r = B g/sqrt(Bg.g) (eq2.28)
-  disk of radius R, centre a e3:       d = R, a = (0, 0, a)       eq2.71
-  Routh ball:                          c = R, a = (0, 0, a)       eq2-14*
+  ball of radius R, centre at a:       c = R                      r = R gamma + a   (2.28)
+  ellipsoid (r, B^-1 r) = 1:           B                          r = B g/sqrt(Bg.g) (2.39)
+  disk of radius R, centre a e3:       d = R, a = (0, 0, a)       (2.15)
+  Routh ball:                          c = R, a = (0, 0, a)       (2.18)
   rounded ellipsoid (non-quadric):     B = diag(b1, b1, b3), c > 0  (offset surface)
   rattleback: B = Q diag(b) Q^T turned against the inertia axes, a = offset.
 h is positively homogeneous of degree 1, so J gamma = 0 and (dr, gamma) = 0 for tangent
-dgamma: the Gauss-map condition eq1.4, and for bodies of revolution eq2.1/2.
+dgamma: the Gauss-map condition (1.4), and for bodies of revolution (2.2).
 """
 
 import numpy as np

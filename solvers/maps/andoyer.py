@@ -1,10 +1,10 @@
-"""Andoyer-Deprit variables (L, G, H, l, g) of a state (M, gamma): the paper's eq an-dp.
+"""Andoyer-Deprit variables (L, G, H, l, g) of a state (M, gamma): the paper's (2.22).
 
     M = (sqrt(G^2 - L^2) sin l, sqrt(G^2 - L^2) cos l, L)
     gamma = (H/G) m + sqrt(1 - (H/G)^2) (cos g u + sin g v),   m = M/G,
     u = (L/G sin l, L/G cos l, -sqrt(1 - (L/G)^2)),  v = (cos l, -sin l, 0)
 
-(eq an-dp written with the orthonormal frame (m, u, v); expanding it gives the printed
+((2.22) written with the orthonormal frame (m, u, v); expanding it gives the printed
 components). Inverse: G = |M|, L = M3, H = (M, gamma)/|gamma|, l = atan2(M1, M2),
 g = atan2(Sg, Cg) with Sg, Cg of solvers/kernels/sections.py. The angles are returned
 in [0, 2 pi). g is undefined where M is along the body axis e3 (L/G = +-1) or gamma is
@@ -35,7 +35,7 @@ def unit_frame(lam, l):
 
 
 def from_andoyer(lam, h, l, g, G=1.0):
-    """State(s) (M, gamma) of L/G = lam, H/G = h, l, g and |M| = G (eq an-dp)."""
+    """State(s) (M, gamma) of L/G = lam, H/G = h, l, g and |M| = G (2.22)."""
     m, u, v = unit_frame(lam, l)
     h = np.asarray(h, dtype=float)[..., None]
     g = np.asarray(g, dtype=float)[..., None]

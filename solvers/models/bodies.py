@@ -40,19 +40,19 @@ def rattleback_B(b1, b2, b3, delta):
 
 def fill_body(kind, prm, p):
     """Write body `kind` with named parameters `prm` into p; return the model code."""
-    if kind == "ball":                    # r = R gamma + a (eq-d*1); a = 0: Chaplygin ball
+    if kind == "ball":                    # r = R gamma + a (2.28); a = 0: Chaplygin ball
         _positive(prm, "R")
         p[L.BALL_C] = prm["R"]
         p[L.A1:L.A3 + 1] = [prm.get("a1", 0.0), prm.get("a2", 0.0), prm.get("a3", 0.0)]
-    elif kind == "routh":                 # f1 = R, f2 = R gamma3 + a (eq2-14*)
+    elif kind == "routh":                 # f1 = R, f2 = R gamma3 + a (2.18)
         _positive(prm, "R")
         p[L.BALL_C] = prm["R"]
         p[L.A3] = prm["a"]
-    elif kind == "disk":                  # f1 = R / sqrt(1 - gamma3^2), f2 = a (eq2.71)
+    elif kind == "disk":                  # f1 = R / sqrt(1 - gamma3^2), f2 = a (2.15)
         _positive(prm, "R")
         p[L.DISK_D] = prm["R"]
         p[L.A3] = prm["a"]
-    elif kind == "ellipsoid":             # r = B gamma / sqrt(B gamma.gamma) (eq2.28)
+    elif kind == "ellipsoid":             # r = B gamma / sqrt(B gamma.gamma) (2.39)
         _positive(prm, "b1", "b2", "b3")
         p[L.B11], p[L.B22], p[L.B33] = prm["b1"], prm["b2"], prm["b3"]
     elif kind == "revolution":            # ellipsoid of revolution + ball of radius c
@@ -74,7 +74,7 @@ def fill_body(kind, prm, p):
         _positive(prm, "b1", "b2", "b3")  # axes by delta about e3, centre at a e3 from G
         p[L.B11:L.B23 + 1] = rattleback_B(prm["b1"], prm["b2"], prm["b3"], prm["delta"])
         p[L.A3] = prm["a"]
-    elif kind == "flat":                  # r = (r1, r2, z), gamma = e3 (eq3.14-eq3.15)
+    elif kind == "flat":                  # r = (r1, r2, z), gamma = e3 ((3.16)-(3.17))
         p[L.FLAT_Z] = prm.get("z", 0.0)
         return L.MODEL_FLAT
     else:
@@ -83,7 +83,7 @@ def fill_body(kind, prm, p):
 
 
 def fill_inertia(kind, symmetry, prm, p, allow_any_inertia):
-    """Inertia and mass; the ellipsoid of Table 1 has I = mu E + lambda m B (eq2.29)."""
+    """Inertia and mass; the ellipsoid of Table 1 has I = mu E + lambda m B (2.40)."""
     _positive(prm, "m")
     p[L.MASS] = prm["m"]
     if symmetry == "spherical":

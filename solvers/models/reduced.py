@@ -1,37 +1,37 @@
 """Reduced variables and reduced (linear) systems of a body of revolution, section 2-3.
 
 Maps (complex-safe: the tests differentiate them by complex step along the full field):
-  to_reduced   (M, gamma) -> x = (gamma3, K1, K2, K3):  eq2.4 on the plane, eq3.2-1 on a
-               sphere (K1 = (M, r)(1 - k f1)/f1, K2 = omega3/rho0), K3 as in eq2.4 on both;
+  to_reduced   (M, gamma) -> x = (gamma3, K1, K2, K3):  (2.5) on the plane, (3.3) on a
+               sphere (K1 = (M, r)(1 - k f1)/f1, K2 = omega3/rho0), K3 as in (2.5) on both;
   from_reduced x -> (M, gamma) in the symmetry gauge gamma2 = 0, gamma1 = sqrt(1-gamma3^2);
-  flat_reduced (M, r1, r2) -> (u, K1, K2), u = r1^2 + r2^2 (MODEL_FLAT, eq3.19).
+  flat_reduced (M, r1, r2) -> (u, K1, K2), u = r1^2 + r2^2 (MODEL_FLAT, (3.22)).
 
 Right-hand sides for scipy (`fun(t, y)` after `functools.partial(f, body)`): linear systems
-dK/dgamma3 (eq2.5, eq2.20, eq2.24, eq3.3, eq3.7, eq3.10, eq3.11), dK/dtheta (eq2.8),
+dK/dgamma3 ((2.13), (2.32), (2.34), (3.4), (3.6), (3.14), (3.15)), dK/dtheta (2.16),
 the disk's second-order equations in omega3(theta), state (omega3, d omega3/dtheta)
-(eq2.9, eq2.21, eq3.4), and dK/du of the flat base (eq3.19, eq3.21).
+((2.17), (2.33), (3.5)), and dK/du of the flat base ((3.22), (3.26)).
 
 Sign conventions (CONVENTIONS.md; measured, tests/test_reduced.py):
-* the k of eq3.2-eq3.11 is the signed curvature of CONVENTIONS.md (+1/R0 inside a cavity,
-  -1/R0 outside a ball), i.e. eq1.3/eq1.5 with k = 1/R0, not the "-/+" of eq3.1 read with
-  gamma pointing into the support (that reading makes eq3.3 fail);
-* the R of eq3.19/eq3.21 is 1/k (signed), as in fields.py's eq3.15.
+* the k of (3.2)-(3.15) is the signed curvature of CONVENTIONS.md (+1/R0 inside a cavity,
+  -1/R0 outside a ball), i.e. (1.3)/(1.5) with k = 1/R0, not the "-/+" of (3.1) read with
+  gamma pointing into the support (that reading makes (3.4) fail);
+* the R of (3.22)/(3.26) is 1/k (signed), as in fields.py's (3.17).
 
 Where the printed form fails, `*_printed` keeps it and the unsuffixed function is the
-project's correction (derived from eq2.4/eq3.2-1 and the full field, checked to round-off):
-* eq3.2: rho0 printed with I3 m f2^2 gamma3^2; correct is I3 m f2^2 (= m (r, I r), as the
-  same line says and as eq2.2);
-* eq3.10: the gyrostat term of the K1 equation has the wrong sign (-s ..., cf. eq2.20);
-* eq3.11: the gyrostat term of the K1 equation carries a spurious factor R;
-* eq2.8: K1 and K2 are exchanged with respect to eq2.4;
-* eq2.9, eq2.21: the signs of the ctg(theta) omega3' and of the omega3 terms are flipped
-  (the paper's own hypergeometric form below eq2.9, and eq3.4 at k = 0, agree with the
+project's correction (derived from (2.5)/(3.3) and the full field, checked to round-off):
+* (3.2): rho0 printed with I3 m f2^2 gamma3^2; correct is I3 m f2^2 (= m (r, I r), as the
+  same line says and as (2.3));
+* (3.14): the gyrostat term of the K1 equation has the wrong sign (-s ..., cf. (2.32));
+* (3.15): the gyrostat term of the K1 equation carries a spurious factor R;
+* (2.16): K1 and K2 are exchanged with respect to (2.5);
+* (2.17), (2.33): the signs of the ctg(theta) omega3' and of the omega3 terms are flipped
+  (the paper's own hypergeometric form below (2.17), and (3.5) at k = 0, agree with the
   correction);
-* eq3.4: the second term is ctg(theta)(1 + kR/(sin theta - kR)) d omega3/dtheta (the
+* (3.5): the second term is ctg(theta)(1 + kR/(sin theta - kR)) d omega3/dtheta (the
   derivative is missing in print);
-* eq2.15: the closed form of omega3/rho carries rho^-1 for rho (it is then omega3/rho^3);
-  eq2.15 also exchanges the labels K1, K2 of eq2.4;
-* eq3.19: the sign of the K2 equation (eq3.21 at s = 0 and the integral eq-*** agree with
+* (2.20): the closed form of omega3/rho carries rho^-1 for rho (it is then omega3/rho^3);
+  (2.20) also exchanges the labels K1, K2 of (2.5);
+* (3.22): the sign of the K2 equation ((3.26) at s = 0 and the integral (3.24) agree with
   the correction; the sign of the product of the two coefficients is reading-independent).
 """
 
@@ -67,28 +67,28 @@ def _body(b):
 
 
 def rho0(b, u):
-    """eq2.2 / eq3.2 (corrected): (I1 I3 + m I1 f1^2 (1-u^2) + m I3 f2^2)^-1/2."""
+    """(2.3) / (3.2) (corrected): (I1 I3 + m I1 f1^2 (1-u^2) + m I3 f2^2)^-1/2."""
     f1, f2 = profile(b.prof, u)[:2]
     return 1.0 / np.sqrt(b.I1 * b.I3 + b.m * b.I1 * f1 * f1 * (1 - u * u)
                          + b.m * b.I3 * f2 * f2)
 
 
 def rho0_printed_eq32(b, u):
-    """eq3.2 as printed: ... + m I3 f2^2 gamma3^2 (misprint, see module docstring)."""
+    """(3.2) as printed: ... + m I3 f2^2 gamma3^2 (misprint, see module docstring)."""
     f1, f2 = profile(b.prof, u)[:2]
     return 1.0 / np.sqrt(b.I1 * b.I3 + b.m * b.I1 * f1 * f1 * (1 - u * u)
                          + b.m * b.I3 * f2 * f2 * u * u)
 
 
 def kappa(b, u):
-    """The paper's k of eq2-*1: sqrt((1 - gamma3^2)/(I1 + m r^2)) (reducing multiplier)."""
+    """The paper's k of (2.6): sqrt((1 - gamma3^2)/(I1 + m r^2)) (reducing multiplier)."""
     f1, f2 = profile(b.prof, u)[:2]
     return np.sqrt((1 - u * u) / (b.I1 + b.m * (f1 * f1 * (1 - u * u) + f2 * f2)))
 
 
 # --- maps ------------------------------------------------------------------------------
 def to_reduced(p, y):
-    """(M, gamma) -> (gamma3, K1, K2, K3), eq2.4 (k = 0) / eq3.2-1 (k != 0)."""
+    """(M, gamma) -> (gamma3, K1, K2, K3), (2.5) (k = 0) / (3.3) (k != 0)."""
     b = _body(p)
     pv = np.asarray(p, dtype=float)
     M, g = y[:3], y[3:6]
@@ -121,7 +121,7 @@ def from_reduced(p, x):
 
 def flat_reduced(p, y):
     """MODEL_FLAT (M, r1, r2) -> (u, K1, K2): u = r1^2 + r2^2, K1 = (M, r),
-    K2 = omega3/rho, rho = (I1 I3 + m (r, I r))^-1/2 (eq3.18-eq3.19)."""
+    K2 = omega3/rho, rho = (I1 I3 + m (r, I r))^-1/2 ((3.21)-(3.22))."""
     I1, I3, m, z = p[L.I1], p[L.I3], p[L.MASS], p[L.FLAT_Z]
     M = y[:3]
     r = np.array([y[3], y[4], z + 0.0 * y[3]])
@@ -131,9 +131,9 @@ def flat_reduced(p, y):
     return np.array([r[0] ** 2 + r[1] ** 2, M @ r, w[2] / rho])
 
 
-# --- the reduced field eq2-*1 (plane), its energy and bracket ---------------------------
+# --- the reduced field (2.6) (plane), its energy and bracket ---------------------------
 def _coeffs(b, u):
-    """c1 = I3 rho (1 - (f2/f1)'), c2 = m rho f1 (f1 - f2'): eq2.5 / eq2-*3."""
+    """c1 = I3 rho (1 - (f2/f1)'), c2 = m rho f1 (f1 - f2'): (2.13) / (2.8)."""
     f1, f2, f1p, f2p = profile(b.prof, u)[:4]
     rho = rho0(b, u)
     qp = (f2p * f1 - f2 * f1p) / (f1 * f1)
@@ -141,7 +141,7 @@ def _coeffs(b, u):
 
 
 def energy(b, x, U=None):
-    """eq2-*2 in the expanded form m f2^2/I1 (K1 - K2/(rho m f1 f2))^2 =
+    """(2.7) in the expanded form m f2^2/I1 (K1 - K2/(rho m f1 f2))^2 =
     (m f2 K1 - K2/(rho f1))^2/(m I1) (regular at f2 = 0). U: callable of gamma3."""
     u, K1, K2, K3 = x
     f1, f2 = profile(b.prof, u)[:2]
@@ -152,7 +152,7 @@ def energy(b, x, U=None):
 
 
 def bracket(b, x):
-    """Poisson tensor of eq2-*3 in x = (gamma3, K1, K2, K3) (4x4, antisymmetric)."""
+    """Poisson tensor of (2.8) in x = (gamma3, K1, K2, K3) (4x4, antisymmetric)."""
     c1, c2 = _coeffs(b, x[0])
     P = np.zeros((4, 4), dtype=np.result_type(x[0], x[1], float))
     P[0, 3] = 1.0
@@ -169,7 +169,7 @@ def eq2_5(b, u, K):
 
 
 def eq2_20(b, u, K):
-    """Plane, gyrostat s: eq2.5 with -s and -m rho f1 f2 s."""
+    """Plane, gyrostat s: (2.13) with -s and -m rho f1 f2 s."""
     c1, c2 = _coeffs(b, u)
     f1, f2 = profile(b.prof, u)[:2]
     return np.array([-c1 * K[1] - b.s, -c2 * K[0] - b.m * rho0(b, u) * f1 * f2 * b.s])
@@ -195,10 +195,10 @@ def _sphere_terms(b, u, rho=rho0):
 
 
 def eq3_3(b, u, K, rho=rho0):
-    """Sphere (variables eq3.2-1): (1/rho0) K1' = -[I3(1-(f2/f1)') + k f1 (I1-I3)(1-k f2')] K2,
+    """Sphere (variables (3.3)): (1/rho0) K1' = -[I3(1-(f2/f1)') + k f1 (I1-I3)(1-k f2')] K2,
     ((1 - k f1)/rho0) K2' = -m f1 (f1 - f2' - k f1 f2') K1
                             + m k rho0 I1 f1^2 (g3 f2' + sqrt(1-g3^2)(f1 sqrt(1-g3^2))') K2.
-    `rho` selects rho0 (rho0_printed_eq32 gives the printed reading of eq3.2)."""
+    `rho` selects rho0 (rho0_printed_eq32 gives the printed reading of (3.2))."""
     f1, _, _, r0, A, B, C = _sphere_terms(b, u, rho)
     return np.array([-r0 * A * K[1], r0 / (1 - b.k * f1) * (B * K[1] - C * K[0])])
 
@@ -217,7 +217,7 @@ def eq3_10(b, u, K):
 
 
 def eq3_10_printed(b, u, K):
-    """eq3.10 as printed: +s rho0^-1 (1-k f2')(1-k f1) in the K1 equation."""
+    """(3.14) as printed: +s rho0^-1 (1-k f2')(1-k f1) in the K1 equation."""
     return _eq3_10(b, u, K, +1.0)
 
 
@@ -244,7 +244,7 @@ def eq3_11(b, u, K):
 
 
 def eq3_11_printed(b, u, K):
-    """eq3.11 as printed: K1' has -R (1-kR)^2 s."""
+    """(3.15) as printed: K1' has -R (1-kR)^2 s."""
     return _eq3_11(b, u, K, b.prof.c)
 
 
@@ -255,7 +255,7 @@ def _disk(b):
 
 
 def eq2_8(b, th, K):
-    """Disk on the plane, d(K1, K2)/dtheta in the labels of eq2.4 (corrected):
+    """Disk on the plane, d(K1, K2)/dtheta in the labels of (2.5) (corrected):
     dK1/dth = I3 rho (sin th + a/R cos th) K2, dK2/dth = rho m R^2/sin th K1."""
     R, a, rho = _disk(b)
     return np.array([b.I3 * rho * (np.sin(th) + a / R * np.cos(th)) * K[1],
@@ -263,7 +263,7 @@ def eq2_8(b, th, K):
 
 
 def eq2_8_printed(b, th, K):
-    """eq2.8 as printed (K1 and K2 exchanged with respect to eq2.4)."""
+    """(2.16) as printed (K1 and K2 exchanged with respect to (2.5))."""
     R, a, rho = _disk(b)
     return np.array([rho * b.m * R * R / np.sin(th) * K[1],
                      b.I3 * rho * (np.sin(th) + a / R * np.cos(th)) * K[0]])
@@ -277,13 +277,13 @@ def _eq2_21(b, th, w, sgn):
 
 
 def eq2_21(b, th, w):
-    """Disk, plane, gyrostat (corrected; s = 0 is eq2.9):
+    """Disk, plane, gyrostat (corrected; s = 0 is (2.17)):
     w'' + ctg w' - rho^2 m R I3 (R + a ctg) w = s m R rho^2 (R + a ctg)."""
     return _eq2_21(b, th, w, -1.0)
 
 
 def eq2_21_printed(b, th, w):
-    """eq2.21 as printed: w'' - ctg w' + m R I3 (R + a ctg) rho^2 w = s m R rho^2 (R + a ctg)."""
+    """(2.33) as printed: w'' - ctg w' + m R I3 (R + a ctg) rho^2 w = s m R rho^2 (R + a ctg)."""
     return _eq2_21(b, th, w, +1.0)
 
 
@@ -293,7 +293,7 @@ def eq2_9(b, th, w):
 
 
 def eq2_9_printed(b, th, w):
-    """eq2.9 as printed: w'' - ctg w' + rho^2 m R (R + a ctg) I3 w = 0."""
+    """(2.17) as printed: w'' - ctg w' + rho^2 m R (R + a ctg) I3 w = 0."""
     return _eq2_21(RevBody(b.I1, b.I3, b.m, b.k, 0.0, b.prof), th, w, +1.0)
 
 
@@ -314,7 +314,7 @@ def eq3_4(b, th, w):
 
 
 def eq3_4_printed(b, th, w):
-    """eq3.4 as printed: the ctg(...) term multiplies w, not w'."""
+    """(3.5) as printed: the ctg(...) term multiplies w, not w'."""
     return _eq3_4(b, th, w, False)
 
 
@@ -335,22 +335,22 @@ def eq3_21(p, u, K):
 
 
 def eq3_19(p, u, K):
-    """Flat base without gyrostat (corrected = eq3.21 at s = 0): dK2/du = -m K1/(2R sqrt)."""
+    """Flat base without gyrostat (corrected = (3.26) at s = 0): dK2/du = -m K1/(2R sqrt)."""
     I1, I3, m, z, R = _flat(p)
     sq = np.sqrt(I3 * (I1 + m * z * z) + I1 * m * u)
     return np.array([(I1 - I3) / (2 * R * sq) * K[1], -m / (2 * R * sq) * K[0]])
 
 
 def eq3_19_printed(p, u, K):
-    """eq3.19 as printed: dK2/du = +m K1/(2R sqrt(...))."""
+    """(3.22) as printed: dK2/du = +m K1/(2R sqrt(...))."""
     I1, I3, m, z, R = _flat(p)
     sq = np.sqrt(I3 * (I1 + m * z * z) + I1 * m * u)
     return np.array([(I1 - I3) / (2 * R * sq) * K[1], m / (2 * R * sq) * K[0]])
 
 
-# --- the printed eq2-*1 in Python (the compiled field is solvers.kernels.reduced) -------
+# --- the printed (2.6) in Python (the compiled field is solvers.kernels.reduced) -------
 def field_eq2_star1(b, x, dU=0.0):
-    """eq2-*1 as printed (plane, no gyrostat); dU = dU/dgamma3 at x[0]."""
+    """(2.6) as printed (plane, no gyrostat); dU = dU/dgamma3 at x[0]."""
     u, K1, K2, K3 = x
     f1, f2 = profile(b.prof, u)[:2]
     I1, I3, m = b.I1, b.I3, b.m
@@ -364,10 +364,10 @@ def field_eq2_star1(b, x, dU=0.0):
                      -kap / (I1**2 * f1**2 * s2**2) * k3 - kap * dU])
 
 
-# --- Routh ball on the plane (2-14*): the integrals eq2.15 -------------------------------
+# --- Routh ball on the plane (2.18): the integrals (2.20) -------------------------------
 def routh_integrals(p, y):
-    """(omega3/rho, (M, r)/R) of the Routh ball: eq2.15 with its K1, K2 labels (exchanged
-    with respect to eq2.4). omega3/rho = rho (m R^2 g3 (M,g) + I1 M3 + m a R ((M,g) + M3 g3)
+    """(omega3/rho, (M, r)/R) of the Routh ball: (2.20) with its K1, K2 labels (exchanged
+    with respect to (2.5)). omega3/rho = rho (m R^2 g3 (M,g) + I1 M3 + m a R ((M,g) + M3 g3)
     + m a^2 M3): the printed prefactor rho^-1 is a misprint (see routh_integrals_printed)."""
     b = _body(p)
     R, a = b.prof.c, b.prof.a
@@ -380,7 +380,7 @@ def routh_integrals(p, y):
 
 
 def routh_integrals_printed(p, y):
-    """eq2.15 as printed: K1 = rho^-1 (...), which is omega3/rho^3, not an integral."""
+    """(2.20) as printed: K1 = rho^-1 (...), which is omega3/rho^3, not an integral."""
     b = _body(p)
     I = routh_integrals(p, y)
     rho = rho0(b, y[5])

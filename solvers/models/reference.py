@@ -1,15 +1,15 @@
 """An independent plain-NumPy right-hand side, for the scipy reference backend and tests.
 
 It shares the conventions but not the code of solvers/kernels: r(gamma) is written per
-body from the paper's own formulas (eq-d*1, eq2.28, eq2.71) instead of one support
+body from the paper's own formulas ((2.28), (2.39), (2.15)) instead of one support
 function, J = dr/dgamma is taken by complex step of that r instead of a hand-written
-Hessian, omega comes from eq1.6's explicit inverse (sign corrected, see below)
+Hessian, omega comes from (1.6)'s explicit inverse (sign corrected, see below)
     omega = (A M + m r x (A r x A M)) / (1 - m (r, A r)),  A = (I + m r^2)^-1,
 and linear solves go through numpy.linalg.
 
-Finding: eq1.6 is printed as omega = (A M - m r x (A r x A M)) / (1 - m (r, A r)). Inverting
+Finding: (1.6) is printed as omega = (A M - m r x (A r x A M)) / (1 - m (r, A r)). Inverting
 M = (I + m r^2) omega - m r (r, omega) gives a PLUS sign; the printed minus does not invert
-eq1.6's own first half (tests/test_reference.py::test_eq1_6_printed_sign_is_a_misprint).
+(1.6)'s own first half (tests/test_reference.py::test_eq1_6_printed_sign_is_a_misprint).
 """
 
 import numpy as np
@@ -25,12 +25,12 @@ def _r_of_gamma(p, g):
                   [p[L.B13], p[L.B23], p[L.B33]]])
     if np.any(B):
         Bg = B @ g
-        r = r + Bg / np.sqrt(g @ Bg)                       # eq2.28
+        r = r + Bg / np.sqrt(g @ Bg)                       # (2.39)
     if p[L.BALL_C]:
-        r = r + p[L.BALL_C] * g / np.sqrt(g @ g)           # eq-d*1 (off the sphere: g/|g|)
+        r = r + p[L.BALL_C] * g / np.sqrt(g @ g)           # (2.28) (off the sphere: g/|g|)
     if p[L.DISK_D]:
         s = np.sqrt(g[0] ** 2 + g[1] ** 2)
-        r = r + p[L.DISK_D] * np.array([g[0] / s, g[1] / s, 0.0 * s])   # eq2.71
+        r = r + p[L.DISK_D] * np.array([g[0] / s, g[1] / s, 0.0 * s])   # (2.15)
     return r
 
 
@@ -44,7 +44,7 @@ def _jacobian(p, g, h=1e-30):
 
 
 def omega_eq1_6(p, M, r, sign=+1.0):
-    """eq1.6's explicit inverse; sign=-1 is the form as printed (a misprint)."""
+    """(1.6)'s explicit inverse; sign=-1 is the form as printed (a misprint)."""
     m = p[L.MASS]
     I = np.diag(p[L.I1:L.I3 + 1])
     A = np.linalg.inv(I + m * (r @ r) * np.eye(3))
@@ -60,7 +60,7 @@ def field(model, p, y):
     if model == L.MODEL_FLAT:
         r = np.array([y[3], y[4], p[L.FLAT_Z]])
         w = omega_eq1_6(p, M, r)
-        rd = np.array([w[1], -w[0], 0.0]) / k                           # eq3.15, k < 0
+        rd = np.array([w[1], -w[0], 0.0]) / k                           # (3.17), k < 0
         Md = np.cross(M + S, w) + m * np.cross(rd, np.cross(w, r))
         return np.concatenate([Md, rd[:2]])
     g = y[3:]

@@ -8,15 +8,15 @@ u = gamma3 only:
 
 (B = diag(b1, b1, b3), ball part c, disk part d, centre offset a along the axis).
 Since h is homogeneous of degree one, h(g) = |g| phi(g3/|g|) and r = grad h gives the
-paper's eq2.1, r = (f1 g1, f1 g2, f2), with
+paper's (2.1), r = (f1 g1, f1 g2, f2), with
 
     f1 = phi - u phi',        f2 = u phi + (1 - u^2) phi'.
 
 Then f1' = -u phi'' and f2' = f1 + (1 - u^2) phi'' = f1 - (1 - u^2)/u f1', which is
-eq2.1/2 identically (the meridian condition). Per part:
-  ellipsoid  f1 = b1/sqrt(q), f2 = b3 u/sqrt(q), q = b1 (1-u^2) + b3 u^2    (eq2.28)
-  ball       f1 = c,          f2 = c u                                      (2-14*)
-  disk       f1 = d/sqrt(1-u^2), f2 = 0                                     (eq2.71)
+(2.2) identically (the meridian condition). Per part:
+  ellipsoid  f1 = b1/sqrt(q), f2 = b3 u/sqrt(q), q = b1 (1-u^2) + b3 u^2    (2.39)
+  ball       f1 = c,          f2 = c u                                      (2.18)
+  disk       f1 = d/sqrt(1-u^2), f2 = 0                                     (2.15)
   offset     f1 = 0,          f2 = a
 
 All functions accept real or complex u (complex step), scalars or arrays.
@@ -111,14 +111,14 @@ def f2(prof, u):
 
 
 def meridian_residual(prof, u):
-    """eq2.1/2: f2' - (f1 - (1 - u^2)/u f1'); zero for every profile of the family."""
+    """(2.2): f2' - (f1 - (1 - u^2)/u f1'); zero for every profile of the family."""
     f1_, _, f1p, f2p, _, _ = profile(prof, u)
     u = np.asarray(u)
     return f2p - (f1_ - (1.0 - u * u) / u * f1p)
 
 
 def support_residual(p, gamma):
-    """max |r_kernel(gamma) - (f1 g1, f1 g2, f2)| at a unit gamma (eq2.1 vs support.py)."""
+    """max |r_kernel(gamma) - (f1 g1, f1 g2, f2)| at a unit gamma ((2.1) vs support.py)."""
     prof = Profile.from_params(p)
     g = np.asarray(gamma, dtype=float)
     r = np.empty(3)

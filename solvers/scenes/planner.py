@@ -1,7 +1,7 @@
 """The scene planner: the smallest model that serves what a scene shows, and its run.
 
 Rules (`plan`), from what the scene declares (solvers/scenes/scenes.py):
-  * the reduced system (gamma3, K1, K2, K3) of eq2-*1 (MODEL_REV_REDUCED, 4 equations
+  * the reduced system (gamma3, K1, K2, K3) of (2.6) (MODEL_REV_REDUCED, 4 equations
     instead of 6) when the case has one and the scene shows only time series of reduced
     variables (gamma3 = g3, K1, K2, K3);
   * the full state (M, gamma) otherwise: integral drift, sections, gamma's path and series

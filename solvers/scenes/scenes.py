@@ -13,7 +13,7 @@ A scene names a run (case, parameters, initial state, t_end) and what is shown o
   samples     how many points are plotted (frames of an animation)
   series      variables of the time series: the state labels of the case (M1 M2 M3 g1 g2
               g3, or M1 M2 M3 r1 r2) and, for a body of revolution, disk or Routh ball,
-              the reduced variables gamma3 K1 K2 K3 of eq2.4 / eq3.2-1
+              the reduced variables gamma3 K1 K2 K3 of (2.5) / (3.3)
 
 `solvers.scenes.planner` turns a scene into the smallest model that serves it and runs it.
 Example (YAML, as in a catalogue of presets):
@@ -102,7 +102,7 @@ class Scene(BaseModel):
 
 
 def has_reduced(case_id: str) -> bool:
-    """Does the case have the compiled reduced system (gamma3, K1, K2, K3) of eq2-*1
+    """Does the case have the compiled reduced system (gamma3, K1, K2, K3) of (2.6)
     (body of revolution, disk, Routh ball, on the plane or a sphere)?"""
     case = get_case(case_id)
     return case.symmetry == "axial" and case.body in ("revolution", "disk", "routh")

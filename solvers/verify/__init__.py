@@ -1,4 +1,4 @@
-"""Verification of the catalogue's claims by exact computations (issue: the catalogue)."""
+"""Verification of the catalogue's claims by exact computations."""
 
 
 def verify(case: str | None = None, claim: str | None = None) -> list[dict]:

@@ -1,4 +1,4 @@
-"""Errata and findings (issue 10, items 5 and 6; issue 17, item 4), from the records of
+"""Errata and findings, from the records of
 `verify`: the rows of the reference table /errata.
 
 * errata: every printed formula that fails where the project's correction holds -- the

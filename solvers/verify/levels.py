@@ -1,4 +1,4 @@
-"""Two levels of verdicts (issue 10): printed formulas and the table cells they stand under.
+"""Two levels of verdicts: printed formulas and the table cells they stand under.
 
 A *formula* record judges one printed expression (a claim of the catalogue, or the project's
 correction of it). A *cell* record judges the property a cell of Table 1 or 2 states, with
@@ -26,8 +26,8 @@ Each formula record also gets a `qualifier` that says what kind of verdict it is
   formula-free        a project test of a cell's property that uses no printed formula
   None                nothing to qualify (verified as printed, evidence, unchecked)
 
-Every record, formula and cell, also gets a `mark` from the vocabulary of marks.yaml (issue
-17: one mark per meaning), with `mark_note` (one sentence: the convention, what an
+Every record, formula and cell, also gets a `mark` from the vocabulary of marks.yaml (one
+mark per meaning), with `mark_note` (one sentence: the convention, what an
 inconclusive check found, the misprint) and `errata` (the formula records whose correction
 holds, for "holds after correction"); `verdict` stays as it was for compatibility:
 
@@ -66,7 +66,7 @@ QUALIFIERS = ("convention", "misprint", "inherited", "refuted-conjecture", "refu
               "formula-free")
 
 
-# How strong a record's check is (issue 18, item 5), strongest first: a proof (an exact
+# How strong a record's check is, strongest first: a proof (an exact
 # symbolic identity, an exact witness of a failure, the exact no-measure obstruction), an
 # exact certificate (Schwartz-Zippel at rational points), a pointwise check with exact
 # derivatives in floating point, evidence from trajectories. A cell's `rests_on` lists its

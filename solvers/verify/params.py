@@ -44,7 +44,7 @@ class Params:
 
     @property
     def a(self):
-        """Centre of mass -> geometric centre, a vector (eq-d*1); a[2] is the axial offset."""
+        """Centre of mass -> geometric centre, a vector (2.28); a[2] is the axial offset."""
         return np.array(self.p[L.A1:L.A3 + 1])
 
     @property
@@ -69,7 +69,7 @@ class Params:
 
     @property
     def D(self):
-        """D = m a^2 of eq2.16 (a: the ball's radius)."""
+        """D = m a^2 of (2.23) (a: the ball's radius)."""
         return self.m * self.R ** 2
 
     @property

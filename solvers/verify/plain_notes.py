@@ -1,5 +1,5 @@
-"""What a reader is told beside an "evidence for", "evidence against" or "inconclusive" mark
-(issue 17): plain words built from the check's own numbers (the record's `evidence` and
+"""What a reader is told beside an "evidence for", "evidence against" or "inconclusive" mark:
+plain words built from the check's own numbers (the record's `evidence` and
 `residual`), not the checking code's `message`, which names statistics and programs
 (s3/s1, div(ellipsoid_density v), no_measure). The message stays in the record: the JSON
 API and the case page's Details toggle show it unchanged.

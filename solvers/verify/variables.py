@@ -16,7 +16,7 @@ SAME_DIMENSION = {"(M, gamma)", "(omega, gamma)", "(K, gamma)", "(M, r1, r2)",
 
 
 def chaplygin_rho(P, gamma):
-    """eq2.17: (1 - D (gamma, A gamma))^-1/2, A = (I + D E)^-1, D = m R^2."""
+    """(2.24): (1 - D (gamma, A gamma))^-1/2, A = (I + D E)^-1, D = m R^2."""
     A = 1.0 / (P.I + P.D)
     return 1.0 / np.sqrt(1.0 - P.D * (gamma @ (A * gamma)))
 

@@ -69,5 +69,5 @@ async def plotly(request: Request) -> Response:
     if not path.is_file():
         raise HTTPException(404, "plotly.js not found in the plotly package")
     plain = FileResponse(path, media_type="text/javascript", headers=_ONE_DAY)
-    # 4.8 MB as it is, about 1.2 MB as Brotli (app.core.compress)
+    # megabytes as it is, a fraction of that as Brotli (app.core.compress)
     return await request.app.state.assets.response(path, request.headers, plain)

@@ -1,6 +1,6 @@
 """POST /api/poincare: the 3D point map of a case (as `rolling poincare`), and the page
-/poincare that draws it and the paper's Figs ris-*1..ris-*4 (app/static/data/paper_figures.json,
-written by bench/paper_figures.py).
+/poincare that draws it and the paper's Figs. 3, 5, 6 and 7
+(app/static/data/paper_figures.json, written by bench/paper_figures.py).
 
 The starts are resolved (validated, sampled with the seed) in a thread; then each
 trajectory is one job of the worker pool (app/services/poincare_jobs.py), `workers` jobs
@@ -146,7 +146,7 @@ async def _pilot(pool, settings, starts, job, points, end) -> float:
 async def poincare(req: PoincareRequest, request: Request, pool: PoolDep,
                    settings: SettingsDep,
                    stream: bool = Query(False, description="NDJSON progress events")):
-    """The 3D point map of eq an-dp: `trajectories` starts on the level E = energy and the
+    """The 3D point map of (2.22): `trajectories` starts on the level E = energy and the
     section g = g0, `points` crossings each, as (L/G, H/G, l)."""
     header, job, starts = await anyio.to_thread.run_sync(resolve, req, settings.max_steps,
                                                          limiter=_threads)
@@ -157,7 +157,7 @@ async def poincare(req: PoincareRequest, request: Request, pool: PoolDep,
 
     async def prepare():
         # the map's kernels compile (first use) in a job without a deadline; the map's
-        # one deadline starts after it (issue 19: app/services/kernel_prepare.py)
+        # one deadline starts after it (app/services/kernel_prepare.py)
         await kernel_prepare.prepare(pool, kernels, settings.kernels_warm, keys,
                                      poincare_jobs.prepare, job, starts[0])
         return anyio.current_time() + settings.deadline_s

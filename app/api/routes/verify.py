@@ -33,7 +33,7 @@ async def verify_case(case_id: str, request: Request, pool: PoolDep, settings: S
     except KeyError:
         raise HTTPException(404, f"unknown case {case_id!r}; GET /api/cases lists them") from None
     # the checks run the case's kernels: while the background warm-up compiles them,
-    # wait for it (its compile is outside the check's deadline: issue 19)
+    # wait for it (its compile is outside the check's deadline)
     await cancel_on_disconnect(request, request.app.state.kernels.wait_done)
     t0 = time.perf_counter()
     try:

@@ -1,4 +1,4 @@
-// Cite and link (issue 17, item 5), as DLMF and LMFDB do: BibTeX for the paper (with its
+// Cite and link, as DLMF and LMFDB do: BibTeX for the paper (with its
 // DOI) and for this explorer (author, year, version, the page's URL and the reader's access
 // date), a visible permalink (¶) on every claim, a Cite box on every claim and case page,
 // and a box saying what was checked on the case and how, and what was not.

@@ -1,4 +1,4 @@
-// /errata as a reference table (issue 17, item 4): one row per misprint with its own address
+// /errata as a reference table: one row per misprint with its own address
 // (#e-<claim>), the display that is corrected, what changes, both residuals; the row opens
 // (<details>) on the printed and the corrected form typeset, the exact check and the command
 // that reproduces it. An index by section; conventions and findings in tables of their own.

@@ -1,4 +1,4 @@
-// Marks (issue 17): one per meaning, from the vocabulary the server defines once
+// Marks: one per meaning, from the vocabulary the server defines once
 // (solvers/verify/marks.yaml, GET /api/marks), drawn the same way in the tables, on the
 // case pages and on /how-we-check. Each mark is a shape and a word, so it reads without
 // colour; what goes with it (the convention, the misprint and its erratum, what an

@@ -18,7 +18,7 @@ export function runQuery(req) {
 
 /** Once the page has drawn what a permalink asked for (document.body.dataset[flag] set,
  * as case.js sets `run` and poincare.js sets `map`), scroll to it: a link to a run opens at
- * its result, not at the top of the page 1,800 px above (issue 20). */
+ * its result, not at the top of the page far above it (on a phone, screens above). */
 export function scrollToResultWhenDone(flag, id) {
   const go = () => {
     const el = document.getElementById(id);

@@ -1,5 +1,5 @@
 // The home page's tables keep their column headings in view while the page scrolls
-// (issue 20, a phone). A table inside an overflow-x wrapper cannot use position: sticky
+// (on a phone too). A table inside an overflow-x wrapper cannot use position: sticky
 // (the wrapper, not the page, is then its scroll container), so a copy of the heading row
 // is pinned under the site's header while the table passes under it: same column widths,
 // moved sideways with the wrapper's own scroll. The copy is aria-hidden and out of the tab

@@ -1,4 +1,4 @@
-// The 3D point maps page: the paper's Figs ris-*1..ris-*4 (static/data/paper_figures.json,
+// The 3D point maps page: the paper's Figs. 3, 5, 6 and 7 (static/data/paper_figures.json,
 // written by bench/paper_figures.py) and maps computed on demand by POST /api/poincare
 // (?stream=true: NDJSON progress events, then the result).
 "use strict";
@@ -30,7 +30,7 @@ function layout3d(title) {
     legend: { font: { size: 11 }, itemsizing: "constant", ...LEGEND_BELOW },
     modebar: MODEBAR,
     scene: {
-      // five ticks an axis: the -1 of L/G and H/G no longer run into each other at the corner
+      // five ticks an axis: the -1 of L/G and H/G do not run into each other at the corner
       xaxis: { title: { text: "L/G" }, range: [-1, 1], nticks: 5 },
       yaxis: { title: { text: "H/G" }, range: [-1, 1], nticks: 5 },
       zaxis: { title: { text: "l" }, range: [0, 2 * Math.PI], nticks: 5 },
@@ -82,9 +82,9 @@ async function figures() {
 }
 
 // A figure is drawn when it comes near the screen, not on load: each is a 3D scatter of
-// ~800 KB of points, and drawing the four one after the other kept a browser without a
-// GPU (WebGL in software) busy ~5 s after the page had loaded, for figures below the fold
-// (issue 19: the same page opened by a dozen browser tests). Printing draws them all.
+// many points, and drawing the four one after the other kept a browser without a GPU
+// (WebGL in software) busy for seconds after the page had loaded, for figures below the
+// fold (and the browser tests open the same page many times). Printing draws them all.
 const PENDING = new Map();    // plot element -> its figure, not drawn yet
 const NEAR = "IntersectionObserver" in window ? new IntersectionObserver((entries) => {
   for (const e of entries) if (e.isIntersecting) draw(e.target);
@@ -257,7 +257,7 @@ document.getElementById("map-json").addEventListener("click", () => download(`${
   JSON.stringify({ request: lastMap.request, ...lastMap.result }, null, 1), "application/json"));
 
 // The form's defaults, per case (static/data/poincare_defaults.json): chosen so that every
-// trajectory of a case's default map returns to the section within a few seconds (issue 20)
+// trajectory of a case's default map returns to the section within a few seconds
 let DEFAULTS = { form: {}, cases: {} };
 
 function applyDefaults(form, caseId) {

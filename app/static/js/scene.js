@@ -74,7 +74,7 @@ export class Scene {
     this.playing = false;
     this.timer = null;
     // a playing scene draws only while it can be seen: not in a hidden tab, nor scrolled
-    // out of view (without a GPU a frame costs the browser 80-130 ms of CPU: bench/
+    // out of view (without a GPU each frame costs the browser much CPU: bench/
     // results/scene_frame_cost.txt); it goes on from the same frame when seen again
     this.inView = true;
     this.seen = typeof IntersectionObserver === "function" ? new IntersectionObserver(
@@ -148,7 +148,7 @@ export class Scene {
   bounds() {
     if (this.follow) {
       // the floor just wider than the body's reach, the box just taller than its top:
-      // no empty space above a small body (issue 20)
+      // no empty space above a small body
       return [[-this.W, -this.W, -0.02 * this.W], [this.W, this.W, 1.04 * this.top]];
     }
     // on a sphere: where the body and its axes go over the run, the contact path and the
@@ -238,7 +238,7 @@ export class Scene {
     const span = hi.map((h, i) => h - lo[i]);
     const m = Math.max(...span);
     // no axis box, ticks or axis titles: the floor (or the support) is the scale, and
-    // WebGL text is most of the first draw's cost in a browser without a GPU (issue 20)
+    // WebGL text is most of the first draw's cost in a browser without a GPU
     const ax = (i) => ({ range: [lo[i], hi[i]], visible: false });
     // close enough that the box (fitted to the body above) fills the view
     const eye = this.follow ? { x: 0.85, y: -1.0, z: 0.56 } : { x: 0.92, y: -1.06, z: 0.6 };

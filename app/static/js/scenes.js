@@ -28,7 +28,7 @@ let playToken = 0;
 
 // The claim first, from the data its check measured (GET /api/scenes/{id}/checks/{k}),
 // one plot per check as each arrives; the 3D animation's data fetched beside them and
-// drawn after the first plot, so the first plot never waits for the 3D (issue 20).
+// drawn after the first plot, so the first plot never waits for the 3D.
 async function play(id) {
   const s = presets.find((p) => p.id === id);
   if (!s) return;
@@ -106,7 +106,7 @@ async function animate(data, live, id) {
     const d = await data;
     if (!live()) return;
     const note = (d.status !== "ok" ? `${d.status}: ${d.message}. ` : "") + `${d.t.length} frames.`;
-    // the second stage: the run is here, WebGL draws the body (about 1 s without a GPU)
+    // the second stage: the run is here, WebGL draws the body (slow without a GPU)
     setStatus(`Drawing the 3D view (${d.t.length} frames computed)…`);
     current = new Scene($("scene-plot"), d, {
       onFrame: (f, t) => {

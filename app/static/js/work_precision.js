@@ -93,7 +93,7 @@ async function main() {
         : "error: max relative deviation from the reference (dimensionless)"),
       yaxis: { ...logAxis("wall time (ms)"), dtick: undefined },
       // the legend under the x-axis title, the toolbar upright at the right edge: the
-      // legend no longer covers the x-axis title (tests/e2e/test_plot_layout_browser.py)
+      // legend does not cover the x-axis title (tests/e2e/test_plot_layout_browser.py)
       margin: { t: 10, r: 34 }, legend: LEGEND_BELOW, modebar: MODEBAR,
     }, { responsive: true, displaylogo: false });
   }

@@ -1,6 +1,6 @@
 """Formula-free checks: a property of a table cell tested without any printed formula.
 
-Issue 10, item 2. Where the paper's formula for a property is misprinted (eq3.10, eq3.11) or
+Where the paper's formula for a property is misprinted ((3.14), (3.15)) or
 missing, the property itself can still be decided from full runs of the equations of motion.
 
 * `linear_integrals_return`: a body of revolution on a sphere with the gyrostat S = (0, 0, s)
@@ -9,7 +9,7 @@ missing, the property itself can still be decided from full runs of the equation
   invariant under rotations about the axis -- A = (M, gamma) and B = M3 span them together
   with the velocity of nutation, which the energy fixes up to sign -- takes the SAME values at
   every crossing of one level gamma3 = c in the same direction. No formula of the paper is
-  used: only the full field (eq1.1, the sphere's Poisson equation) and these two projections.
+  used: only the full field ((1.1), the sphere's Poisson equation) and these two projections.
   The test must be able to fail: the same check runs a control with S moved off the axis
   (S1, S2 != 0), which breaks the symmetry and with it the integrals; the spread at the
   crossings must then be large. If the control does not break, the check cannot tell and
@@ -41,7 +41,7 @@ def crossing_spread(P, p, y0, T=T_LONG):
     level of gamma3 along a run of the full field with parameters p from y0; None if the
     run is singular, comes near a pole or crosses too rarely."""
     # generated=False: the general field, as the section run below (a drawn structure's
-    # small kernel would cost ~15 s of compile: solvers/verify/checks/ode.py _good_run)
+    # small kernel would cost a compile of its own: solvers/verify/checks/ode.py _good_run)
     pre = integrate(P.model.model, p, y0, np.linspace(0.0, T, N_PRE), rtol=1e-12, atol=1e-12,
                     generated=False)
     if not pre.success or len(pre.t) < N_PRE or np.max(np.abs(pre.y[:, 5])) > POLE:

@@ -17,7 +17,7 @@ first integral exists, with the numbers in Outcome.evidence.
       connected) and the negative claim fails.
   (2) Candidate densities by the pointwise Liouville residual: the one check_args.formula
       names (through checks/pointwise.measure_residual) and the ones in CANDIDATES.
-  (3) Attracting sets (Figs ris-*2, ris-*3), only where (1) finds an obstruction and the
+  (3) Attracting sets (Fig. 5, Fig. 6), only where (1) finds an obstruction and the
       energy levels are compact: the spread of an orbit's points on the section
       gamma1 = 0 in ten consecutive windows of a long run. A monotone secular trend
       (Kendall tau >= 0.9) is what an orbit settling on an attractor shows; an invariant
@@ -89,7 +89,7 @@ KNOWN_INTEGRALS = {"sphere/chaplygin-ball": 1}   # besides H (and gamma^2): M^2
 # --- densities named by the paper for these claims -----------------------------------------
 
 def spherical_inertia_density(P, y):
-    """(mu + m r^2)^-1/2 in (M, gamma): the plane measure of eq2.19/eq2.30 (lambda = 0)."""
+    """(mu + m r^2)^-1/2 in (M, gamma): the plane measure of (2.31)/(2.41) (lambda = 0)."""
     r = P.r(y[3:6])
     return 1.0 / np.sqrt(P.mu + P.m * (r @ r))
 
@@ -122,7 +122,7 @@ def _with_k(P, k):
 
 def case_params(case, claim, rng):
     """The claim's parameters; a plane case whose claim asks for k != 0 (the body put on a
-    sphere: plane/spherical-inertia, eq2.19) gets a drawn curvature (the case's draw has
+    sphere: plane/spherical-inertia, (2.31)) gets a drawn curvature (the case's draw has
     no k, its model has the slot)."""
     P = draw(case, claim, rng)
     if merged_conditions(case, claim).k == "nonzero" and P.k == 0.0:

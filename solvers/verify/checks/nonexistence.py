@@ -1,10 +1,10 @@
-"""Non-existence of a smooth invariant measure, proved in exact rational arithmetic
-(issue 18, item 3): the check `no_measure`.
+"""Non-existence of a smooth invariant measure, proved in exact rational arithmetic:
+the check `no_measure`.
 
 The systems it applies to are the zero-potential, gyrostat-free cases whose measure the
-paper doubts (the unbalanced ball on a plane, eq-d*1, and on a sphere, eq-d*-1; the body
-with a flat base, z != 0, eq3.14-eq3.15) or leaves open (the balanced ellipsoid with
-I = mu E + lambda m B, lambda not 0 or 1, eq2.28-eq2.29, and its general case, where "no
+paper doubts (the unbalanced ball on a plane, (2.28), and on a sphere, (3.12); the body
+with a flat base, z != 0, (3.16)-(3.17)) or leaves open (the balanced ellipsoid with
+I = mu E + lambda m B, lambda not 0 or 1, (2.39)-(2.40), and its general case, where "no
 obstacles to an analytic measure are found yet"). Their field is homogeneous in M:
 
     dM/dt is quadratic in M, d(position)/dt is linear in M          (H)
@@ -41,13 +41,13 @@ zero), in particular an open neighbourhood of the example. The drawn parameter s
 claim are proved the same way, each read as exact rationals (for the ellipsoid with B33
 moved by < 1% so that sqrt(gamma.B gamma) is rational at pos*: `at_point`).
 
-Why not an equilibrium with tr(dv/dx) != 0 (the criterion of the issue): with U = 0 the
+Why not an equilibrium with tr(dv/dx) != 0 (the usual criterion): with U = 0 the
 equilibria are the rest points (M = 0, where the linearisation vanishes) and steady
 rotations (M, pos) with dpos/dt = 0; at every steady rotation we located div v = 0 to
 round-off (a finding: tests/test_nonexistence.py pins it), so they decide nothing. The
 rest points are where the decision is made, after the blow-up M -> s M of step 1.
 Control: the same computation with the change that restores a known measure (a = 0: the
-Chaplygin ball, eq2.17, and the balanced ball on a sphere; z = 0: eq3.16) gives Q = 0
+Chaplygin ball, (2.24), and the balanced ball on a sphere; z = 0: (3.18)) gives Q = 0
 exactly at every point.
 """
 
@@ -79,8 +79,8 @@ M_PROBE = (Fraction(7, 10), Fraction(-13, 10), Fraction(2, 5))   # for the premi
 CONTROLS = {**{cid: negative.CONTROLS[cid] for cid in
                ("plane/unbalanced-ball", "sphere/unbalanced-ball", "sphere/flat-base")},
             "plane/ellipsoid": ({"lambda": 1.0}, "lambda = 1: density eq2.30")}
-# The ellipsoid's claims hold for lambda not 0 or 1 (eq2.29): the example (lambda = 1, where
-# eq2.30 is a measure) is moved to lambda = 1/2 for them.
+# The ellipsoid's claims hold for lambda not 0 or 1 (2.40): the example (lambda = 1, where
+# (2.41) is a measure) is moved to lambda = 1/2 for them.
 EXAMPLE_CHANGE = {"plane/ellipsoid": {"lambda": 0.5}}
 # Claims that conjecture a measure may exist: a proof of non-existence refutes them.
 REFUTES = {"plane/ellipsoid/negative/general-measure"}
@@ -114,10 +114,10 @@ def example_model(case_id: str, change: dict | None = None):
 
 
 def at_point(P, pos):
-    """P itself, or for an ellipsoid (eq2.28) P with B33 changed so that sqrt(gamma.B gamma)
+    """P itself, or for an ellipsoid (2.39) P with B33 changed so that sqrt(gamma.B gamma)
     is rational at gamma = pos (the nearest q with denominator <= 64 to its float value,
     B33 = (q^2 - B11 g1^2 - B22 g2^2) / g3^2) and I = mu E + lambda m B re-imposed exactly
-    (eq2.29) where the model has it; returns (P', B33 as a Fraction or None)."""
+    (2.40) where the model has it; returns (P', B33 as a Fraction or None)."""
     if all(P.p[i].v == 0 for i in (L.B11, L.B22, L.B33)):
         return P, None
     g = [q(x) for x in pos]

@@ -2,7 +2,7 @@
 
 * `solves_ode`: a printed solution K(s; c) satisfies the printed ODE dK/ds = f(s, K)
   (`against`); dK/ds exact by a Cauchy contour (below), so complex-valued solutions
-  (eq-** is printed with sqrt(I1 - I3) for I1 < I3) are handled too.
+  ((3.23) is printed with sqrt(I1 - I3) for I1 < I3) are handled too.
 * `linear_integrals`: the constants c of K = Phi(s) c + Kp(s) (fundamental matrix of the
   linear system `system`, or of the closed-form solution `formula`) are conserved along
   full trajectories: K(t) of a full run (compiled DOP853, rtol = atol = 1e-12) against the
@@ -10,10 +10,10 @@
 * extensions of two pointwise checks (checks/pointwise.py) to formulas that need more than
   their own variables:
   - `reduced_agrees` for second-order equations in (theta, omega3) and (x, omega3)
-    (eq2.9, eq2.21, eq3.4, the hypergeometric form): the formula returns the terms of its
+    ((2.17), (2.33), (3.5), the hypergeometric form): the formula returns the terms of its
     "lhs - rhs" at the jet (s, w, w', w''), computed along the flow (below); the residual
     is |sum of the terms| / sum of their moduli;
-  - `identity` for the energies with a velocity (the energy after eq3.3 and eq-***3):
+  - `identity` for the energies with a velocity (the energy after (3.4) and (3.25)):
     x = (s, K1, K2, ds/dt), ds/dt exact by complex step along the full field.
 
 Second derivatives along the flow (the second-order equations, all for the disk). A
@@ -79,7 +79,7 @@ def _reduced_field(P, x):
 
 
 # the independent variable of a second-order equation as a function of gamma3, and its
-# derivative: theta = arccos(gamma3) (eq2.9, eq2.21, eq3.4), x = (1 - gamma3)/2 (after eq2.9)
+# derivative: theta = arccos(gamma3) ((2.17), (2.33), (3.5)), x = (1 - gamma3)/2 (after (2.17))
 _ARG = {"(theta, omega3)": (np.arccos, lambda u: -1.0 / np.sqrt(1.0 - u * u)),
         "(x, omega3)": (lambda u: (1.0 - u) / 2.0, lambda u: -0.5 + 0.0 * u)}
 
@@ -211,7 +211,7 @@ def _good_run(P, y0, V):
     t = np.linspace(0.0, T_RUN, N_SAMPLES)
     # generated=False: the general field, compiled once for every case, as the section runs
     # of the other trajectory checks; the parameters drawn here have other structures than
-    # the examples the warm-up compiled, and their small kernels cost ~15 s of compile each
+    # the examples the warm-up compiled, and their small kernels would each cost a compile
     run = integrate(P.model.model, P.p, y0, t, method="dop853", rtol=RUN_RTOL, atol=RUN_RTOL,
                     generated=False)
     if not run.success or len(run.t) < len(t):

@@ -171,8 +171,8 @@ def _complex_field(P, y):
 
 def _measure(catalogue, case, claim, negative):
     """The density in the variables the catalogue gives it; where that fails, the other
-    natural reading ((M, gamma) <-> (omega, gamma)) is tried too, as the issue asks for
-    densities whose variables the paper does not state."""
+    natural reading ((M, gamma) <-> (omega, gamma)) is tried too, for densities whose
+    variables the paper does not state."""
     fid = claim.check_args.formula
     V = _formula_vars(catalogue, fid)
     res = measure_residual(catalogue, case, claim, fid)
@@ -270,7 +270,7 @@ def reduced_residual(catalogue, case, claim, use_corrected=False, seed=3):
 
 
 def transform_residuals(catalogue, case, claim, seed=4):
-    """A claimed map x~ = T(x) onto the Chaplygin ball on a plane (eq2.16, U = 0): every
+    """A claimed map x~ = T(x) onto the Chaplygin ball on a plane ((2.23), U = 0): every
     such ball conserves |M|^2 and (M, gamma), whatever its inertia and time scale, so the
     transformed flow must conserve |M~|^2 and (M~, gamma~). Returns the two max rates."""
     T = implementation(claim.check_args.transform)

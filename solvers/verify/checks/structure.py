@@ -9,17 +9,17 @@ at the random phase points of pointwise.py, mapped to each formula's own variabl
   hamiltonian_field_on_level  the same at points of the zero level of check_args.against
   hamiltonian_attempt    a construction tried for an unprinted Hamiltonian form: Jacobi and
                          flow over the whole phase space; unchecked (inconclusive) unless both hold
-  symmetry               [v, X] = DX v - Dv X = 0 for the printed field X (eq2.3)
+  symmetry               [v, X] = DX v - Dv X = 0 for the printed field X (2.4)
   functionally_dependent the gradients (in the full state) of the formulas are dependent
-  permanent_rotations    dimension of the family of vertical permanent rotations (eq2.29,
-                         eq2-27), see check_permanent_rotations
+  permanent_rotations    dimension of the family of vertical permanent rotations ((2.40),
+                         (2.42)), see check_permanent_rotations
 
 Contracts with the formula modules:
   bracket   f(P, x) -> antisymmetric n x n matrix, complex-safe (it is differentiated);
-            a tensor with a free function (eq2a-*2) takes `lam=` (the VALUE lambda(x), which
+            a tensor with a free function (2.10) takes `lam=` (the VALUE lambda(x), which
             the checks compute from the same, possibly complex, x so that its derivatives
             enter the Jacobi identity); with check_args.against a formula of role
-            definition (eq2a-*3), the checked tensor is lambda^-1 J_lambda, lambda = against.
+            definition (2.11), the checked tensor is lambda^-1 J_lambda, lambda = against.
   time-change f(P, x) -> N of d tau = N dt.
   condition (parameters) f(P) -> a scalar that vanishes, or a pair (lhs, rhs).
 Residuals are normalised by the size of the terms that cancel, so round-off gives ~1e-15.
@@ -70,7 +70,7 @@ def bracket_fn(catalogue, claim, use_corrected=False, free=None):
     against = claim.check_args.against
     if takes_lam and against is not None and \
             catalogue.formula(against).role.value == "definition":
-        lam = implementation(against)       # eq2a-*3: the conformal factor lambda(x)
+        lam = implementation(against)       # (2.11): the conformal factor lambda(x)
 
         def conformal(P, x):
             lv = lam(P, x)
@@ -380,7 +380,7 @@ def check_functionally_dependent(catalogue, case, claim):
                     "the unit gradients)")
 
 
-# --- vertical permanent rotations (eq2.29, eq2-27) --------------------------------------------
+# --- vertical permanent rotations ((2.40), (2.42)) --------------------------------------------
 
 def _with_p(P, **slots):
     p = np.array(P.p)
@@ -481,7 +481,7 @@ def check_permanent_rotations(catalogue, case, claim):
     """Vertical permanent rotations omega = Omega gamma (gamma fixed in the body) are the
     equilibria of the (M, gamma) field with M = Omega I_Q gamma. With U = 0 they exist at a
     generic gamma only when I_Q gamma || gamma for all gamma (three-parameter set, e.g.
-    eq2.29 with lambda = 1); the families the paper counts are those of a heavy body
+    (2.40) with lambda = 1); the families the paper counts are those of a heavy body
     (U = m g (r, gamma)), so gravity is switched on when the draw has g = 0."""
     fid = claim.check_args.formula
     on, off, notes, ev = rotations_outcome(catalogue, case, claim)

@@ -1,5 +1,4 @@
-"""Exact certificates and symbolic proofs of the verification layer (issue 10 item 4,
-issue 18 items 1-2).
+"""Exact certificates and symbolic proofs of the verification layer.
 
 `exact_for(catalogue, case, claim, corrected=False)` returns the `exact` field of a record:
 None where no exact test applies, else {"holds", "kind", "points", "method", "bound",

@@ -1,7 +1,7 @@
 """theta = arccos(gamma3) over the rationals: an angle whose value is transcendental but
 whose cosine, sine and derivatives are rational at our points.
 
-Reduced systems of the disk are printed in theta (eq2.8, eq2.9, eq2.21, eq3.4). gamma3 is
+Reduced systems of the disk are printed in theta ((2.16), (2.17), (2.33), (3.5)). gamma3 is
 rational, and so is sin theta = sqrt(1 - gamma3^2) by the Pythagorean choice of gamma
 (points.sphere_point), so sin, cos and d theta = -d gamma3 / sin theta are exact; theta
 itself is never used (a jet with an unknown value refuses to be multiplied).
@@ -21,7 +21,7 @@ class Angle(Jet):
         g = None if u.g is None else tuple(-x / _val(s) for x in u.g)
         # d theta / d y_j = -u_j / sin theta: over the denominators of u (Q_u) and of
         # sin theta = P_s / Q_s it is -N_j Q_s / (Q_u P_s), degrees (n_u + d_s, d_u + n_s)
-        # (issue 18: the 1/sin theta was not counted)
+        # (the 1/sin theta counts too)
         n, d = (u.n + s.d, u.d + s.n) if isinstance(s, Jet) else (u.n, u.d)
         a = Angle(0, g, n, d, unknown=True)
         a.c, a.s = u.value(), s

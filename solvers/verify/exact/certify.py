@@ -58,7 +58,7 @@ class Unsupported(Exception):
 
 def seeded(y):
     """The point y with d y_i / d y_j = delta_ij; a coordinate in Q(sqrt r) (a + c sqrt r,
-    e.g. K = rho M of eq2b-*3) is seeded in its rational part."""
+    e.g. K = rho M of (2.27)) is seeded in its rational part."""
     n = len(y)
     out = []
     for j, v in enumerate(y):

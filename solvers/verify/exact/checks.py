@@ -111,7 +111,7 @@ ALTERNATE = ALTERNATE_VARIABLES
 def found_density(catalogue, claim, use_corrected, case_id):
     """The density the project found where the paper doubts one (negative_measure with a
     candidate, checks/negative.CANDIDATES: on a sphere, (mu + m r^2)^-1/2 det(E - k J) for
-    the body with spherical inertia, eq2.19's generalisation): its Liouville residual
+    the body with spherical inertia, (2.31)'s generalisation): its Liouville residual
     d/dt ln rho + div v in (M, gamma), exactly."""
     from solvers.verify.checks.negative import CANDIDATES
     name, rho = CANDIDATES[case_id][-1]
@@ -128,7 +128,7 @@ def found_density(catalogue, claim, use_corrected, case_id):
 
 def rate_identity(catalogue, claim, use_corrected):
     """An identity whose printed form needs d s/dt of its first variable (the energies after
-    eq3.3 and eq-***3, checks/ode.rate_identity_residual): x = (to_vars(V), ds/dt)."""
+    (3.4) and (3.25), checks/ode.rate_identity_residual): x = (to_vars(V), ds/dt)."""
     fid, other = claim.check_args.formula, claim.check_args.against
     f = implementation(fid, use_corrected)
     g = implementation(other)

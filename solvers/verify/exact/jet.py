@@ -231,7 +231,7 @@ class Jet:
     @property
     def real(self):
         # as Re of a complex-step number: the value without its infinitesimal part (the
-        # formulas use np.real to hold a quantity constant, e.g. rem-*1's lambda)
+        # formulas use np.real to hold a quantity constant, e.g. (2.21)'s lambda)
         return self.value()
 
     @property

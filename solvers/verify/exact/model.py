@@ -3,7 +3,7 @@
 `ExactParams` answers the same names as solvers.verify.params.Params (I, m, R, a, b, S, g,
 eps, z, D, mu, lam, k, p, r, J, contact_inertia, omega) with `Jet`s, so the formulas of
 solvers/verify/formulas run unchanged on object arrays. `field` is the right-hand side of
-eq1.1-eq1.3 (MODEL_FULL) and eq3.14-eq3.15 (MODEL_FLAT) written after
+(1.1)-(1.3) (MODEL_FULL) and (3.16)-(3.17) (MODEL_FLAT) written after
 solvers/models/reference.py, with r(gamma) and J = Hess h in closed form from the support
 function (solvers/kernels/support.py), so no derivative of r is ever approximated.
 """
@@ -98,7 +98,7 @@ def field(P: ExactParams, y):
     if P.model.model == L.MODEL_FLAT:
         r = np.array([y[3], y[4], P.z + 0 * y[3]], dtype=object)
         w = solve(P.contact_inertia(r), M)
-        rd = np.array([w[1], -w[0], 0 * w[0]], dtype=object) / k        # eq3.15, k < 0
+        rd = np.array([w[1], -w[0], 0 * w[0]], dtype=object) / k        # (3.17), k < 0
         Md = _cross(M + S, w) + m * _cross(rd, _cross(w, r))
         return np.concatenate([Md, rd[:2]])
     if P.model.model != L.MODEL_FULL:
@@ -119,8 +119,8 @@ def jet_const(x):
 
 
 def to_reduced(p, y):
-    """(M, gamma) -> (gamma3, K1, K2, K3) of solvers.models.reduced.to_reduced (eq2.4 /
-    eq3.2-1), with this module's exact support function in place of the compiled one."""
+    """(M, gamma) -> (gamma3, K1, K2, K3) of solvers.models.reduced.to_reduced ((2.5) /
+    (3.3)), with this module's exact support function in place of the compiled one."""
     from solvers.models.reduced import _body, profile, rho0
     from solvers.verify.exact.linalg import solve
     b = _body(p)

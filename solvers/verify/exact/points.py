@@ -8,7 +8,7 @@ draw (solvers.verify.params.draw, the conditions of each claim) fed with this ge
 `GridRng.uniform` returns an exact grid rational (`Drawn`, a jet of degree 1), every product
 and sum the draw makes of them is exact, and the parameter vector is filled from the drawn
 values by the project's own bodies.fill_inertia / fill_body, exactly (`exact_slots`). So
-relations such as I1 = I2, I3 = 2 I1, I3 = I0 u or I = mu E + lambda m B (eq2.29) hold
+relations such as I1 = I2, I3 = 2 I1, I3 = I0 u or I = mu E + lambda m B (2.40) hold
 exactly, and the parameters are polynomials (of tracked degree) in grid draws.
 
 One value is a scale, not a coordinate: params.draw scales the curvature by
@@ -196,7 +196,7 @@ def stereographic(u, v):
 def sphere_point(t, w, flip=False):
     """gamma = (sin th cos ph, sin th sin ph, cos th) with (cos th, sin th), (cos ph, sin ph)
     Pythagorean in t, w: on |gamma| = 1 AND with g1^2 + g2^2 = sin^2 th a square, which the
-    disk's sqrt(g1^2 + g2^2) (eq2.71) needs."""
+    disk's sqrt(g1^2 + g2^2) (2.15) needs."""
     ct, st = pythagorean(t)
     cp, sp = pythagorean(w)
     g1 = st * cp
@@ -206,7 +206,7 @@ def sphere_point(t, w, flip=False):
 def rational_gamma(rng: GridRng, pole_margin=0.05, square_sin=True):
     """A rational gamma away from the poles (|g3| < 1 - pole_margin, as the float checks).
     square_sin: Pythagorean angles (sphere_point), so that sin theta = sqrt(g1^2 + g2^2) is
-    rational (the disk's support eq2.71, theta of the axial reductions, K3 of eq2.4); else
+    rational (the disk's support (2.15), theta of the axial reductions, K3 of (2.5)); else
     the inverse stereographic projection, whose components have half the degree (the
     symbolic proofs of the other bodies stay smaller)."""
     from solvers.verify.exact.symbolic import mark, release
@@ -224,7 +224,7 @@ def rational_gamma(rng: GridRng, pole_margin=0.05, square_sin=True):
 
 
 def ellipsoid_radicand(p, g, rng: GridRng):
-    """Make sqrt(gamma.B gamma) (eq2.28) rational: draw q on a fine grid near its float value
+    """Make sqrt(gamma.B gamma) (2.39) rational: draw q on a fine grid near its float value
     and solve B33 = (q^2 - sum_{(i,j) != (3,3)} B_ij g_i g_j) / g3^2; the change of B33 is
     relative 2^-20 at most, so B stays positive definite and the body as drawn."""
     B = [[p[L.B11], p[L.B12], p[L.B13]], [p[L.B12], p[L.B22], p[L.B23]],
@@ -263,7 +263,7 @@ def exact_params(Pf, gamma, rng: GridRng) -> ExactParams:
         p[L.I1] = p[L.I2] = p[L.I3] = extra["mu"]
     elif case.body == "ellipsoid" and "mu" in extra and "lambda" in extra:
         for i, b in ((L.I1, L.B11), (L.I2, L.B22), (L.I3, L.B33)):
-            p[i] = extra["mu"] + extra["lambda"] * p[L.MASS] * p[b]     # eq2.29
+            p[i] = extra["mu"] + extra["lambda"] * p[L.MASS] * p[b]     # (2.40)
     if gamma is not None and case.symmetry == "axial":
         axial_radicand(p, gamma, rng)
     return ExactParams(Pf.model, p, extra)
@@ -306,7 +306,7 @@ def _val(vo, prm, vi):
 
 
 def axial_radicand(p, gamma, rng: GridRng):
-    """Make sqrt(I1 + m r^2) rational (K3 of eq2.4 divides by sqrt((1 - g3^2)(I1 + m r^2)),
+    """Make sqrt(I1 + m r^2) rational (K3 of (2.5) divides by sqrt((1 - g3^2)(I1 + m r^2)),
     and 1 - g3^2 = sin^2 th is already a square): draw q near its float value and solve
     I1 = I2 = q^2 - m r^2 (a relative change ~2^-20; I3 = I1 or I3 = 2 I1 kept where drawn so),
     so that the reduced variables need one irrational root (rho0's) only."""

@@ -1,7 +1,7 @@
 """Square roots that are not rational: numbers a + c sqrt(r) of the field Q(sqrt r).
 
-A density such as (1 - D (gamma, A gamma))^-1/2 (eq2.17), an integral divided by one, or
-the reduced variable K3 of eq2.4 holds the square root of a radicand R that no parameter can
+A density such as (1 - D (gamma, A gamma))^-1/2 (2.24), an integral divided by one, or
+the reduced variable K3 of (2.5) holds the square root of a radicand R that no parameter can
 make a square at every point. We compute in Q(sqrt r), r = R(point), with jets over Q for
 both parts:
 
@@ -157,7 +157,7 @@ class Radical:
     @property
     def real(self):
         # as Re of a complex-step number: the value without its infinitesimal part (the
-        # formulas use np.real to hold a quantity constant, e.g. rem-*1's lambda)
+        # formulas use np.real to hold a quantity constant, e.g. (2.21)'s lambda)
         return self.value()
 
     def partial(self, j):
@@ -206,7 +206,7 @@ def _norm(x: Radical):
     Only the zero function may be dropped without losing the degree bound: a coefficient c
     that is zero at the point (value and partials) but not identically is what a checked
     identity c1 - c2 looks like, and dropping it would state the degree of the rational part
-    alone (issue 18: 16 stated where the true degree is 8,693). Such a drop is recorded, so
+    alone, far below the true degree. Such a drop is recorded, so
     the record states no probability (or the strict mode keeps the radical)."""
     if not _zero(x.c):
         return x

@@ -18,7 +18,7 @@ CERTIFIERS = {
     "hamiltonian_field": (S.hamiltonian, False),
 }
 
-# Why the other checks stay numeric (issue 10: say why where no exact test applies).
+# Why the other checks stay numeric: where no exact test applies, the reason is stated.
 NUMERIC = {
     "solves_ode": "a printed solution with trigonometric/hyperbolic or hypergeometric "
                   "functions of the state (eq-**, eq3.21): not algebraic",
@@ -93,7 +93,7 @@ def _builder(catalogue, case, claim):
             and args.against == "chaplygin_system":     # as checks/pointwise.check_reduced
         return X.transform, False
     if name == "reduced_agrees" and _second_order(catalogue, claim):
-        from solvers.verify.exact.taylor import second_order  # eq2.9, eq2.21, eq3.4
+        from solvers.verify.exact.taylor import second_order  # (2.17), (2.33), (3.5)
         return second_order, False
     if name == "identity" and args.formula in _rate_formulas():
         return X.rate_identity, False

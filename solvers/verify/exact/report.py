@@ -1,5 +1,5 @@
 """Counts of the exact layer over `rolling verify` records: proved / certified / neither,
-and why each verified formula record that is neither stays so (issue 18, item 2).
+and why each verified formula record that is neither stays so.
 
     python -m solvers.verify.exact.report records.json    # from `rolling verify --json`
 """

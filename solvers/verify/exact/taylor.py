@@ -1,6 +1,6 @@
 """Second-order equations along the flow, exactly: truncated Taylor series in time.
 
-eq2.9, eq2.21 and eq3.4 are second-order equations for w = omega3 in theta = arccos(gamma3)
+(2.17), (2.33) and (3.5) are second-order equations for w = omega3 in theta = arccos(gamma3)
 (or x = (1 - gamma3)/2). Along the flow y(t) = y + t v + t^2 (Dv v)/2 + O(t^3), so every
 quantity f(y(t)) = f0 + f1 t + f2 t^2 + O(t^3) with f1 = df/dt, f2 = (d2f/dt2)/2. `T2` is
 that truncated series with rational-jet coefficients (degrees tracked as in jet.py); the

@@ -1,15 +1,15 @@
-"""Section 1 (equations of motion eq1.1-eq1.7, eq3.1) and the integrals every (M, gamma)
+"""Section 1 (equations of motion (1.1)-(1.7), (3.1)) and the integrals every (M, gamma)
 model shares, plus the plain-NumPy mechanics the other formula modules build on.
 
 Everything here is written from the paper's formulas and CONVENTIONS.md, independently of
 the compiled kernels (solvers/kernels/fields.py), and is complex-safe: r(gamma) and
 J = dr/dgamma come from the body's support function (Params.r, Params.J), omega from
-eq1.6 by a linear solve, dU/dgamma in closed form for the model's potential
+(1.6) by a linear solve, dU/dgamma in closed form for the model's potential
 U = m g (r, gamma) + eps/2 (I gamma, gamma).
 
 A printed *partial* system (only dgamma/dt, or only dr/dt) is returned as a field on the
-whole state: the missing dM/dt is eq1.1 closed with the formula's own kinematics
-(dr/dt = J dgamma/dt) and M = eq1.6, so comparing it with the model's field tests exactly
+whole state: the missing dM/dt is (1.1) closed with the formula's own kinematics
+(dr/dt = J dgamma/dt) and M = (1.6), so comparing it with the model's field tests exactly
 the printed kinematic equation.
 """
 
@@ -28,17 +28,17 @@ def is_flat(P):
 
 
 def flat_r(P, x):
-    """r = (r1, r2, z) of a flat base (eq3.14), x = (M, r1, r2) or (omega, r1, r2)."""
+    """r = (r1, r2, z) of a flat base (3.16), x = (M, r1, r2) or (omega, r1, r2)."""
     return np.array([x[3], x[4], P.z + 0.0 * x[3]])
 
 
 def contact_inertia(P, r):
-    """I_Q = I + m (r^2 E - r r^T) (eq1.6 as a matrix: M = I_Q omega)."""
+    """I_Q = I + m (r^2 E - r r^T) ((1.6) as a matrix: M = I_Q omega)."""
     return np.diag(P.I) + P.m * ((r @ r) * E3 - np.outer(r, r))
 
 
 def omega_of(P, M, r):
-    """omega from M = I omega + m r x (omega x r) (eq1.6) by a linear solve."""
+    """omega from M = I omega + m r x (omega x r) (1.6) by a linear solve."""
     return np.linalg.solve(contact_inertia(P, r), M)
 
 
@@ -52,7 +52,7 @@ def U(P, g):
 
 
 def gamma_dot(P, g, w):
-    """dgamma/dt = (E - k J)^-1 gamma x omega: eq1.2 (k = 0) and eq1.3 with CONVENTIONS.md's
+    """dgamma/dt = (E - k J)^-1 gamma x omega: (1.2) (k = 0) and (1.3) with CONVENTIONS.md's
     signed curvature k."""
     if P.k == 0.0:
         return np.cross(g, w)
@@ -68,13 +68,13 @@ def torque(P, g):
 
 
 def moment_rate(P, M, w, r, rd, MQ, S=None):
-    """eq1.1 (gyrostat: M + S): dM/dt = (M + S) x omega + m dr/dt x (omega x r) + M_Q."""
+    """(1.1) (gyrostat: M + S): dM/dt = (M + S) x omega + m dr/dt x (omega x r) + M_Q."""
     MS = M if S is None else M + S
     return np.cross(MS, w) + P.m * np.cross(rd, np.cross(w, r)) + MQ
 
 
 def close_with(P, x, gd, S=None):
-    """The full (M, gamma) field made of eq1.1 + eq1.6 and a printed dgamma/dt `gd`."""
+    """The full (M, gamma) field made of (1.1) + (1.6) and a printed dgamma/dt `gd`."""
     M, g = x[:3], x[3:6]
     w = omega_of(P, M, P.r(g))
     gdot = gd(w) if callable(gd) else gd
@@ -83,9 +83,9 @@ def close_with(P, x, gd, S=None):
 
 
 def flat_field(P, x, S=None, momentum=None, kin=None):
-    """The flat-base field (M, r1, r2): eq1.1 with r = (r1, r2, z), gamma = e3 fixed,
+    """The flat-base field (M, r1, r2): (1.1) with r = (r1, r2, z), gamma = e3 fixed,
     dr/dt = -(1/k) gamma x omega = (omega2, -omega1, 0)/k (CONVENTIONS.md: 0 = gamma x omega
-    + k dr/dt). `momentum` (r -> M(omega) matrix) and `kin` (omega -> dr/dt) replace eq1.6
+    + k dr/dt). `momentum` (r -> M(omega) matrix) and `kin` (omega -> dr/dt) replace (1.6)
     and that kinematics by a printed variant."""
     M, r = x[:3], flat_r(P, x)
     A = contact_inertia(P, r) if momentum is None else momentum(r)
@@ -104,12 +104,12 @@ def kinetic(P, x):
     return 0.5 * (x[:3] @ omega_full(P, x))
 
 
-# --- eq1.1-eq1.7 ----------------------------------------------------------------------------
+# --- (1.1)-(1.7) ----------------------------------------------------------------------------
 
 @formula("full_dynamics")
 def full_dynamics(P, x):
-    """eq1.1 closed by eq1.2/eq1.3 (dr/dt = J dgamma/dt), eq1.6 and the torque of section 1;
-    (M, r1, r2) for a flat base. No gyrostat: eq1.1 has none (gyrostat_dynamics has S)."""
+    """(1.1) closed by (1.2)/(1.3) (dr/dt = J dgamma/dt), (1.6) and the torque of section 1;
+    (M, r1, r2) for a flat base. No gyrostat: (1.1) has none (gyrostat_dynamics has S)."""
     if is_flat(P):
         return flat_field(P, x)
     return close_with(P, x, lambda w: gamma_dot(P, x[3:6], w))
@@ -117,7 +117,7 @@ def full_dynamics(P, x):
 
 @formula("gyrostat_dynamics")
 def gyrostat_dynamics(P, x):
-    """Section 2, gyrostatic generalizations: eq1.1 with (M + S) x omega."""
+    """Section 2, gyrostatic generalizations: (1.1) with (M + S) x omega."""
     if is_flat(P):
         return flat_field(P, x, S=P.S)
     return close_with(P, x, lambda w: gamma_dot(P, x[3:6], w), S=P.S)
@@ -125,13 +125,13 @@ def gyrostat_dynamics(P, x):
 
 @formula("plane_kinematics")
 def plane_kinematics(P, x):
-    """eq1.2: dgamma/dt = gamma x omega (closed with eq1.1, eq1.6)."""
+    """(1.2): dgamma/dt = gamma x omega (closed with (1.1), (1.6))."""
     return close_with(P, x, lambda w: np.cross(x[3:6], w))
 
 
 @formula("sphere_kinematics")
 def sphere_kinematics(P, x):
-    """eq1.3: R0 (dgamma/dt + omega x gamma) = dr/dt = J dgamma/dt, i.e.
+    """(1.3): R0 (dgamma/dt + omega x gamma) = dr/dt = J dgamma/dt, i.e.
     (E - k J) dgamma/dt = gamma x omega with k = 1/R0 read as CONVENTIONS.md's signed
     curvature (+1/R0 inside a cavity, -1/R0 outside a fixed ball)."""
     g = x[3:6]
@@ -139,7 +139,7 @@ def sphere_kinematics(P, x):
 
 
 def weingarten(P, g):
-    """B = dgamma/dr = J^-1 on the tangent plane, 0 along gamma (eq1.5's b_ij): for unit
+    """B = dgamma/dr = J^-1 on the tangent plane, 0 along gamma ((1.5)'s b_ij): for unit
     gamma, J gamma = 0 and (J + gamma gamma^T)^-1 = J_t^-1 + gamma gamma^T. Undefined where J
     is degenerate on the tangent plane (the sharp edge of a disk)."""
     gg = np.outer(g, g)
@@ -148,7 +148,7 @@ def weingarten(P, g):
 
 @formula("sphere_kinematics_B")
 def sphere_kinematics_b(P, x):
-    """eq1.5: dgamma/dt = (1 + k (B - k)^-1) gamma x omega, k signed (CONVENTIONS.md)."""
+    """(1.5): dgamma/dt = (1 + k (B - k)^-1) gamma x omega, k signed (CONVENTIONS.md)."""
     g = x[3:6]
     if P.k == 0.0:
         return close_with(P, x, lambda w: np.cross(g, w))
@@ -159,7 +159,7 @@ def sphere_kinematics_b(P, x):
 
 @formula("sphere_kinematics_signed")
 def sphere_kinematics_signed(P, x):
-    """eq3.1 as printed: dgamma/dt = gamma x omega -+ k dr/dt, k = 1/R0, '-' for the interior.
+    """(3.1) as printed: dgamma/dt = gamma x omega -+ k dr/dt, k = 1/R0, '-' for the interior.
     With CONVENTIONS.md's signed k (> 0 inside): dgamma/dt = gamma x omega - k dr/dt."""
     g = x[3:6]
     return close_with(P, x, lambda w: np.linalg.solve(E3 + P.k * P.J(g), np.cross(g, w)))
@@ -174,7 +174,7 @@ def sphere_kinematics_signed_corrected(P, x):
 
 @formula("momentum")
 def momentum(P, x):
-    """eq1.6's explicit inverse as printed: omega = (A M - m r x (A r x A M))/(1 - m (r, A r)),
+    """(1.6)'s explicit inverse as printed: omega = (A M - m r x (A r x A M))/(1 - m (r, A r)),
     A = (I + m r^2)^-1 (returns omega; the printed minus sign is a known misprint,
     solvers/models/reference.py)."""
     return _omega_explicit(P, x, -1.0)
@@ -214,7 +214,7 @@ def torque_sphere(P, x):
 
 @formula("energy")
 def energy(P, x):
-    """eq1.7: H = (M, omega)/2 + U, U = m g (r, gamma) + eps/2 (I gamma, gamma) (no field on
+    """(1.7): H = (M, omega)/2 + U, U = m g (r, gamma) + eps/2 (I gamma, gamma) (no field on
     a flat base, whose state is (M, r1, r2))."""
     if is_flat(P):
         return kinetic(P, x)

@@ -1,32 +1,32 @@
 """The project's Hamiltonian forms of the reduced systems on a sphere (Table 2, "Hamiltonian
 form" row, columns 6-9). The paper asserts them ("we do not present the corresponding
-calculations because of their bulkiness", after eq3.3) but prints no bracket; every formula
+calculations because of their bulkiness", after (3.4)) but prints no bracket; every formula
 here is the PROJECT's, derived in docs/hamiltonian-sphere.md, by analogy with the plane's
-theorem on eq2-*3.
+theorem on (2.8).
 
 The construction. Reduced variables x = (s, K1, K2, K3): s = gamma3 (body of revolution, disk,
-Routh ball; K1, K2 of eq3.2-1, K3 of eq2.4) or s = u = r1^2 + r2^2 (flat base; K1, K2 after
-eq3.18, K3 = (r1 M2 - r2 M1)/sqrt(u (I1 + m z^2 + m u))). In them
+Routh ball; K1, K2 of (3.3), K3 of (2.5)) or s = u = r1^2 + r2^2 (flat base; K1, K2 after
+(3.21), K3 = (r1 M2 - r2 M1)/sqrt(u (I1 + m z^2 + m u))). In them
 
   * the energy is H = K3^2/2 + T(s, K1, K2) + U(s)     (K3 carries the whole ds/dt share),
   * ds/dt = N(s) K3                                      (N is read off the full field),
-  * dK/ds = A(s) K + b(s)                                (eq3.3 / eq3.10 corrected / eq3.7 /
-                                                          eq3.11 corrected / eq3.21).
+  * dK/ds = A(s) K + b(s)                                ((3.4) / (3.14) corrected / (3.6) /
+                                                          (3.15) corrected / (3.26)).
 
 Take the bivector J = X ^ d/dK3 with X = d/ds + (A K + b) . d/dK, i.e.
 
   {s, K3} = 1,  {K1, K3} = (dK/ds)_1,  {K2, K3} = (dK/ds)_2,  all others 0
 
-(on the plane this IS eq2-*3: its entries are the right members of eq2.5). It is Poisson for
+(on the plane this IS (2.8): its entries are the right members of (2.13)). It is Poisson for
 any A, b: [X, d/dK3] = 0. After d tau = N dt the reduced field is {x, H}: the first three
 components by construction, the K3 component because H is conserved. The Casimirs are the
 two integrals linear in K (solutions of the linear system); rank 2.
 
 N is the reducing multiplier: A(s) is trace-free in every case here (on a body of
-revolution the K2 coefficient of eq3.3's K2 equation, g3 f2' + sqrt(1-g3^2)(f1
-sqrt(1-g3^2))', vanishes identically by the meridian relation eq2.1/2), so the
+revolution the K2 coefficient of (3.4)'s K2 equation, g3 f2' + sqrt(1-g3^2)(f1
+sqrt(1-g3^2))', vanishes identically by the meridian relation (2.2)), so the
 tau-field J grad H is divergence-free and 1/N is an invariant density of the reduced system,
-exactly as on the plane (N = k of eq2-*1, density 1/k).
+exactly as on the plane (N = k of (2.6), density 1/k).
 
 k is CONVENTIONS.md's signed curvature; on the flat base R = 1/k (signed), as in reduced.py.
 """
@@ -55,14 +55,14 @@ def _bivector(x, dK):
 @formula("sphere_revolution_bracket")
 def sphere_revolution_bracket(P, x):
     """Project's bracket: {g3, K3} = 1, {K1, K3} = dK1/dg3, {K2, K3} = dK2/dg3 with the
-    right members of eq3.10 (corrected sign of the gyrostat term; at s = 0 it is eq3.3)."""
+    right members of (3.14) (corrected sign of the gyrostat term; at s = 0 it is (3.4))."""
     return _bivector(x, rd.eq3_10(body(P), x[0], x[1:3]))
 
 
 @formula("sphere_revolution_hamiltonian")
 def sphere_revolution_hamiltonian(P, x):
-    """H = K3^2/2 + the K-part of the energy after eq3.3 + U: eq2-*2 with K1 replaced by
-    K1/(1 - k f1) (eq3.2-1 rescales K1 by (1 - k f1))."""
+    """H = K3^2/2 + the K-part of the energy after (3.4) + U: (2.7) with K1 replaced by
+    K1/(1 - k f1) ((3.3) rescales K1 by (1 - k f1))."""
     b = body(P)
     f1 = profile(b.prof, x[0])[0]
     xp = np.array([x[0], x[1] / (1 - b.k * f1), x[2], x[3]])
@@ -72,7 +72,7 @@ def sphere_revolution_hamiltonian(P, x):
 @formula("sphere_revolution_time_change")
 def sphere_revolution_time_change(P, x):
     """d tau = N dt, N = k_p/(1 - k f2'), k_p = sqrt((1 - g3^2)/(I1 + m r^2)) the plane's
-    multiplier of eq2-*1: d g3/dt (1 - k f2') = (gamma x omega)_3 = k_p K3 on a sphere."""
+    multiplier of (2.6): d g3/dt (1 - k f2') = (gamma x omega)_3 = k_p K3 on a sphere."""
     b = body(P)
     f2p = profile(b.prof, x[0])[3]
     return rd.kappa(b, x[0]) / (1 - b.k * f2p) + 0.0 * x[1]
@@ -84,12 +84,12 @@ def sphere_revolution_reduced_density(P, x):
     return 1.0 / sphere_revolution_time_change(P, x)
 
 
-# --- Routh ball, from the paper's own linear systems eq3.7 / eq3.11 ------------------------
+# --- Routh ball, from the paper's own linear systems (3.6) / (3.15) ------------------------
 
 @formula("sphere_routh_bracket")
 def sphere_routh_bracket(P, x):
     """Project's bracket for the ball with displaced centre: {g3, K3} = 1 and {K_i, K3} the
-    right members of eq3.11 (corrected: no factor R in the K1 gyrostat term; s = 0: eq3.7),
+    right members of (3.15) (corrected: no factor R in the K1 gyrostat term; s = 0: (3.6)),
     {K1, K3} = -rho kR (I1 - I3)(1 - kR) K2 - (1 - kR)^2 s,
     {K2, K3} = rho k m R^3/(1 - kR) K1 - rho m R (1 - kR)(R g3 + a) s."""
     return _bivector(x, rd.eq3_11(body(P), x[0], x[1:3]))
@@ -104,15 +104,15 @@ def _flat(P):
 
 @formula("flat_axisym_bracket")
 def flat_axisym_bracket(P, x):
-    """Project's bracket in (u, K1, K2, K3): {u, K3} = 1, {K_i, K3} = dK_i/du of eq3.21
-    (eq3.19 corrected at s = 0)."""
+    """Project's bracket in (u, K1, K2, K3): {u, K3} = 1, {K_i, K3} = dK_i/du of (3.26)
+    ((3.22) corrected at s = 0)."""
     return _bivector(x, rd.eq3_21(P.p, x[0], x[1:3]))
 
 
 @formula("flat_axisym_hamiltonian")
 def flat_axisym_hamiltonian(P, x):
     """H = K3^2/(2 u (I1 + m z^2 + m u)) + ((I1 + m z^2) K1^2 + (I1 u + I3 z^2) K2^2
-    - 2 z sq K1 K2)/(2 I1^2 u), sq = sqrt(I3 (I1 + m z^2) + I1 m u) (eq-***3 with its
+    - 2 z sq K1 K2)/(2 I1^2 u), sq = sqrt(I3 (I1 + m z^2) + I1 m u) ((3.25) with its
     corrected K1 K2 term, its udot^2 term written with K3 = r1 M2 - r2 M1; no field on the
     flat base)."""
     I1, I3, m, z, _ = _flat(P)
@@ -125,7 +125,7 @@ def flat_axisym_hamiltonian(P, x):
 
 @formula("flat_axisym_time_change")
 def flat_axisym_time_change(P, x):
-    """d tau = N dt, N = 2 R u: du/dt = 2R (r1 w2 - r2 w1) (eq3.15) = 2R K3/(I1 + m z^2 + m u)
+    """d tau = N dt, N = 2 R u: du/dt = 2R (r1 w2 - r2 w1) (3.17) = 2R K3/(I1 + m z^2 + m u)
     = N dH/dK3."""
     return 2 * (1.0 / P.k) * x[0] + 0.0 * x[1]
 
@@ -135,21 +135,21 @@ def flat_axisym_reduced_density(P, x):
     return 1.0 / flat_axisym_time_change(P, x)
 
 
-# --- the Borisov-Fedorov ball (eq3.12 at a = 2R) ---------------------------------------------
+# --- the Borisov-Fedorov ball ((3.10) at a = 2R) ---------------------------------------------
 # Two constructions, derived in docs/hamiltonian-sphere.md:
-#   * bf_candidate_bracket: eq2b-*1 carried to eq3.12's factor k. It generates the flow for
+#   * bf_candidate_bracket: (2.25) carried to (3.10)'s factor k. It generates the flow for
 #     every k but is not Poisson at k = -1 (claim .../project/attempt/plane-bracket).
 #   * bf_level0_bracket: the Lie-Poisson e(3) bracket pulled back through the linear map
 #     L = K(gamma) M below. Poisson by construction (a pull-back), Casimirs gamma^2 and
-#     F = (M, Abar gamma) of eq3.13; after d tau = N dt it generates eq3.12 at k = -1 ON THE
+#     F = (M, Abar gamma) of (3.11); after d tau = N dt it generates (3.10) at k = -1 ON THE
 #     LEVEL F = 0 ONLY (claim .../project); off that level it does not (.../attempt/all-levels).
 
 @formula("bf_plane_bracket_carried")
 def bf_candidate_bracket(P, x):
-    """eq2b-*1 (with the sign that generates the flow) carried to eq3.12's factor k:
+    """(2.25) (with the sign that generates the flow) carried to (3.10)'s factor k:
     {M_i, M_j} = -eps_ijk rho^-1 (M_k - k g gamma_k), {M_i, gamma_j} = -k eps_ijk rho^-1
-    gamma_k, {gamma_i, gamma_j} = 0, g = D (omega, gamma), rho of eq2.17. By construction
-    rho J grad H = the field of eq3.12 for every k (H = (M, omega)/2); at k = 1 it is the
+    gamma_k, {gamma_i, gamma_j} = 0, g = D (omega, gamma), rho of (2.24). By construction
+    rho J grad H = the field of (3.10) for every k (H = (M, omega)/2); at k = 1 it is the
     plane's bracket, which is Poisson. At k = -1 (Borisov-Fedorov) it is NOT: the Jacobiator
     is of relative size 0.1-0.6, and no conformal factor f(M, gamma) repairs it (the
     Jacobiator is not of the form Y ^ J)."""
@@ -171,12 +171,12 @@ def _bf_map_build():
     bracket again by complex step, so dK must be exact, not a finite difference).
 
     K = N (E - gamma gamma^T/|gamma|^2)(E - w gamma^T) + gamma (Abar gamma)^T with
-      Abar = E - 2 J/tr J, J = I + D (eq3.13), w = J Abar gamma/(I gamma, Abar gamma),
+      Abar = E - 2 J/tr J, J = I + D (3.11), w = J Abar gamma/(I gamma, Abar gamma),
       N = rho (I gamma, Abar gamma)/(JJ Abar gamma, Abar gamma), JJ = J - D gamma gamma^T
-      (the operator of eq3.12: M = JJ omega), rho of eq2.17.
+      (the operator of (3.10): M = JJ omega), rho of (2.24).
     Why this K: on F = 0, (M - (M, gamma) w) is, turned by gamma x, the momentum of the
     2-degree-of-freedom system on the sphere of gamma; N is the density of the invariant
-    measure (eq2.17 restricted to F = 0) in (gamma, momentum): Chaplygin's reducing
+    measure ((2.24) restricted to F = 0) in (gamma, momentum): Chaplygin's reducing
     multiplier, so L = N x momentum is the canonical e(3) variable at (L, gamma) = 0."""
     import sympy as sp
 
@@ -209,7 +209,7 @@ def _bf_args(P, g):
 
 def bf_level0_map(P, x):
     """(L, gamma) = (K(gamma) M, gamma): the map whose e(3) pull-back is bf_level0_bracket.
-    (L, gamma) = |gamma|^2 F, so on the sphere the e(3) Casimir (L, gamma) is eq3.13's F."""
+    (L, gamma) = |gamma|^2 F, so on the sphere the e(3) Casimir (L, gamma) is (3.11)'s F."""
     K = np.asarray(_bf_map()[0](*_bf_args(P, x[3:6])))
     return np.concatenate([K @ x[:3], x[3:6]])
 
@@ -217,7 +217,7 @@ def bf_level0_map(P, x):
 @formula("bf_level0_bracket")
 def bf_level0_bracket(P, x):
     """The e(3) bracket {L_i, L_j} = eps_ijk L_k, {L_i, gamma_j} = eps_ijk gamma_k,
-    {gamma_i, gamma_j} = 0 (the sign of eq2b-*3; it generates the flow forward in tau),
+    {gamma_i, gamma_j} = 0 (the sign of (2.27); it generates the flow forward in tau),
     pulled back to (M, gamma) through L = K(gamma) M: with A = dx/dy = [[K^-1, -K^-1 C], [0, E]],
     C_ij = (dK/dgamma_j M)_i, the tensor is A Pi(y) A^T. Poisson because it is a pull-back."""
     from solvers.verify.formulas.chaplygin import eps_dot
@@ -238,7 +238,7 @@ def bf_level0_bracket(P, x):
 @formula("bf_level0_time_change")
 def bf_level0_time_change(P, x):
     """d tau = N dt, N = rho (I gamma, Abar gamma)/(JJ Abar gamma, Abar gamma) (see _bf_map):
-    the density of the measure eq2.17 on the level F = 0, written in (gamma, momentum)."""
+    the density of the measure (2.24) on the level F = 0, written in (gamma, momentum)."""
     g = x[3:6]
     J = P.I + P.D
     ab = (1.0 - 2.0 * J / np.sum(J)) * g
@@ -249,8 +249,8 @@ def bf_level0_time_change(P, x):
 
 @formula("bf_level0_hamiltonian")
 def bf_level0_hamiltonian(P, x):
-    """H = (M, omega)/2 with eq3.12's M = (I + D) omega - D gamma (omega, gamma) (the energy
-    after eq3.12, no field)."""
+    """H = (M, omega)/2 with (3.10)'s M = (I + D) omega - D gamma (omega, gamma) (the energy
+    after (3.10), no field)."""
     M, g = x[:3], x[3:6]
     JJ = np.diag(P.I + P.D) - P.D * np.outer(g, g)
     return 0.5 * (M @ np.linalg.solve(JJ, M))

@@ -1,8 +1,8 @@
 """Section 3 b), axisymmetric body with a flat base on a sphere (I1 = I2, z != 0), in
-(u, K1, K2): u = r1^2 + r2^2, K1 = (M, r), K2 = omega3/rho (eq3.18-eq3.21, eq-** .. eq-***3).
+(u, K1, K2): u = r1^2 + r2^2, K1 = (M, r), K2 = omega3/rho ((3.21)-(3.26), (3.23) .. (3.25)).
 
 R is 1/k with the signed curvature of CONVENTIONS.md (k < 0: outside a fixed ball), the
-reading under which eq3.21 holds (solvers/models/reduced.py). Abbreviation:
+reading under which (3.26) holds (solvers/models/reduced.py). Abbreviation:
     sq(u) = sqrt(I3 (I1 + m z^2) + I1 m u) = sqrt(I1 I3 + m (r, I r)) = 1/rho.
 
 Solutions (role `solution`) take x = (u, c1, c2) -- the independent variable and the
@@ -27,7 +27,7 @@ def sq(P, u):
 
 @formula("flat_axisym_linear")
 def flat_axisym_linear(P, x):
-    """eq3.19 as printed: dK1/du = (I1 - I3) K2/(2R sq), dK2/du = +m K1/(2R sq)."""
+    """(3.22) as printed: dK1/du = (I1 - I3) K2/(2R sq), dK2/du = +m K1/(2R sq)."""
     return rd.eq3_19_printed(P.p, x[0], x[1:3])
 
 
@@ -39,19 +39,19 @@ def flat_axisym_linear_corrected(P, x):
 
 @formula("flat_axisym_gyro_linear")
 def flat_axisym_gyro_linear(P, x):
-    """eq3.21: 2R dK1/du = (I1 - I3) K2/sq - s, 2R dK2/du = -m (K1 + z s)/sq."""
+    """(3.26): 2R dK1/du = (I1 - I3) K2/sq - s, 2R dK2/du = -m (K1 + z s)/sq."""
     return rd.eq3_21(P.p, x[0], x[1:3])
 
 
 @formula("flat_axisym_solution")
 def flat_axisym_solution(P, x):
-    """eq-**: K1 = sqrt(I1 - I3)(-c1 cos phi + c2 sin phi), K2 = sqrt(m)(c1 sin phi +
+    """(3.23): K1 = sqrt(I1 - I3)(-c1 cos phi + c2 sin phi), K2 = sqrt(m)(c1 sin phi +
     c2 cos phi), phi^2 = (I1 - I3)(I1 I3 + I3 m z^2 + I1 m u)/(I1^2 m R^2).
 
     Evaluated literally: for I1 < I3 (the case it is printed for) sqrt(I1 - I3) and phi are
     imaginary and so is the result (principal root). Only phi^2 is printed; the root is
     phi = sqrt(I1 - I3) sq(u)/(I1 sqrt(m) R) with the same sqrt(I1 - I3) and R = 1/k, the
-    only one that can solve a system of the form of eq3.19 (its sign is tied to that of
+    only one that can solve a system of the form of (3.22) (its sign is tied to that of
     R); written through sq(u), phi is analytic in u (no branch cut of sqrt(phi^2))."""
     I1, I3, m, _, R, _ = _prm(P)
     u, c1, c2 = x[0], x[1], x[2]
@@ -85,7 +85,7 @@ def _particular(P, u, sign):
 
 @formula("flat_axisym_particular")
 def flat_axisym_particular(P, x):
-    """After eq3.21: K1p = s z (I3 + I1 (1 + R/z))/(I1 - I3), K2p = s sq(u)/(I1 - I3)."""
+    """After (3.26): K1p = s z (I3 + I1 (1 + R/z))/(I1 - I3), K2p = s sq(u)/(I1 - I3)."""
     return _particular(P, x[0], +1.0)
 
 
@@ -97,7 +97,7 @@ def flat_axisym_particular_corrected(P, x):
 
 @formula("flat_axisym_quadratic")
 def flat_axisym_quadratic(P, x):
-    """eq-***: F = m K1^2 + (I1 - I3) K2^2."""
+    """(3.24): F = m K1^2 + (I1 - I3) K2^2."""
     I1, I3, m = P.I[0], P.I[2], P.m
     return m * x[1] ** 2 + (I1 - I3) * x[2] ** 2
 
@@ -136,7 +136,7 @@ def _energy(P, x, printed):
 
 @formula("flat_axisym_energy")
 def flat_axisym_energy(P, x):
-    """eq-***3 (U = 0 here): H = (I1 + m z^2 + m u) udot^2/(8 R^2 u) + ((I1 + m z^2) K1^2
+    """(3.25) (U = 0 here): H = (I1 + m z^2 + m u) udot^2/(8 R^2 u) + ((I1 + m z^2) K1^2
     + (I1 u + I3 z^2) K2^2 - z/(I1^2 u) sq K1 K2)/(2 I1^2 u); x = (u, K1, K2, du/dt)."""
     return _energy(P, x, printed=True)
 

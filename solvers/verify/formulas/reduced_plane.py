@@ -1,11 +1,11 @@
-"""Section 2, body of revolution on the plane in the reduced variables of eq2.4:
-eq2-*1 .. eq2a-*4, the linear systems eq2.5, eq2.20, eq2.24, the disk eq2.8, eq2.9, eq2.21
-and its hypergeometric form, the superposition eq2.7 and the quadratic integral of rem-*1.
+"""Section 2, body of revolution on the plane in the reduced variables of (2.5):
+(2.6) .. (2.12), the linear systems (2.13), (2.32), (2.34), the disk (2.16), (2.17), (2.33)
+and its hypergeometric form, the superposition (2.14) and the quadratic integral of (2.21).
 
 The systems wrap solvers/models/reduced.py (printed and corrected forms, tested against the full
 field in tests/test_reduced.py). Contracts of the roles used here:
 
-* system in (gamma3, K1, K2, K3): f(P, x) = dx/dt (dx/dtau for eq2a-*1, eq2a-*4);
+* system in (gamma3, K1, K2, K3): f(P, x) = dx/dt (dx/dtau for (2.9), (2.12));
 * system in (gamma3|theta|u, K1, K2): f(P, x) = dK/ds, s the first variable;
 * second-order equation in (theta|x, omega3): f(P, (s, w, w', w'')) returns the TERMS of
   the printed "left-hand side - right-hand side" (their sum is the residual; the check
@@ -42,23 +42,23 @@ def potential_du(P, u):
     return P.m * P.g * phi_derivs(body(P).prof, u)[1] + P.eps * (I3 - I1) * u
 
 
-# --- eq2-*1 .. eq2-*3 ----------------------------------------------------------------------
+# --- (2.6) .. (2.8) ----------------------------------------------------------------------
 
 @formula("revolution_reduced")
 def revolution_reduced(P, x):
-    """eq2-*1 as printed (no gyrostat); the paper's k is rd.kappa, not the curvature."""
+    """(2.6) as printed (no gyrostat); the paper's k is rd.kappa, not the curvature."""
     return rd.field_eq2_star1(body(P), x, potential_du(P, x[0]))
 
 
 @formula("revolution_reduced_density")
 def revolution_reduced_density(P, x):
-    """rho = 1/k, k = sqrt((1 - gamma3^2)/(I1 + m r^2)) (sentence after eq2-*1)."""
+    """rho = 1/k, k = sqrt((1 - gamma3^2)/(I1 + m r^2)) (sentence after (2.6))."""
     return 1.0 / rd.kappa(body(P), x[0]) + 0.0 * x[1]
 
 
 @formula("revolution_energy_K")
 def revolution_energy_k(P, x):
-    """eq2-*2. The term m f2^2/I1 (K1 - K2/(rho m f1 f2))^2 is evaluated in the identical
+    """(2.7). The term m f2^2/I1 (K1 - K2/(rho m f1 f2))^2 is evaluated in the identical
     form (m f2 K1 - K2/(rho f1))^2/(m I1), which stays finite where f2 = 0 (a disk with
     a = 0): the same function, not a different formula."""
     return rd.energy(body(P), x, lambda u: potential(P, u))
@@ -72,26 +72,26 @@ def revolution_time_change(P, x):
 
 @formula("revolution_bracket")
 def revolution_bracket(P, x):
-    """eq2-*3: {gamma3, K3} = 1, {K1, K3} = -I3 rho (1 - (f2/f1)') K2,
+    """(2.8): {gamma3, K3} = 1, {K1, K3} = -I3 rho (1 - (f2/f1)') K2,
     {K2, K3} = -m rho f1 (f1 - f2') K1."""
     return rd.bracket(body(P), x)
 
 
-# --- the antigradient form eq2a-*1 .. eq2a-*4 -------------------------------------------------
+# --- the antigradient form (2.9) .. (2.12) -------------------------------------------------
 # lambda is "an arbitrary function": the default is the constant LAMBDA (the claim that
-# J_lambda is not Poisson names constant lambda), and eq2a-*3 uses ALPHA(gamma3) K3 with an
+# J_lambda is not Poisson names constant lambda), and (2.11) uses ALPHA(gamma3) K3 with an
 # arbitrary (here fixed, non-constant) alpha. A bracket check that needs another lambda
 # calls antigradient_J(P, x, lam=...).
 LAMBDA = 0.7
 
 
 def alpha(u):
-    """The arbitrary alpha(gamma3) of eq2a-*3 (any smooth nonvanishing function)."""
+    """The arbitrary alpha(gamma3) of (2.11) (any smooth nonvanishing function)."""
     return 1.0 + 0.5 * u * u
 
 
 def energy_gradient(P, x):
-    """grad H of eq2-*2 in (gamma3, K1, K2, K3), closed form (complex-safe)."""
+    """grad H of (2.7) in (gamma3, K1, K2, K3), closed form (complex-safe)."""
     b = body(P)
     u, K1, K2, K3 = x
     f1, f2, f1p, f2p = profile(b.prof, u)[:4]
@@ -133,7 +133,7 @@ def _J_lambda(P, x, lam, printed):
 
 @formula("antigradient_J")
 def antigradient_j(P, x, lam=None):
-    """eq2a-*2 as printed: J_0 (= eq2-*3) + lambda (entries 1, -u, -v), with
+    """(2.10) as printed: J_0 (= (2.8)) + lambda (entries 1, -u, -v), with
     u = ((r, I r)/m K2 - f1 f2/rho K1)/(f1^2 I1^2 (1 - gamma3^2) K3)."""
     return _J_lambda(P, x, LAMBDA if lam is None else lam, printed=True)
 
@@ -147,7 +147,7 @@ def antigradient_j_corrected(P, x, lam=None):
 
 @formula("antigradient_form")
 def antigradient_form(P, x, lam=None):
-    """eq2a-*1: dx/d tau = J_lambda grad H (eq2a-*2 as printed, default lambda)."""
+    """(2.9): dx/d tau = J_lambda grad H ((2.10) as printed, default lambda)."""
     return antigradient_j(P, x, lam) @ energy_gradient(P, x)
 
 
@@ -158,13 +158,13 @@ def antigradient_form_corrected(P, x, lam=None):
 
 @formula("conformal_lambda")
 def conformal_lambda(P, x):
-    """eq2a-*3: lambda = alpha(gamma3) K3."""
+    """(2.11): lambda = alpha(gamma3) K3."""
     return alpha(x[0]) * x[3]
 
 
 @formula("conformal_field")
 def conformal_field(P, x):
-    """eq2a-*4: v = (lambda^-1 J_lambda) grad H with lambda = alpha(gamma3) K3 (as printed)."""
+    """(2.12): v = (lambda^-1 J_lambda) grad H with lambda = alpha(gamma3) K3 (as printed)."""
     lam = conformal_lambda(P, x)
     return antigradient_j(P, x, lam) @ energy_gradient(P, x) / lam
 
@@ -177,7 +177,7 @@ def conformal_field_corrected(P, x):
 
 @formula("reducing_multiplier_aK3")
 def reducing_multiplier(P, x):
-    """rho = alpha(gamma3) K3, the invariant measure of eq2a-*4 (alpha as in eq2a-*3).
+    """rho = alpha(gamma3) K3, the invariant measure of (2.12) (alpha as in (2.11)).
     A density is taken positive: on K3 < 0 this returns -alpha K3 (the Liouville equation
     div(rho v) = 0 is linear in rho; the sign comes from the real part, so the complex step
     still differentiates alpha K3 exactly)."""
@@ -188,25 +188,25 @@ def reducing_multiplier(P, x):
 
 @formula("revolution_linear")
 def revolution_linear(P, x):
-    """eq2.5: dK1/dg3 = -rho I3 (1 - (f2/f1)') K2, dK2/dg3 = -m rho f1 (f1 - f2') K1."""
+    """(2.13): dK1/dg3 = -rho I3 (1 - (f2/f1)') K2, dK2/dg3 = -m rho f1 (f1 - f2') K1."""
     return rd.eq2_5(body(P), x[0], x[1:3])
 
 
 @formula("revolution_gyro_linear")
 def revolution_gyro_linear(P, x):
-    """eq2.20: eq2.5 with -s and -m rho f1 f2 s (S = (0, 0, s))."""
+    """(2.32): (2.13) with -s and -m rho f1 f2 s (S = (0, 0, s))."""
     return rd.eq2_20(body(P), x[0], x[1:3])
 
 
 @formula("routh_gyro_linear")
 def routh_gyro_linear(P, x):
-    """eq2.24: dK1/dg3 = -s, dK2/dg3 = -m rho R (R g3 + a) s."""
+    """(2.34): dK1/dg3 = -s, dK2/dg3 = -m rho R (R g3 + a) s."""
     return rd.eq2_24(body(P), x[0], x[1:3])
 
 
 @formula("quadratic_condition")
 def quadratic_condition(P, x):
-    """rem-*1: lambda(gamma3) = I3 (1 - (f2/f1)') / (m f1 (f1 - f2')); x = (gamma3,)."""
+    """(2.21): lambda(gamma3) = I3 (1 - (f2/f1)') / (m f1 (f1 - f2')); x = (gamma3,)."""
     b = body(P)
     c1, c2 = rd._coeffs(b, x[0])
     return c1 / c2
@@ -214,9 +214,9 @@ def quadratic_condition(P, x):
 
 @formula("revolution_quadratic_F")
 def revolution_quadratic_f(P, x):
-    """F = a K1^2 + b K2^2 with a = 1, b = -a lambda (rem-*1), a and b CONSTANT.
+    """F = a K1^2 + b K2^2 with a = 1, b = -a lambda (2.21), a and b CONSTANT.
 
-    rem-*1 asks for a meridian along which lambda is constant; no body of the model family
+    (2.21) asks for a meridian along which lambda is constant; no body of the model family
     (ellipsoid + ball + disk + offset) has one but the Routh ball, where lambda is 0/0.
     So the constants are taken as the value of lambda at the real point (x[0].real):
     the complex step then differentiates F with a, b held fixed, which is the statement
@@ -232,7 +232,7 @@ _SUPERPOSITION_CACHE: dict[bytes, tuple] = {}
 
 
 def _elementary(P):
-    """Dense elementary solutions of eq2.5 on [-0.98, 0.98], g^(i)(0) = e_i (cached per
+    """Dense elementary solutions of (2.13) on [-0.98, 0.98], g^(i)(0) = e_i (cached per
     parameter vector): scipy DOP853, rtol 1e-12."""
     key = P.p.tobytes()
     if key not in _SUPERPOSITION_CACHE:
@@ -255,8 +255,8 @@ def _elementary(P):
 
 @formula("linear_superposition")
 def linear_superposition(P, x):
-    """eq2.7: K = c1 g^(1)(gamma3) + c2 g^(2)(gamma3), x = (gamma3, c1, c2), with the
-    elementary solutions g^(i) of eq2.5 normalised by g^(i)(0) = e_i, integrated
+    """(2.14): K = c1 g^(1)(gamma3) + c2 g^(2)(gamma3), x = (gamma3, c1, c2), with the
+    elementary solutions g^(i) of (2.13) normalised by g^(i)(0) = e_i, integrated
     numerically (dense DOP853 output, rtol 1e-12, |gamma3| <= 0.98): real x only (the
     checks that use it, checks/ode.py, never differentiate it)."""
     s = float(np.real(x[0]))
@@ -267,11 +267,11 @@ def linear_superposition(P, x):
     return G @ np.real(x[1:3])
 
 
-# --- the round disk (eq2.71), gamma3 = cos(theta) ----------------------------------------------
+# --- the round disk (2.15), gamma3 = cos(theta) ----------------------------------------------
 
 @formula("disk_linear")
 def disk_linear(P, x):
-    """eq2.8 as printed: dK1/dth = rho m R^2/sin th K2, dK2/dth = I3 rho (sin + a/R cos) K1."""
+    """(2.16) as printed: dK1/dth = rho m R^2/sin th K2, dK2/dth = I3 rho (sin + a/R cos) K1."""
     return rd.eq2_8_printed(body(P), x[0], x[1:3])
 
 
@@ -290,7 +290,7 @@ def _disk(P):
 
 def _eq2_21_terms(P, x, s, sign):
     """Terms of w'' + sign (ctg w' - rho^2 m R (R + a ctg) I3 w) - s m R rho^2 (R + a ctg):
-    sign = -1 is the printed eq2.9/eq2.21, sign = +1 the corrected form (reduced.eq2_21)."""
+    sign = -1 is the printed (2.17)/(2.33), sign = +1 the corrected form (reduced.eq2_21)."""
     b, R, a, rho = _disk(P)
     th, w, w1, w2 = x
     ct = np.cos(th) / np.sin(th)
@@ -300,7 +300,7 @@ def _eq2_21_terms(P, x, s, sign):
 
 @formula("disk_second_order")
 def disk_second_order(P, x):
-    """eq2.9 as printed: w'' - ctg(th) w' + rho^2 m R (R + a ctg th) I3 w = 0."""
+    """(2.17) as printed: w'' - ctg(th) w' + rho^2 m R (R + a ctg th) I3 w = 0."""
     return _eq2_21_terms(P, x, 0.0, -1.0)
 
 
@@ -313,7 +313,7 @@ def disk_second_order_corrected(P, x):
 
 @formula("disk_gyro_second_order")
 def disk_gyro_second_order(P, x):
-    """eq2.21 as printed: w'' - ctg w' + m R I3 (R + a ctg) rho^2 w = s m R rho^2 (R + a ctg)."""
+    """(2.33) as printed: w'' - ctg w' + m R I3 (R + a ctg) rho^2 w = s m R rho^2 (R + a ctg)."""
     return _eq2_21_terms(P, x, P.S[2], -1.0)
 
 
@@ -326,7 +326,7 @@ def disk_gyro_second_order_corrected(P, x):
 
 @formula("disk_hypergeometric")
 def disk_hypergeometric(P, x):
-    """After eq2.9 (a = 0, cos th = 1 - 2x): x(1-x) w'' + (1-2x) w' - rho^2 I3 m R^2 w = 0."""
+    """After (2.17) (a = 0, cos th = 1 - 2x): x(1-x) w'' + (1-2x) w' - rho^2 I3 m R^2 w = 0."""
     b, R, _, rho = _disk(P)
     xx, w, w1, w2 = x
     return np.array([xx * (1 - xx) * w2, (1 - 2 * xx) * w1, -rho * rho * b.I3 * b.m * R * R * w])

@@ -1,11 +1,11 @@
-"""Section 3, body of revolution on a sphere in the variables eq3.2-1
-(K1 = (M, r)(1 - k f1)/f1, K2 = omega3/rho0, gamma3): eq3.3, the energy after eq3.3,
-eq3.4, eq3.7-eq3.11 and Kuleshov's eq3-8. Contracts as in reduced_plane.py.
+"""Section 3, body of revolution on a sphere in the variables (3.3)
+(K1 = (M, r)(1 - k f1)/f1, K2 = omega3/rho0, gamma3): (3.4), the energy after (3.4),
+(3.5), (3.6)-(3.15) and Kuleshov's (3.8). Contracts as in reduced_plane.py.
 
 k is the signed curvature of CONVENTIONS.md (+1/R0 inside a cavity, -1/R0 outside a ball);
-that is the reading under which eq3.3 holds (solvers/models/reduced.py, tests/test_reduced.py).
-rho0 is the first expression of eq3.2, (I1 I3 + m (r, I r))^-1/2 (its expanded form there
-carries a misprinted gamma3^2; rho0 of eq3.2 is not a formula of this module).
+that is the reading under which (3.4) holds (solvers/models/reduced.py, tests/test_reduced.py).
+rho0 is the first expression of (3.2), (I1 I3 + m (r, I r))^-1/2 (its expanded form there
+carries a misprinted gamma3^2; rho0 of (3.2) is not a formula of this module).
 """
 
 import numpy as np
@@ -18,7 +18,7 @@ from solvers.verify.registry import corrected, formula
 
 @formula("sphere_revolution_linear")
 def sphere_revolution_linear(P, x):
-    """eq3.3: (1/rho0) K1' = -[I3 (1 - (f2/f1)') + k f1 (I1 - I3)(1 - k f2')] K2,
+    """(3.4): (1/rho0) K1' = -[I3 (1 - (f2/f1)') + k f1 (I1 - I3)(1 - k f2')] K2,
     ((1 - k f1)/rho0) K2' = -m f1 (f1 - f2' - k f1 f2') K1
                             + m k rho0 I1 f1^2 (g3 f2' + sqrt(1-g3^2)(f1 sqrt(1-g3^2))') K2."""
     return rd.eq3_3(body(P), x[0], x[1:3])
@@ -26,7 +26,7 @@ def sphere_revolution_linear(P, x):
 
 @formula("sphere_revolution_gyro_linear")
 def sphere_revolution_gyro_linear(P, x):
-    """eq3.10 as printed: eq3.3 with + s rho0^-1 (1 - k f2')(1 - k f1) in the K1 equation
+    """(3.14) as printed: (3.4) with + s rho0^-1 (1 - k f2')(1 - k f1) in the K1 equation
     and - s m f1 f2 (1 - k f2')(1 - k f1) in the K2 equation."""
     return rd.eq3_10_printed(body(P), x[0], x[1:3])
 
@@ -38,9 +38,9 @@ def sphere_revolution_gyro_linear_corrected(P, x):
 
 
 def _energy(P, x, corrected_form):
-    """The energy after eq3.3 in x = (gamma3, K1, K2, dgamma3/dt). The term
+    """The energy after (3.4) in x = (gamma3, K1, K2, dgamma3/dt). The term
     m f2^2/I1 (K1/(1-k f1) - K2/(m rho f1 f2))^2 is evaluated in the identical, regular form
-    (m f2 K1/(1-k f1) - K2/(rho f1))^2/(m I1) (rd.energy); rho = rho0 (variables eq3.2-1)."""
+    (m f2 K1/(1-k f1) - K2/(rho f1))^2/(m I1) (rd.energy); rho = rho0 (variables (3.3))."""
     if len(x) < 4:
         raise LookupError("the energy after eq3.3 contains dgamma3/dt, which the variables "
                           "(gamma3, K1, K2) do not carry; pass x = (gamma3, K1, K2, "
@@ -57,7 +57,7 @@ def _energy(P, x, corrected_form):
 
 @formula("sphere_revolution_energy")
 def sphere_revolution_energy(P, x):
-    """After eq3.3: H = 1/2 (I1 + m r^2)/(1 - g3^2) g3dot^2 + (K1^2/(1-k f1)^2
+    """After (3.4): H = 1/2 (I1 + m r^2)/(1 - g3^2) g3dot^2 + (K1^2/(1-k f1)^2
     - I3 K2^2/(m f1^2) + m f2^2/I1 (K1/(1-k f1) - K2/(m rho f1 f2))^2)/(2 I1 (1-g3^2)) + U."""
     return _energy(P, x, corrected_form=False)
 
@@ -86,7 +86,7 @@ def _disk_terms(P, x, printed):
 
 @formula("sphere_disk_second_order")
 def sphere_disk_second_order(P, x):
-    """eq3.4 as printed: w'' + ctg(1 + kR/(sin - kR)) w - rho0^2 m R I3/(1 - kR/sin)
+    """(3.5) as printed: w'' + ctg(1 + kR/(sin - kR)) w - rho0^2 m R I3/(1 - kR/sin)
     (R + a ctg + k R^2 (I1 - I3)/(I3 sin)) w = 0 (x = (theta, w, w', w''))."""
     return _disk_terms(P, x, printed=True)
 
@@ -98,17 +98,17 @@ def sphere_disk_second_order_corrected(P, x):
     return _disk_terms(P, x, printed=False)
 
 
-# --- the ball with displaced centre (2-14*) on a sphere ------------------------------------
+# --- the ball with displaced centre (2.18) on a sphere ------------------------------------
 
 @formula("sphere_routh_linear")
 def sphere_routh_linear(P, x):
-    """eq3.7: (1/rho) K1' = -kR (I1 - I3)(1 - kR) K2, (1/rho) K2' = k m R^3/(1 - kR) K1."""
+    """(3.6): (1/rho) K1' = -kR (I1 - I3)(1 - kR) K2, (1/rho) K2' = k m R^3/(1 - kR) K1."""
     return rd.eq3_7(body(P), x[0], x[1:3])
 
 
 @formula("sphere_routh_gyro_linear")
 def sphere_routh_gyro_linear(P, x):
-    """eq3.11 as printed: K1' has -R (1 - kR)^2 s (i.e. -(1/rho0) R (1-kR)^2 s after 1/rho0)."""
+    """(3.15) as printed: K1' has -R (1 - kR)^2 s (i.e. -(1/rho0) R (1-kR)^2 s after 1/rho0)."""
     return rd.eq3_11_printed(body(P), x[0], x[1:3])
 
 
@@ -139,9 +139,9 @@ def tau(P, u):
 
 @formula("sphere_routh_lambda_tau")
 def sphere_routh_lambda_tau(P, x):
-    """eq3.8: lambda^2 = m k^2 R^4 (I3 - I1), tau = int rho0 d gamma3; x = (gamma3,).
+    """(3.7): lambda^2 = m k^2 R^4 (I3 - I1), tau = int rho0 d gamma3; x = (gamma3,).
     Only lambda^2 is printed: the root is lambda = -k R^2 sqrt(m (I3 - I1)), the one for
-    which F2 and F3 (with the same lambda) are integrals of eq3.7 (imaginary for I1 > I3).
+    which F2 and F3 (with the same lambda) are integrals of (3.6) (imaginary for I1 > I3).
     Returns (lambda, tau)."""
     b = body(P)
     lam = -b.k * b.prof.c**2 * np.sqrt(complex(b.m * (b.I3 - b.I1)))
@@ -177,19 +177,19 @@ def _F23(P, x, sign):
 
 @formula("sphere_routh_F2")
 def sphere_routh_f2(P, x):
-    """eq3.8: F2 = (sqrt(m (I3 - I1)) K2 + m R K1/(1 - kR)) e^(lambda tau) (see _F23)."""
+    """(3.7): F2 = (sqrt(m (I3 - I1)) K2 + m R K1/(1 - kR)) e^(lambda tau) (see _F23)."""
     return _F23(P, x, +1.0)
 
 
 @formula("sphere_routh_F3")
 def sphere_routh_f3(P, x):
-    """eq3.8: F3 = (sqrt(m (I3 - I1)) K2 - m R K1/(1 - kR)) e^(-lambda tau) (see _F23)."""
+    """(3.7): F3 = (sqrt(m (I3 - I1)) K2 - m R K1/(1 - kR)) e^(-lambda tau) (see _F23)."""
     return _F23(P, x, -1.0)
 
 
 @formula("kuleshov_quadratic")
 def kuleshov_quadratic(P, x):
-    """eq3-8 (right-hand side): F = m R^2 K1^2/(1 - kR)^2 + (I1 - I3) K2^2."""
+    """(3.8) (right-hand side): F = m R^2 K1^2/(1 - kR)^2 + (I1 - I3) K2^2."""
     b = body(P)
     R, k = b.prof.c, b.k
     return b.m * R * R / (1 - k * R) ** 2 * x[1] ** 2 + (b.I1 - b.I3) * x[2] ** 2
@@ -197,7 +197,7 @@ def kuleshov_quadratic(P, x):
 
 @formula("sphere_routh_spherical_second")
 def sphere_routh_spherical_second(P, x):
-    """eq3.9 (I1 = I3): (1 - kR) K2 - k m R^3 K1 int rho d gamma3 (rho = rho0 of 2-14*)."""
+    """(3.9) (I1 = I3): (1 - kR) K2 - k m R^3 K1 int rho d gamma3 (rho = rho0 of (2.18))."""
     b = body(P)
     R, k = b.prof.c, b.k
     return (1 - k * R) * x[2] - k * b.m * R**3 * x[1] * tau(P, x[0])

@@ -1,9 +1,9 @@
-"""Section 3, bodies on a sphere in the full variables (M, gamma): bodies of revolution eq3.2,
-eq3.2-1, the disk, the Routh ball (eq3.8's lambda and tau, eq3.9, the gyrostatic Jellett
-integral), the balanced nonsymmetric ball eq3.12 and the Borisov-Fedorov case eq3.13.
+"""Section 3, bodies on a sphere in the full variables (M, gamma): bodies of revolution (3.2),
+(3.3), the disk, the Routh ball ((3.7)'s lambda and tau, (3.9), the gyrostatic Jellett
+integral), the balanced nonsymmetric ball (3.10) and the Borisov-Fedorov case (3.11).
 
 k is CONVENTIONS.md's signed curvature (+1/R0 inside a cavity, -1/R0 outside a fixed ball),
-which is the reading under which eq3.2-eq3.11 hold (solvers/models/reduced.py); eq3.12's own k is
+which is the reading under which (3.2)-(3.15) hold (solvers/models/reduced.py); (3.10)'s own k is
 the factor R0/(R0 - a) = 1/(1 - k a) of that curvature.
 """
 
@@ -20,14 +20,14 @@ def _f(P, u):
 
 
 def _rho0(P, g):
-    """rho0 = (I1 I3 + m (r, I r))^(-1/2) (eq3.2, first form)."""
+    """rho0 = (I1 I3 + m (r, I r))^(-1/2) ((3.2), first form)."""
     r = P.r(g)
     return (P.I[0] * P.I[2] + P.m * (r @ (P.I * r))) ** -0.5
 
 
 @formula("sphere_revolution_density")
 def sphere_revolution_density(P, x):
-    """eq3.2: rho = rho0 (1 - k f1)^3 (1 - k f2'), rho0 = (I1 I3 + m (r, I r))^(-1/2)."""
+    """(3.2): rho = rho0 (1 - k f1)^3 (1 - k f2'), rho0 = (I1 I3 + m (r, I r))^(-1/2)."""
     g = x[3:6]
     f1, _, _, f2p = _f(P, g[2])
     return _rho0(P, g) * (1 - P.k * f1) ** 3 * (1 - P.k * f2p)
@@ -45,7 +45,7 @@ def sphere_revolution_density_corrected(P, x):
 
 @compares("sphere_revolution_density")
 def sphere_revolution_density_forms(P, x, corrected=False):
-    """eq3.2's two printed forms of rho0^-2: I1 I3 + m (r, I r) and
+    """(3.2)'s two printed forms of rho0^-2: I1 I3 + m (r, I r) and
     I1 I3 + m I1 f1^2 (1 - g3^2) + m I3 f2^2 g3^2 (corrected: f2^2 without g3^2)."""
     g = x[3:6]
     u = g[2]
@@ -73,7 +73,7 @@ def sphere_revolution_density_table_corrected(P, x):
 
 @formula("sphere_revolution_K")
 def sphere_revolution_k(P, x):
-    """eq3.2-1: K1 = (M, r)(1 - k f1)/f1, K2 = omega3/rho0."""
+    """(3.3): K1 = (M, r)(1 - k f1)/f1, K2 = omega3/rho0."""
     M, g = x[:3], x[3:6]
     r = P.r(g)
     f1 = _f(P, g[2])[0]
@@ -97,7 +97,7 @@ def sphere_disk_density_corrected(P, x):
 
 
 def _routh_q(P):
-    """rho0^-2 of the ball 2-14* as c0 + c1 g3 + c2 g3^2."""
+    """rho0^-2 of the ball (2.18) as c0 + c1 g3 + c2 g3^2."""
     I1, I3, m, R, a = P.I[0], P.I[2], P.m, P.R, P.a[2]
     return I1 * I3 + I1 * m * R**2 + I3 * m * a**2, 2 * I3 * m * R * a, m * R**2 * (I3 - I1)
 
@@ -112,7 +112,7 @@ def sphere_routh_density(P, x):
 
 @formula("sphere_jellett")
 def sphere_jellett(P, x):
-    """eq3.9 (I1 = I3), right member: M1 g1 + M2 g2 + M3 (g3 + a/R) (= (M, r)/R; eq3.2-1's K1
+    """(3.9) (I1 = I3), right member: M1 g1 + M2 g2 + M3 (g3 + a/R) (= (M, r)/R; (3.3)'s K1
     is (M, r)(1 - k R)/R: constant factors apart)."""
     M, g = x[:3], x[3:6]
     return M @ g + M[2] * P.a[2] / P.R
@@ -120,7 +120,7 @@ def sphere_jellett(P, x):
 
 @formula("sphere_gyro_jellett")
 def sphere_gyro_jellett(P, x):
-    """After eq3.11 (I1 = I3), right member: (M/R + S (1 - k R), r)(1 - k R)."""
+    """After (3.15) (I1 = I3), right member: (M/R + S (1 - k R), r)(1 - k R)."""
     M, g = x[:3], x[3:6]
     r = P.r(g)
     c = 1 - P.k * P.R
@@ -137,24 +137,24 @@ def sphere_gyro_jellett_corrected(P, x):
 
 
 def sphere_gyro_jellett_middle(P, x):
-    """After eq3.11, middle member: K1 + (1 - k R)^2 (g3 + a/R), K1 = (M, r)(1 - k R)/R
-    (eq3.2-1); it lacks s."""
+    """After (3.15), middle member: K1 + (1 - k R)^2 (g3 + a/R), K1 = (M, r)(1 - k R)/R
+    (3.3); it lacks s."""
     M, g = x[:3], x[3:6]
     c = 1 - P.k * P.R
     return (M @ P.r(g)) * c / P.R + c**2 * (g[2] + P.a[2] / P.R)
 
 
-# --- balanced nonsymmetric ball on a sphere, eq3.12-eq3.13 ------------------------------------
+# --- balanced nonsymmetric ball on a sphere, (3.10)-(3.11) ------------------------------------
 
 def factor_312(P):
-    """eq3.12's k = R0/(R0 - a) (a: ball radius, R0: fixed sphere) = 1/(1 - kappa a) with
+    """(3.10)'s k = R0/(R0 - a) (a: ball radius, R0: fixed sphere) = 1/(1 - kappa a) with
     CONVENTIONS.md's signed curvature kappa; -1 in the Borisov-Fedorov case kappa = 2/a."""
     return 1.0 / (1.0 - P.k * P.R)
 
 
 @formula("sphere_chaplygin_system")
 def sphere_chaplygin_system(P, x):
-    """eq3.12: dM/dt = M x omega, dgamma/dt = k gamma x omega, M = (I + D) omega - D gamma
+    """(3.10): dM/dt = M x omega, dgamma/dt = k gamma x omega, M = (I + D) omega - D gamma
     (omega, gamma), D = m a^2, k = R0/(R0 - a)."""
     M, g = x[:3], x[3:6]
     w = chaplygin_omega(P, M, g)
@@ -162,25 +162,25 @@ def sphere_chaplygin_system(P, x):
 
 
 def bf_abar(P):
-    """Abar = E - 2 (tr(I + D))^-1 (I + D) of eq3.13 (diagonal)."""
+    """Abar = E - 2 (tr(I + D))^-1 (I + D) of (3.11) (diagonal)."""
     J = P.I + P.D
     return 1.0 - 2.0 * J / np.sum(J)
 
 
 @formula("bf_integral")
 def bf_integral(P, x):
-    """eq3.13: F = (M, Abar gamma)."""
+    """(3.11): F = (M, Abar gamma)."""
     return x[:3] @ (bf_abar(P) * x[3:6])
 
 
 @formula("bf_brun_potential")
 def bf_brun_potential(P, x):
-    """After eq3.13: U = (I gamma, gamma)/2 (unit Brun constant)."""
+    """After (3.11): U = (I gamma, gamma)/2 (unit Brun constant)."""
     g = x[3:6]
     return 0.5 * (P.I * g @ g)
 
 
 @formula("bf_transform")
 def bf_transform(P, x):
-    """After eq3.13: (M~, gamma~) = (Abar M, gamma)."""
+    """After (3.11): (M~, gamma~) = (Abar M, gamma)."""
     return np.concatenate([bf_abar(P) * x[:3], x[3:6]])
