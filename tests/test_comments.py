@@ -23,9 +23,6 @@ ISSUE = re.compile(r"\bissues? #?\d+", re.IGNORECASE)
 ISSUE_SPLIT = re.compile(r"\bissues?[ \t]*\n[ \t]*(?:#|//|/?\*)?[ \t]*#?\d+", re.IGNORECASE)
 SHARED = re.compile(r"\.\./shared|shared/seeds")
 
-# Not held to it (yet): the prose of README.md and docs/ still names the folder.
-SHARED_SCAN_SKIPS = ("README.md", "docs/")
-
 
 def _files(top: Path):
     for p in sorted(top.rglob("*")):
@@ -77,8 +74,7 @@ def test_only_the_tests_refer_to_the_folder_beside_the_clone():
     paths = []
     for p in _repository_files():
         rel = p.relative_to(ROOT).as_posix()
-        if rel.startswith("tests/") or any(rel == s or (s.endswith("/") and rel.startswith(s))
-                                           for s in SHARED_SCAN_SKIPS):
+        if rel.startswith("tests/"):
             continue
         if any(p.is_relative_to(s) for s in SKIPPED) or p.stat().st_size > 2_000_000:
             continue

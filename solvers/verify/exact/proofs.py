@@ -8,11 +8,14 @@ A symbolic proof (certify.prove) of a measure or a reduced system takes seconds 
 and stored with a fingerprint of everything they depend on: the claim's catalogue entry
 (formula, check, conditions, corrected form) and the source of the code the residual runs
 (solvers/verify/exact, formulas, variables, params, registry, the bodies and cases of
-solvers/models). A record whose fingerprint changed is not proved until the file is
+solvers/models), read as code: its syntax tree without comments and docstrings, so a
+reworded comment keeps the proofs current and any change to the code does not. A record
+whose fingerprint changed is not proved until the file is
 regenerated (it keeps its probabilistic certificate). tests/test_exact_bounds.py recomputes
 a sample of the stored proofs.
 """
 
+import ast
 import hashlib
 import json
 import sys
@@ -39,8 +42,20 @@ def code_hash() -> str:
             if f.name == "proofs.py":
                 continue
             h.update(f.relative_to(ROOT).as_posix().encode())
-            h.update(f.read_bytes())
+            h.update(_code_text(f.read_text(encoding="utf-8")).encode())
     return h.hexdigest()[:16]
+
+
+def _code_text(source: str) -> str:
+    """The module's syntax tree without its docstrings (comments are not in the tree)."""
+    tree = ast.parse(source)
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Module | ast.ClassDef | ast.FunctionDef | ast.AsyncFunctionDef):
+            body = node.body
+            if body and isinstance(body[0], ast.Expr) and isinstance(body[0].value, ast.Constant) \
+                    and isinstance(body[0].value.value, str):
+                node.body = body[1:] or [ast.Pass()]
+    return ast.dump(tree)
 
 
 def _functions(claim, corrected):
@@ -58,14 +73,18 @@ def _functions(claim, corrected):
                 code = getattr(fn, "__code__", None)
                 out.append([fid, getattr(fn, "__module__", None),
                             getattr(fn, "__qualname__", repr(type(fn))),
-                            None if code is None else _code_sig(code)])
+                            None if code is None else _code_sig(code, fn.__doc__)])
     return out
 
 
-def _code_sig(code):
-    """Bytecode, constants (nested code objects recursively, no memory addresses) and
-    names: stable across processes, different for a different function."""
-    consts = [_code_sig(c) if hasattr(c, "co_code") else repr(c) for c in code.co_consts]
+def _code_sig(code, doc: str | None = None):
+    """Bytecode, constants (nested code objects recursively, no memory addresses; the
+    function's docstring left out) and names: stable across processes, different for a
+    different function."""
+    consts = list(code.co_consts)
+    if doc is not None and consts and consts[0] == doc:
+        consts = consts[1:]
+    consts = [_code_sig(c) if hasattr(c, "co_code") else repr(c) for c in consts]
     return [code.co_code.hex(), consts, list(code.co_names)]
 
 
