@@ -144,7 +144,7 @@ def _checked_times(t_out) -> np.ndarray:
         # a short list of Python floats (a run to T: [t0, T]) checked as it stands, before
         # any array exists, in place of the array, its list and the checks below: with p's
         # bytes as the plan's key, the plain entry is shorter at a short run
-        # (bench/entry_ab.py; see docs/performance.md)
+        # (docs/performance.md)
         prev = -math.inf
         for x in t_out:
             if type(x) is not float or not x > prev:

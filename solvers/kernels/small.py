@@ -34,8 +34,8 @@ typed once per process and inlined by LLVM) instead of hundreds of binary operat
 resolved on its own, a singular stage leaves the step at once (every stage's variables
 then dominate their uses: far fewer variables for numba's SSA reconstruction to rewrite),
 and the error and starting-step norms are one expression each. The operations and their
-order are unchanged (bench/small_side.py: the same bits as before, the same time per
-run), and that first call costs less CPU (docs/performance.md). The field is typed once and
+order are unchanged (tests/test_small.py: the same bits as the loop kernel), and that
+first call costs less CPU (docs/performance.md). The field is typed once and
 inlined by LLVM (forceinline: numba's own inline='always' retyped it at each of its call
 sites, a much longer compile for the same speed).
 

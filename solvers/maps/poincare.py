@@ -276,8 +276,8 @@ class _Tracer:
 
 # Which kernel runs a map's trajectories. The small kernel with sections (solvers/kernels/
 # small.py: the case's generated field in local variables; integrate(kernel="small")) runs
-# a map's trajectory in less time than the general kernel (bench/results/
-# map_kernel_gain.txt), but compiles once per case structure (then numba's disk cache),
+# a map's trajectory in less time than the general kernel (docs/performance.md), but
+# compiles once per case structure (then numba's disk cache),
 # while the general kernel serves every case and is compiled by the warm-up. "auto" takes
 # the small kernel for a map of at least SMALL_MAP_CROSSINGS
 # crossings in all (trajectories x points), where the time saved is of the order of that

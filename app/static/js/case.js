@@ -544,7 +544,7 @@ async function runSimulation(ev) {
     return;
   }
   const t0 = performance.now();
-  // marks for bench/demos_timing.py: the click, the answer, each plot drawn
+  // performance marks (the browser's timeline): the click, the answer, each plot drawn
   performance.clearMarks();
   performance.mark("run:click");
   try {

@@ -7,7 +7,7 @@
 // pixel density. Plotly's default, 2, draws them at twice the width and height of a
 // 1x screen (a projector, most laptops): four times the pixels, which a browser without
 // a GPU rasterizes in software at every frame of an animation, for a picture the screen
-// then shrinks back (bench/scene_frame_cost.py)
+// then shrinks back (docs/performance.md)
 const CONFIG = { responsive: true, displaylogo: false, toImageButtonOptions: { scale: 2 },
   plotGlPixelRatio: Math.min(4, Math.max(1, window.devicePixelRatio || 1)) };
 // Where the parts of a plot go so that none covers another (tests/e2e/

@@ -74,8 +74,8 @@ export class Scene {
     this.playing = false;
     this.timer = null;
     // a playing scene draws only while it can be seen: not in a hidden tab, nor scrolled
-    // out of view (without a GPU each frame costs the browser much CPU: bench/
-    // results/scene_frame_cost.txt); it goes on from the same frame when seen again
+    // out of view (without a GPU each frame costs the browser much CPU:
+    // docs/performance.md); it goes on from the same frame when seen again
     this.inView = true;
     this.seen = typeof IntersectionObserver === "function" ? new IntersectionObserver(
       (entries) => { this.inView = entries[entries.length - 1].isIntersecting; }) : null;

@@ -34,7 +34,7 @@ async function play(id) {
   if (!s) return;
   const token = ++playToken;
   const live = () => token === playToken;
-  // marks for bench/demos_timing.py: where the time from the click to the 3D view goes
+  // performance marks (the browser's timeline): from the click to the 3D view
   performance.clearMarks();
   performance.mark("scene:play");
   $("player").hidden = false;
