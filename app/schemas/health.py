@@ -69,9 +69,22 @@ class KernelsPublic(BaseModel):
                                  "seconds")
 
 
+class KernelCachePublic(BaseModel):
+    """Whether generated kernels can be written to the kernel cache
+    (app/services/kernel_cache.py)."""
+    state: str = Field(description="ok | degraded (the cache cannot be written: kernels "
+                       "compile in memory in each worker, runs use the general kernels)")
+    path: str = Field(description="the kernel cache's directory (ROLLING_KERNEL_CACHE)")
+    message: str = ""
+
+
 class HealthPublic(BaseModel):
-    status: str = Field(description="always 'ok' when the service answers")
+    status: str = Field(description="ok, or degraded: the service answers, but a part of "
+                        "it works in a lesser way (`degraded` names which)")
+    degraded: list[str] = Field(default_factory=list, description="the parts that are "
+                                "degraded: kernel_cache")
     version: str
+    kernel_cache: KernelCachePublic
     pool: PoolPublic
     limits: LimitsPublic
     verification: VerificationStatus

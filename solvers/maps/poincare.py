@@ -251,8 +251,10 @@ def map_kernel(model: Model, spec: MapSpec, trajectories: int) -> str:
     if spec.kernel != "auto":
         return spec.kernel
     from solvers.integrate.integrator import small_fits
+    from solvers.kernels.generate import disk_cache_ok
 
-    fits = spec.generated is not False and small_fits(model.model, spec.method)
+    fits = (spec.generated is not False and small_fits(model.model, spec.method)
+            and disk_cache_ok())
     return "small" if fits and trajectories * spec.points >= SMALL_MAP_CROSSINGS else "general"
 
 
