@@ -20,7 +20,7 @@ from pydantic import BaseModel
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from app.core.disconnect import ClientDisconnected
-from app.core.pool import DeadlineExceeded, QueueFull, WorkerCrashed
+from app.core.pool import DeadlineExceeded, QueueFull, WorkerCrashed, WorkerUnavailable
 from app.schemas.common import FieldError, Problem
 from solvers.errors import InputError
 
@@ -200,6 +200,10 @@ async def _crashed(request: Request, exc: WorkerCrashed) -> JSONResponse:
     return problem(503, str(exc), headers={"Retry-After": "1"})
 
 
+async def _unavailable(request: Request, exc: WorkerUnavailable) -> JSONResponse:
+    return problem(503, str(exc), headers={"Retry-After": str(exc.retry_after)})
+
+
 async def _gone(request: Request, exc: ClientDisconnected) -> Response:
     return Response(status_code=499)  # nginx's "client closed request"; nobody reads it
 
@@ -253,5 +257,6 @@ def install(app: FastAPI) -> None:
     app.add_exception_handler(QueueFull, _busy)
     app.add_exception_handler(NotAcceptable, _not_acceptable)
     app.add_exception_handler(WorkerCrashed, _crashed)
+    app.add_exception_handler(WorkerUnavailable, _unavailable)
     app.add_exception_handler(ClientDisconnected, _gone)
     app.add_exception_handler(StarletteHTTPException, _http)

@@ -23,6 +23,8 @@ async def health(request: Request, pool: PoolDep, verdicts: VerdictsDep,
     degraded = []
     if cache.degraded:
         degraded.append("kernel_cache")
+    if pool.degraded:
+        degraded.append("workers")
     return {"status": "degraded" if degraded else "ok", "degraded": degraded,
             "version": __version__, "pool": asdict(pool.stats()),
             "kernel_cache": cache.public(),

@@ -169,7 +169,10 @@ async def poincare(req: PoincareRequest, request: Request, pool: PoolDep,
     def problem(exc) -> str:
         status = (504 if isinstance(exc, DeadlineExceeded) else
                   422 if isinstance(exc, InputError) else 503)
-        return json.dumps({"event": "error", "status": status, "detail": str(exc)}) + "\n"
+        event = {"event": "error", "status": status, "detail": str(exc)}
+        if status == 503:   # busy, no worker, the server stopping: when to come back
+            event["retry_after"] = getattr(exc, "retry_after", 1)
+        return json.dumps(event) + "\n"
 
     async def events():
         t0 = anyio.current_time()
