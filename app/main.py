@@ -164,8 +164,11 @@ async def lifespan(app: FastAPI):
     if warm_kernels:
         kernels.expect()    # "warming" from the first request
     # while the kernels compile, a new worker only imports (it would compile them too)
+    # verifications (minutes each) hold at most all workers but one, and a quarter of the
+    # queue: a burst of them leaves the runs a worker (app/services/verdicts.py)
+    shares = {"verify": (max(1, settings.workers - 1), max(1, settings.queue_size // 4))}
     pool = WorkerPool(settings.workers, settings.queue_size, settings.retry_after_s,
-                      warm=jobs.warm_imports if warm_kernels else jobs.warm)
+                      warm=jobs.warm_imports if warm_kernels else jobs.warm, shares=shares)
     from solvers.models.cases import table_case_ids
 
     store = VerdictStore(table_case_ids(), settings.cache_dir)

@@ -44,12 +44,17 @@ log = logging.getLogger("rolling")
 
 
 class QueueFull(Exception):
-    """Every worker is busy and the waiting room is full."""
+    """Every worker is busy and the waiting room is full (or the places of one share)."""
 
-    def __init__(self, retry_after: int, capacity: int):
-        super().__init__(f"all {capacity} places (running and waiting) are taken; "
+    def __init__(self, retry_after: int, capacity: int, share: str | None = None):
+        of = f" for {SHARE_NAMES.get(share, share)}" if share else ""
+        super().__init__(f"all {capacity} places{of} (running and waiting) are taken; "
                          f"retry in {retry_after} s")
         self.retry_after = retry_after
+
+
+# what a share's jobs are, in a refusal
+SHARE_NAMES = {"verify": "verifications"}
 
 
 class DeadlineExceeded(Exception):
@@ -163,7 +168,8 @@ class PoolStats:
 
 class WorkerPool:
     def __init__(self, workers: int, queue_size: int, retry_after: int = 2,
-                 warm: Callable | None = None):
+                 warm: Callable | None = None,
+                 shares: dict[str, tuple[int, int]] | None = None):
         # anyio reads this module global whenever it hands out a worker (see module doc)
         to_process.WORKER_MAX_IDLE_TIME = math.inf
         self.workers = workers
@@ -190,6 +196,13 @@ class WorkerPool:
         self._backoff = START_BACKOFF_S
         self._retry_at: float | None = None
         self._retrying = False
+        # shares: a kind of job (run(..., share=name)) that may hold at most `running`
+        # workers and `waiting` more places, so that it cannot starve the others (long
+        # verifications against the runs); its jobs wait for their share outside the
+        # queue, then queue like any job
+        self._shares = {name: (anyio.CapacityLimiter(running), running + waiting)
+                        for name, (running, waiting) in (shares or {}).items()}
+        self._share_admitted = dict.fromkeys(self._shares, 0)
 
     def attach(self, tg: anyio.abc.TaskGroup) -> None:
         """Background tasks (re-warming) run in this task group (the app's lifespan)."""
@@ -352,8 +365,34 @@ class WorkerPool:
         finally:
             self._retrying = False
 
-    async def run(self, fn: Callable, *args, deadline: float | None = None):
-        """fn(*args) in a worker process; see the module docstring."""
+    async def run(self, fn: Callable, *args, deadline: float | None = None,
+                  share: str | None = None):
+        """fn(*args) in a worker process; see the module docstring. share: the name of a
+        share of the pool (the constructor's `shares`) this job counts against."""
+        gate = self._shares.get(share) if share is not None else None
+        if gate is None:
+            return await self._run(fn, args, deadline)
+        limiter, places = gate
+        if self.closing:
+            raise WorkerCrashed(STOPPING)
+        if self._share_admitted[share] >= places:
+            self._rejected += 1
+            raise QueueFull(self.retry_after, places, share)
+        self._share_admitted[share] += 1
+        try:
+            try:
+                await limiter.acquire()
+            except anyio.get_cancelled_exc_class():
+                self._cancelled += 1
+                raise
+            try:
+                return await self._run(fn, args, deadline)
+            finally:
+                limiter.release()
+        finally:
+            self._share_admitted[share] -= 1
+
+    async def _run(self, fn: Callable, args: tuple, deadline: float | None):
         if self.closing:
             raise WorkerCrashed(STOPPING)
         if self._admitted >= self.capacity:
