@@ -39,8 +39,9 @@ def _unwritable(path: Path) -> bool:
 def _can_mount_read_only() -> bool:
     if shutil.which("unshare") is None:
         return False
-    probe = subprocess.run(["unshare", "-m", "sh", "-c", "d=$(mktemp -d) && mount --bind "
-                            "$d $d && mount -o remount,bind,ro $d && ! touch $d/x"],
+    probe = subprocess.run(["unshare", "-m", "sh", "-c", "d=$(mktemp -d) || exit 1; "
+                            "mount --bind $d $d && mount -o remount,bind,ro $d && "
+                            "! touch $d/x; r=$?; umount $d; rmdir $d; exit $r"],
                            capture_output=True)
     return probe.returncode == 0
 
