@@ -144,3 +144,36 @@ def test_the_health_of_a_writable_cache_is_ok(tmp_path):
     with TestClient(create_app(settings_for_tests(warm_workers=False))) as c:
         h = c.get("/api/health").json()
     assert h["status"] == "ok" and h["degraded"] == [] and h["kernel_cache"]["state"] == "ok"
+
+
+LOST_MID_RUN = '''
+import shutil
+from solvers.kernels import generate, jit
+
+src = "import numba\\n\\n@numba.njit(cache=True)\\ndef f(x):\\n    return x + 1\\n"
+first = generate.cached_module("faults_probe_a", lambda: src)
+cache = generate.cache_dir()
+# numba's files of the module can no longer be written nor read: a file in their place
+shutil.rmtree(cache / "__pycache__", ignore_errors=True)
+(cache / "__pycache__").write_text("not a directory")
+assert first.f(1) == 2
+# the whole cache lost: a file where it was, so that it cannot be made again
+for p in cache.iterdir():
+    p.unlink()
+cache.rmdir()
+cache.write_text("gone")
+second = generate.cached_module("faults_probe_b", lambda: src.replace("+ 1", "+ 2"))
+assert second.f(1) == 3
+print(sorted(jit.DEGRADED))
+'''
+
+
+def test_a_cache_lost_mid_run_costs_a_compile_not_the_run(tmp_path):
+    env = {**os.environ, "ROLLING_KERNEL_CACHE": str(tmp_path / "kernels"),
+           "PYTHONPATH": str(Path(__file__).resolve().parent.parent)}
+    env.pop("ROLLING_KERNEL_CACHE_WARNED", None)
+    proc = subprocess.run([sys.executable, "-c", LOST_MID_RUN], env=env,
+                          capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 0, proc.stderr[-3000:]
+    assert "writing" in proc.stdout and "sources" in proc.stdout, proc.stdout
+    assert proc.stderr.count(WARNING) == 1, proc.stderr[-3000:]
