@@ -35,6 +35,20 @@ def _input_message(e) -> str:
     return f"{e}{flag}"
 
 
+def _check_bounds(request: str, **values) -> None:
+    """Options bounded as the API bounds the same fields of its request model
+    (app/schemas: "simulate" or "poincare"), refused in the API's words (exit 2)."""
+    from app.core.errors import refusal
+
+    if request == "simulate":
+        from app.schemas.simulate import SimulateRequest as model
+    else:
+        from app.schemas.poincare import PoincareRequest as model
+    message = refusal(model, {k: v for k, v in values.items() if v is not None})
+    if message:
+        _fail(message)
+
+
 def _write_json(obj) -> None:
     from app.services.jobs import dumps
 
@@ -208,6 +222,8 @@ def simulate(
             if not example:
                 _fail("--t-end is required")
             t_end = 100.0
+        _check_bounds("simulate", t_end=t_end, samples=samples, rtol=rtol, atol=atol,
+                      step=step)
         with _timeout(timeout):
             res = sim.simulate(case, params, y0, t_end, method=method, rtol=rtol, atol=atol,
                                samples=samples, project=project,
@@ -549,13 +565,14 @@ def poincare(
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TimeElapsedColumn
 
     from solvers.errors import InputError
-    from solvers.maps.poincare import MapSpec
+    from solvers.maps.poincare import MapSpec, map_model, starts_for
     from solvers.maps.poincare import poincare as run
     from solvers.models.cases import get_case
     from solvers.simulate import compiled_methods
 
     _check_seed(seed)
     _check_timeout(timeout)
+    _check_bounds("poincare", energy=energy, direction=direction, rtol=rtol, atol=atol)
     if method not in compiled_methods():
         _fail(f"--method {method!r}: choose a compiled method ({', '.join(compiled_methods())})")
     try:
@@ -564,6 +581,11 @@ def poincare(
         starts = [[float(v) for v in _parse_state(s)] for s in initial] or None
         spec = MapSpec(energy=energy, g0=_parse_section(section), direction=direction,
                        points=points, method=method, rtol=rtol, atol=atol)
+        # bad input (a level whose starts overflow, too many trajectories): one line,
+        # before a bar is drawn; the map draws the same starts again (the same seed)
+        spec.validate()
+        starts_for(map_model(case, params, allow_any_inertia=allow_any_inertia), spec,
+                   trajectories=trajectories, initial=starts, seed=seed)
         with _timeout(timeout), Progress(
                 "[progress.description]{task.description}", BarColumn(),
                 MofNCompleteColumn(), TimeElapsedColumn(),
@@ -769,7 +791,12 @@ def bench(
 
 
 def main(argv: list[str] | None = None):
-    """The entry point: whatever fails ends as one line on stderr and exit code 2."""
+    """The entry point: whatever fails ends as one line on stderr and exit code 2; the
+    floating-point warnings of numpy (overflow, invalid value) are not for a person at a
+    terminal: what they signal is refused as input or reported in the result."""
+    import warnings
+
+    warnings.filterwarnings("ignore", category=RuntimeWarning)
     try:
         cli(args=argv)
     except KeyboardInterrupt:

@@ -38,6 +38,7 @@ from app.core.config import Settings, get_settings
 from app.core.guards import CSP, HeadAsGet, HeaderLimit, RequestGuard, SecurityHeaders
 from app.core.pool import WorkerPool
 from app.services import jobs
+from app.services.kernel_cache import KernelCache
 from app.services.kernel_warmup import KernelWarmup
 from app.services.page_cache import PageCache
 from app.services.verdicts import VerdictStore
@@ -149,11 +150,25 @@ async def lifespan(app: FastAPI):
     settings: Settings = app.state.settings
     _log_to_stderr(settings.log_level)
     kernels = KernelWarmup(settings.warmup_command)
-    if settings.warm_kernels:
+    # a kernel cache that cannot be written: one warning here (the processes started
+    # below inherit that it was given), no warm-up, the general kernels in every worker
+    cache = app.state.kernel_cache = KernelCache()
+    why = await anyio.to_thread.run_sync(cache.check)
+    warm_kernels = settings.warm_kernels and why is None
+    if why is not None:
+        from solvers.kernels.jit import degrade
+
+        degrade("the kernel cache", why)
+        kernels.message = ("not run: the kernel cache cannot be written; runs use the "
+                           "general kernels, compiled in each worker")
+    if warm_kernels:
         kernels.expect()    # "warming" from the first request
     # while the kernels compile, a new worker only imports (it would compile them too)
+    # verifications (minutes each) hold at most all workers but one, and a quarter of the
+    # queue: a burst of them leaves the runs a worker (app/services/verdicts.py)
+    shares = {"verify": (max(1, settings.workers - 1), max(1, settings.queue_size // 4))}
     pool = WorkerPool(settings.workers, settings.queue_size, settings.retry_after_s,
-                      warm=jobs.warm_imports if settings.warm_kernels else jobs.warm)
+                      warm=jobs.warm_imports if warm_kernels else jobs.warm, shares=shares)
     from solvers.models.cases import table_case_ids
 
     store = VerdictStore(table_case_ids(), settings.cache_dir)
@@ -203,7 +218,7 @@ async def lifespan(app: FastAPI):
     try:
         async with anyio.create_task_group() as tg:
             pool.attach(tg)
-            if settings.warm_kernels:
+            if warm_kernels:
                 tg.start_soon(compile_kernels)
             tg.start_soon(background)
             yield

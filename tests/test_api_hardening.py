@@ -91,6 +91,23 @@ def test_form_content_types_get_415(client, ctype):
     assert "application/json" in r.json()["detail"]
 
 
+@pytest.mark.parametrize("path", ["/api/verify/plane/chaplygin-ball", "/api/simulate",
+                                  "/api/validate", "/api/poincare", "/api/scene"])
+def test_a_post_without_a_content_type_is_415(client, path):
+    """Before: POST /api/verify/{id} without a Content-Type ran the verification (200) while
+    every other POST answered 415; every request that changes state is JSON."""
+    r = client.post(path)
+    assert r.status_code == 415, r.text
+    assert "application/json" in r.json()["detail"] and "'none'" in r.json()["detail"]
+
+
+@pytest.mark.parametrize("body", [b"[]", b'{"case": "plane/chaplygin-ball"}', b"1"])
+def test_verify_takes_an_empty_object_only(client, body):
+    r = client.post("/api/verify/plane/chaplygin-ball", content=body,
+                    headers={"content-type": "application/json"})
+    assert r.status_code == 422, r.text
+
+
 def test_a_wrong_content_type_is_named(client):
     r = client.post("/api/simulate", content=json.dumps(RUN),
                     headers={"content-type": "text/plain"})

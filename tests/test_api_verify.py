@@ -19,7 +19,7 @@ def client():
 
 
 def test_verify_a_case_and_see_the_verdicts_everywhere(client):
-    r = client.post(f"/api/verify/{CASE}")
+    r = client.post(f"/api/verify/{CASE}", json={})
     assert r.status_code == 200, r.text
     d = r.json()
     assert d["case"] == CASE and d["records"]
@@ -44,7 +44,7 @@ def test_verify_a_case_and_see_the_verdicts_everywhere(client):
 
 
 def test_unknown_case_is_404(client):
-    r = client.post("/api/verify/plane/no-such-case")
+    r = client.post("/api/verify/plane/no-such-case", json={})
     assert r.status_code == 404 and "unknown case" in r.json()["detail"]
 
 

@@ -95,7 +95,7 @@ def test_a_restarted_uvicorn_serves_stored_verdicts_at_once(tmp_path):
              "warm_workers": False, "workers": 1}
     with live_server(**cache) as url:
         assert _get(url, f"/api/cases/{CASE}")["verification"] != "done"
-        r = httpx.post(f"{url}/api/verify/{CASE}", timeout=300.0)
+        r = httpx.post(f"{url}/api/verify/{CASE}", json={}, timeout=300.0)
         assert r.status_code == 200, r.text
         first = {rec["claim"]: rec["verdict"] for rec in r.json()["records"]}
     assert first and (tmp_path / DB_NAME).is_file()

@@ -7,9 +7,10 @@ them under load (bench/load.py)."""
 
 from typing import Annotated
 
-from fastapi import Depends, Request
+from fastapi import Depends, HTTPException, Request
 
 from app.core.config import Settings
+from app.core.guards import is_json, not_json
 from app.core.pool import WorkerPool
 from app.services.page_cache import PageCache
 from app.services.verdicts import VerdictStore
@@ -35,3 +36,16 @@ SettingsDep = Annotated[Settings, Depends(get_settings)]
 PoolDep = Annotated[WorkerPool, Depends(get_pool)]
 VerdictsDep = Annotated[VerdictStore, Depends(get_verdicts)]
 PagesDep = Annotated[PageCache, Depends(get_pages)]
+
+
+async def json_only(request: Request) -> None:
+    """Every POST route is JSON, with a body or without one (POST /api/verify/{id} takes {}):
+    a request without Content-Type: application/json is 415 there, as the guard answers
+    one with a body (app.core.guards), after routing (an unknown route or method stays 404
+    or 405)."""
+    ctype = request.headers.get("content-type")
+    if not is_json(ctype or ""):
+        raise HTTPException(415, not_json(ctype))
+
+
+JSON_ONLY = Depends(json_only)

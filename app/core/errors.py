@@ -16,10 +16,11 @@ from pathlib import Path
 from fastapi import FastAPI, Request
 from fastapi.exceptions import RequestValidationError
 from fastapi.responses import HTMLResponse, JSONResponse, Response
+from pydantic import BaseModel
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from app.core.disconnect import ClientDisconnected
-from app.core.pool import DeadlineExceeded, QueueFull, WorkerCrashed
+from app.core.pool import DeadlineExceeded, QueueFull, WorkerCrashed, WorkerUnavailable
 from app.schemas.common import FieldError, Problem
 from solvers.errors import InputError
 
@@ -86,12 +87,28 @@ def _short(value) -> str:
     return text if len(text) <= 60 else text[:57] + "..."
 
 
+# bounds by pydantic's error types: said with the bound as a person writes it (pydantic
+# writes 1e-300 with three hundred digits)
+_BOUNDS = {"greater_than": ("gt", "greater than"),
+           "greater_than_equal": ("ge", "greater than or equal to"),
+           "less_than": ("lt", "less than"), "less_than_equal": ("le", "less than or equal to")}
+
+
+def _number(v) -> str:
+    if isinstance(v, float) and v.is_integer() and abs(v) < 1e16:
+        return str(int(v))
+    return repr(v)
+
+
 def _sentence(err: dict) -> str:
     kind = err.get("type", "")
     if kind == "json_invalid":
         return f"the body is not valid JSON ({err.get('ctx', {}).get('error', 'parse error')})"
     reason = _REASONS.get(kind) or err.get("msg", "is invalid").replace(
         "Input should be", "must be").replace("Value error, ", "")
+    key, words = _BOUNDS.get(kind, (None, None))
+    if key is not None and isinstance(err.get("ctx", {}).get(key), int | float):
+        reason = f"must be {words} {_number(err['ctx'][key])}"
     field = _field(err.get("loc", ()))
     if kind == "literal_error" and "''" in str(err.get("ctx", {}).get("expected", "")):
         # a filter that may be empty (any): the values it accepts, without the empty one
@@ -100,6 +117,24 @@ def _sentence(err: dict) -> str:
     if kind == "missing" or "input" not in err or isinstance(err["input"], dict):
         return f"{field} {reason}" if kind in _REASONS else f"{field}: {reason}"
     return f"{field} = {_short(err['input'])}: {reason}"
+
+
+def refusal(model: type[BaseModel], values: dict) -> str | None:
+    """The API's 422 message for the first of `values` (field name -> value) that the
+    request model `model` refuses by its own Field definition, or None: the command line
+    checks its options by the same bounds and says the same words."""
+    from typing import Annotated
+
+    from pydantic import TypeAdapter, ValidationError
+
+    for name, value in values.items():
+        info = model.model_fields[name]
+        try:
+            TypeAdapter(Annotated[info.annotation, info]).validate_python(value)
+        except ValidationError as e:
+            err = e.errors()[0]
+            return _sentence({**err, "loc": ("body", name, *err.get("loc", ()))})
+    return None
 
 
 def problem(status: int, detail: str, errors: list[FieldError] | None = None,
@@ -169,6 +204,10 @@ async def _crashed(request: Request, exc: WorkerCrashed) -> JSONResponse:
     return problem(503, str(exc), headers={"Retry-After": "1"})
 
 
+async def _unavailable(request: Request, exc: WorkerUnavailable) -> JSONResponse:
+    return problem(503, str(exc), headers={"Retry-After": str(exc.retry_after)})
+
+
 async def _gone(request: Request, exc: ClientDisconnected) -> Response:
     return Response(status_code=499)  # nginx's "client closed request"; nobody reads it
 
@@ -222,5 +261,6 @@ def install(app: FastAPI) -> None:
     app.add_exception_handler(QueueFull, _busy)
     app.add_exception_handler(NotAcceptable, _not_acceptable)
     app.add_exception_handler(WorkerCrashed, _crashed)
+    app.add_exception_handler(WorkerUnavailable, _unavailable)
     app.add_exception_handler(ClientDisconnected, _gone)
     app.add_exception_handler(StarletteHTTPException, _http)

@@ -7,13 +7,15 @@
 - `RequestGuard`: for requests that carry a body or change state (POST, PUT, PATCH,
   DELETE): a foreign `Origin` is 403 (a page of another site cannot make a browser run a
   verification here), a content type other than JSON is 415 (a cross-site HTML form can
-  only send form or text types), and a body over `max_body` bytes is 413, counted from
-  Content-Length and from the streamed chunks, before anything parses it. Bodies are read
-  in full only up to that limit, so a 50 MB upload neither stalls the event loop nor fills
-  the memory. Every answer of the guard says `Connection: close`: the rest of the body is
-  never read. The server's protocol (app.core.server) stops reading, sends the answer and
-  closes the socket a moment later, so the discarded bytes never pass through the event
-  loop and a client still sending has the time to read the answer.
+  only send form or text types; a request with neither a body nor a content type is left
+  to the route, which knows whether it exists: app.api.deps.JSON_ONLY), and a body over
+  `max_body` bytes is 413, counted from Content-Length and from the streamed chunks,
+  before anything parses it. Bodies are read in full only up to that limit, so a 50 MB
+  upload neither stalls the event loop nor fills the memory. Every answer of the guard
+  says `Connection: close`: the rest of the body is never read. The server's protocol
+  (app.core.server) stops reading, sends the answer and closes the socket a moment
+  later, so the discarded bytes never pass through the event loop and a client still
+  sending has the time to read the answer.
 - `HeaderLimit`: a request with more than `max_headers` header fields is 431 (their total
   size is bounded by the server's parser, app.core.server).
 
@@ -112,7 +114,14 @@ def _header(scope: Scope, name: bytes) -> str | None:
     return None
 
 
-def _is_json(content_type: str) -> bool:
+def not_json(content_type: str | None) -> str:
+    """The 415 answer's message for a content type that is not JSON (or none)."""
+    shown = (content_type or "none")[:80]
+    return (f"content type {shown!r} is not accepted: send the body as JSON with "
+            "Content-Type: application/json")
+
+
+def is_json(content_type: str) -> bool:
     media = content_type.split(";", 1)[0].strip().lower()
     return media == "application/json" or (media.startswith("application/")
                                            and media.endswith("+json"))
@@ -158,11 +167,8 @@ class RequestGuard:
         chunked = "chunked" in (_header(scope, b"transfer-encoding") or "").lower()
         ctype = _header(scope, b"content-type")
         has_body = chunked or (length is not None and length.strip() not in ("", "0"))
-        if (ctype is not None or has_body) and not _is_json(ctype or ""):
-            shown = (ctype or "none")[:80]
-            return await _answer(send, 415, f"content type {shown!r} is not accepted: send "
-                                 "the body as JSON with Content-Type: application/json",
-                                 "content_type")
+        if (ctype is not None or has_body) and not is_json(ctype or ""):
+            return await _answer(send, 415, not_json(ctype), "content_type")
         too_big = (f"the body is larger than {self.max_body} bytes "
                    f"({self.max_body / (1 << 20):g} MB), the limit of this server")
         if length is not None:

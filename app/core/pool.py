@@ -44,12 +44,17 @@ log = logging.getLogger("rolling")
 
 
 class QueueFull(Exception):
-    """Every worker is busy and the waiting room is full."""
+    """Every worker is busy and the waiting room is full (or the places of one share)."""
 
-    def __init__(self, retry_after: int, capacity: int):
-        super().__init__(f"all {capacity} places (running and waiting) are taken; "
+    def __init__(self, retry_after: int, capacity: int, share: str | None = None):
+        of = f" for {SHARE_NAMES.get(share, share)}" if share else ""
+        super().__init__(f"all {capacity} places{of} (running and waiting) are taken; "
                          f"retry in {retry_after} s")
         self.retry_after = retry_after
+
+
+# what a share's jobs are, in a refusal
+SHARE_NAMES = {"verify": "verifications"}
 
 
 class DeadlineExceeded(Exception):
@@ -66,7 +71,54 @@ class WorkerCrashed(Exception):
     """The worker process died without an answer (killed from outside, out of memory)."""
 
 
-STOPPING = "the server is stopping"
+class WorkerUnavailable(Exception):
+    """No worker process could be started (the interpreter not accessible, out of file
+    handles or memory): 503 with Retry-After; the pool tries again in the background."""
+
+    def __init__(self, reason: str, retry_after: int):
+        super().__init__(f"no worker process can be started ({reason}); the server tries "
+                         f"again by itself: retry in {retry_after} s")
+        self.reason = reason
+        self.retry_after = retry_after
+
+
+class _StartFailed(Exception):
+    """Raised through anyio's pool when the start of a worker process fails (not an
+    OSError: a job's own OSError must not be taken for it)."""
+
+
+async def start_worker_process(command, **kwargs):
+    """Start one worker process (anyio's open_process, which anyio's pool calls for each
+    new worker). A test replaces it to make the start fail."""
+    return await _open_process(command, **kwargs)
+
+
+async def _open_worker(command, **kwargs):
+    try:
+        return await start_worker_process(command, **kwargs)
+    except OSError as exc:
+        raise _StartFailed(f"{type(exc).__name__}: {exc}") from exc
+
+
+_open_process = to_process.open_process
+# anyio's pool starts its processes by this name of its module: the start is ours to
+# watch (a failure is _StartFailed, then WorkerUnavailable, not an OSError from the job)
+to_process.open_process = _open_worker
+
+# retrying a failed start: 1 s, doubled after each failure, at most START_BACKOFF_MAX_S
+START_BACKOFF_S = 1.0
+START_BACKOFF_MAX_S = 30.0
+
+
+STOPPING = ("the server is stopping: the computation was stopped with it; retry once "
+            "the server is back")
+
+
+def _pid() -> int:
+    """A job that only starts a worker (the pool's retry when it has no warm-up)."""
+    import os
+
+    return os.getpid()
 
 
 async def in_daemon_thread(work: Callable):
@@ -108,11 +160,16 @@ class PoolStats:
     timed_out: int
     crashed: int = 0
     replaced: int = 0
+    alive: int = 0
+    start_failures: int = 0
+    start_error: str = ""
+    retry_in_s: float | None = None
 
 
 class WorkerPool:
     def __init__(self, workers: int, queue_size: int, retry_after: int = 2,
-                 warm: Callable | None = None):
+                 warm: Callable | None = None,
+                 shares: dict[str, tuple[int, int]] | None = None):
         # anyio reads this module global whenever it hands out a worker (see module doc)
         to_process.WORKER_MAX_IDLE_TIME = math.inf
         self.workers = workers
@@ -133,6 +190,19 @@ class WorkerPool:
         self._warming = 0
         self._crashed = self._replaced = 0
         self.closing = False    # the server is stopping: no job starts, no worker is replaced
+        # a worker that cannot be started: the last failure, and when to try again
+        self._start_failures = 0
+        self.start_error = ""
+        self._backoff = START_BACKOFF_S
+        self._retry_at: float | None = None
+        self._retrying = False
+        # shares: a kind of job (run(..., share=name)) that may hold at most `running`
+        # workers and `waiting` more places, so that it cannot starve the others (long
+        # verifications against the runs); its jobs wait for their share outside the
+        # queue, then queue like any job
+        self._shares = {name: (anyio.CapacityLimiter(running), running + waiting)
+                        for name, (running, waiting) in (shares or {}).items()}
+        self._share_admitted = dict.fromkeys(self._shares, 0)
 
     def attach(self, tg: anyio.abc.TaskGroup) -> None:
         """Background tasks (re-warming) run in this task group (the app's lifespan)."""
@@ -203,6 +273,8 @@ class WorkerPool:
         try:
             async with self._slots:
                 await to_process.run_sync(self.warm, cancellable=True, limiter=self._procs)
+        except _StartFailed as exc:    # said in the log and the health; retried
+            self._start_failed(str(exc))
         finally:
             self._warming -= 1
 
@@ -220,13 +292,107 @@ class WorkerPool:
         return self.workers + self.queue_size
 
     def stats(self) -> PoolStats:
+        retry_in = None
+        if self._retry_at is not None:
+            retry_in = round(max(0.0, self._retry_at - anyio.current_time()), 1)
         return PoolStats(self.workers, self.queue_size, self._running,
                          self._admitted - self._running, self._warming, self._completed,
                          self._rejected,
-                         self._cancelled, self._timed_out, self._crashed, self._replaced)
+                         self._cancelled, self._timed_out, self._crashed, self._replaced,
+                         self.live_workers(), self._start_failures, self.start_error,
+                         retry_in)
 
-    async def run(self, fn: Callable, *args, deadline: float | None = None):
-        """fn(*args) in a worker process; see the module docstring."""
+    @property
+    def degraded(self) -> bool:
+        """A worker process could not be started and none has been since."""
+        return bool(self.start_error)
+
+    @classmethod
+    def _idle_workers(cls) -> int:
+        try:
+            return sum(1 for p, _ in to_process._process_pool_idle_workers.get()
+                       if p.returncode is None)
+        except LookupError:
+            return 0
+
+    def _start_failed(self, reason: str) -> WorkerUnavailable:
+        """Record a failed start, plan the next try (backoff) and say when to retry."""
+        self._start_failures += 1
+        first = not self.start_error
+        self.start_error = reason
+        now = anyio.current_time()
+        if self._retry_at is None or self._retry_at <= now:
+            self._retry_at = now + self._backoff
+            self._backoff = min(2 * self._backoff, START_BACKOFF_MAX_S)
+        (log.warning if first else log.info)(
+            "worker pool: a worker process could not be started (%s); trying again in "
+            "%.0f s", reason, self._retry_at - now)
+        if self._tg is not None and not self._retrying and not self.closing:
+            self._retrying = True
+            self._tg.start_soon(self._retry_start)
+        return self._unavailable()
+
+    def _unavailable(self) -> WorkerUnavailable:
+        left = 1.0 if self._retry_at is None else self._retry_at - anyio.current_time()
+        return WorkerUnavailable(self.start_error, max(1, math.ceil(left)))
+
+    def _started(self) -> None:
+        if self.start_error:
+            log.info("worker pool: worker processes start again")
+        self.start_error = ""
+        self._backoff = START_BACKOFF_S
+        self._retry_at = None
+
+    async def _retry_start(self) -> None:
+        """Start a worker when the backoff has passed, again and again (the wait doubled
+        after each failure) until one starts: the pool heals without a request."""
+        try:
+            while self.start_error and not self.closing:
+                await anyio.sleep(max(0.0, (self._retry_at or 0.0) - anyio.current_time()))
+                if not self.start_error or self.closing:
+                    return
+                try:
+                    async with self._slots:
+                        await to_process.run_sync(self.warm or _pid, cancellable=True,
+                                                  limiter=self._procs)
+                except _StartFailed as exc:
+                    self._start_failed(str(exc))
+                except Exception as exc:    # it started; its warm-up failed: not ours here
+                    log.warning("worker pool: a restarted worker's warm-up failed: %r", exc)
+                    self._started()
+                else:
+                    self._started()
+        finally:
+            self._retrying = False
+
+    async def run(self, fn: Callable, *args, deadline: float | None = None,
+                  share: str | None = None):
+        """fn(*args) in a worker process; see the module docstring. share: the name of a
+        share of the pool (the constructor's `shares`) this job counts against."""
+        gate = self._shares.get(share) if share is not None else None
+        if gate is None:
+            return await self._run(fn, args, deadline)
+        limiter, places = gate
+        if self.closing:
+            raise WorkerCrashed(STOPPING)
+        if self._share_admitted[share] >= places:
+            self._rejected += 1
+            raise QueueFull(self.retry_after, places, share)
+        self._share_admitted[share] += 1
+        try:
+            try:
+                await limiter.acquire()
+            except anyio.get_cancelled_exc_class():
+                self._cancelled += 1
+                raise
+            try:
+                return await self._run(fn, args, deadline)
+            finally:
+                limiter.release()
+        finally:
+            self._share_admitted[share] -= 1
+
+    async def _run(self, fn: Callable, args: tuple, deadline: float | None):
         if self.closing:
             raise WorkerCrashed(STOPPING)
         if self._admitted >= self.capacity:
@@ -242,6 +408,10 @@ class WorkerPool:
             try:
                 if self.closing:     # it waited in the queue while the server began to stop
                     raise WorkerCrashed(STOPPING)
+                if (self.start_error and self._retry_at is not None
+                        and anyio.current_time() < self._retry_at
+                        and not self._idle_workers()):
+                    raise self._unavailable()   # no process to run it before the retry
                 self._running += 1
                 try:
                     with anyio.move_on_after(math.inf if deadline is None else deadline) as sc:
@@ -251,7 +421,11 @@ class WorkerPool:
                         self._timed_out += 1
                         self._replace_killed_worker()
                         raise DeadlineExceeded(deadline)
+                except _StartFailed as exc:
+                    raise self._start_failed(str(exc)) from None
                 except anyio.BrokenWorkerProcess as exc:
+                    if self.closing:    # killed by the server's own stop, not a crash
+                        raise WorkerCrashed(STOPPING) from exc
                     self._crashed += 1
                     log.warning("a worker process died while computing %s (%s); starting "
                                 "a warmed one in its place", getattr(fn, "__name__", fn),

@@ -14,6 +14,15 @@ class PoolPublic(BaseModel):
     crashed: int = Field(0, description="worker processes that died in mid-job")
     replaced: int = Field(0, description="worker processes started warm after a death "
                           "or a deadline")
+    alive: int = Field(0, description="worker processes alive now (none before the first "
+                       "job or warm-up)")
+    start_failures: int = Field(0, description="starts of a worker process that failed "
+                                "(no access to the interpreter, out of file handles or "
+                                "memory)")
+    start_error: str = Field("", description="why the last start failed, while no start "
+                             "has succeeded since (status is then degraded)")
+    retry_in_s: float | None = Field(None, description="seconds until the pool tries to "
+                                     "start a worker again")
 
 
 class VerificationStatus(BaseModel):
@@ -69,9 +78,22 @@ class KernelsPublic(BaseModel):
                                  "seconds")
 
 
+class KernelCachePublic(BaseModel):
+    """Whether generated kernels can be written to the kernel cache
+    (app/services/kernel_cache.py)."""
+    state: str = Field(description="ok | degraded (the cache cannot be written: kernels "
+                       "compile in memory in each worker, runs use the general kernels)")
+    path: str = Field(description="the kernel cache's directory (ROLLING_KERNEL_CACHE)")
+    message: str = ""
+
+
 class HealthPublic(BaseModel):
-    status: str = Field(description="always 'ok' when the service answers")
+    status: str = Field(description="ok, or degraded: the service answers, but a part of "
+                        "it works in a lesser way (`degraded` names which)")
+    degraded: list[str] = Field(default_factory=list, description="the parts that are "
+                                "degraded: kernel_cache, workers")
     version: str
+    kernel_cache: KernelCachePublic
     pool: PoolPublic
     limits: LimitsPublic
     verification: VerificationStatus

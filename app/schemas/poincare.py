@@ -6,7 +6,14 @@ from typing import Annotated, Any, Literal
 from pydantic import BaseModel, ConfigDict, Field, field_validator
 
 from app.schemas.common import FiniteFloat
-from app.schemas.simulate import CaseId
+from app.schemas.simulate import CaseId, case_rules
+
+
+def _map_cases() -> list[str]:
+    """The cases with the state (M, gamma): the flat-base ones (M, r1, r2) have no map."""
+    from solvers.models.cases import registry
+
+    return [cid for cid, c in registry().items() if len(c.state) == 6]
 
 MAX_TRAJECTORIES = 32
 MAX_POINTS = 5000
@@ -23,9 +30,12 @@ class PoincareRequest(BaseModel):
     Andoyer-Deprit variables, as points (L/G, H/G, l)."""
 
     model_config = ConfigDict(extra="forbid", strict=True,
-                              json_schema_extra={"examples": [EXAMPLE]})
+                              json_schema_extra={"examples": [EXAMPLE],
+                                                 "allOf": [case_rules(with_state=False)]})
 
-    case: CaseId = Field(description="a case with state (M, gamma) (not the flat-base ones)")
+    # the schema lists the cases that have a map; the others are refused with the reason
+    case: CaseId = Field(description="a case with state (M, gamma) (not the flat-base ones)",
+                         json_schema_extra={"enum": _map_cases()})
     params: Annotated[dict[Annotated[str, Field(max_length=16)], FiniteFloat],
                       Field(max_length=32)] = Field(default_factory=dict)
     example: bool = Field(False, description="start from the case's demo parameters")

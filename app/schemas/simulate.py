@@ -43,13 +43,44 @@ GAUSS = [m for m in METHODS if m.startswith("gauss")]
 # the Gauss methods and only with them; without example = true, params and state are
 # required. Each case's own parameter names are in GET /api/cases/{id} (runnable.params):
 # a wrong name is a 422 that names it.
+NOT_EXAMPLE = {"not": {"properties": {"example": {"const": True}}, "required": ["example"]}}
+
+
+def case_rules(with_state: bool = True) -> dict:
+    """Per case, what JSON Schema can say of its inputs (the names of solvers.models.cases):
+    the parameter names it takes, the ones it requires unless example = true, and the
+    length of its state (5 for the flat-base cases, 6 for the others). One anyOf of two
+    branches a case (with example = true, or without it), not an if/then a case: the
+    schema's generators expand each if/then into two, and 17 of them into 2^17."""
+    from solvers.models.cases import registry
+
+    branches = []
+    for cid, c in registry().items():
+        props: dict[str, Any] = {"case": {"const": cid},
+                                 "params": {"propertyNames": {"enum": c.param_names}}}
+        if with_state:
+            n = len(c.state)
+            props["state"] = {"minItems": n, "maxItems": n}
+        branches.append({"required": ["example"],
+                         "properties": {**props, "example": {"const": True}}})
+        branches.append({"required": ["params"], "properties": {
+            **props, "example": {"const": False},
+            "params": {**props["params"], "required": list(c.required)}}})
+    return {"anyOf": branches}
+
+
 CROSS_FIELD_RULES = [
     {"if": {"properties": {"method": {"enum": GAUSS}}, "required": ["method"]},
      "then": {"required": ["step"], "properties": {"step": {"type": "number"}}},
      "else": {"properties": {"step": {"type": "null"}}}},
-    {"if": {"not": {"properties": {"example": {"const": True}}, "required": ["example"]}},
-     "then": {"required": ["params", "state"]}},
+    {"if": NOT_EXAMPLE, "then": {"required": ["params", "state"]}},
+    case_rules(),
 ]
+# the smallest final time: from it up, the output times linspace(0, t_end, samples) are
+# distinct for every number of samples accepted (a smaller one, such as 5e-324, cannot
+# hold two); the largest, the bound of one request's work
+T_END_MIN = 1e-300
+T_END_MAX = 1e7
 
 
 class SimulateRequest(BaseModel):
@@ -72,7 +103,7 @@ class SimulateRequest(BaseModel):
     state: Annotated[list[FiniteFloat], Field(min_length=5, max_length=6)] | None = Field(
         None, description="initial state: M1 M2 M3 g1 g2 g3 (|g| = 1), or M1 M2 M3 r1 r2 "
         "for the flat-base cases; null with example = true: the case's demo state")
-    t_end: FiniteFloat = Field(gt=0, le=1e7, description="final time")
+    t_end: FiniteFloat = Field(ge=T_END_MIN, le=T_END_MAX, description="final time")
     method: Method = Field("dop853", description="integrator (GET /api/methods)")
     rtol: FiniteFloat = Field(1e-10, ge=1e-16, le=0.1)
     atol: FiniteFloat = Field(1e-12, gt=0, le=1.0)

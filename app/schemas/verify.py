@@ -1,6 +1,6 @@
 from typing import Any, Literal
 
-from pydantic import BaseModel, Field
+from pydantic import BaseModel, ConfigDict, Field
 
 # pending: the claim's case is being checked on this server right now (a fresh server
 # recomputing changed cases); unchecked: nothing can be computed, or the check did not run
@@ -21,6 +21,15 @@ MARK_NOTE_FIELD = Field(None, description="one sentence that goes with the mark:
 ERRATA_FIELD = Field(default_factory=list, description="after-correction: the formula "
                      "records whose printed form is misprinted and whose correction holds "
                      "(their errata)")
+
+
+class VerifyRequest(BaseModel):
+    """The body of POST /api/verify/{id}: an empty object (the case is in the path; a
+    verification has no options). It is there because every POST is JSON
+    (Content-Type: application/json), as the guard of the requests that change state
+    has it (app/core/guards.py)."""
+
+    model_config = ConfigDict(extra="forbid", json_schema_extra={"examples": [{}]})
 
 
 class VerdictPublic(BaseModel):

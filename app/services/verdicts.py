@@ -17,7 +17,7 @@ from pathlib import Path
 import anyio
 
 from app import __version__
-from app.core.pool import WorkerPool
+from app.core.pool import QueueFull, WorkerPool
 from app.services import jobs
 from app.services.verdict_db import VerdictDB
 
@@ -162,6 +162,10 @@ class VerdictStore:
         for cid in todo:
             try:
                 recs = await verify_case(pool, cid, deadline)
+            except QueueFull as exc:    # the share is full of requested checks: wait
+                await anyio.sleep(exc.retry_after)
+                todo.append(cid)
+                continue
             except ImportError as exc:
                 self.state = "unavailable"
                 self.message = f"solvers.verify cannot be imported: {exc}"
@@ -178,7 +182,9 @@ class VerdictStore:
 
 
 async def verify_case(pool: WorkerPool, case_id: str, deadline: float) -> list[dict]:
-    return await pool.run(jobs.verify_case, case_id, deadline=deadline)
+    """The checks of one case in a worker, within the pool's share of verifications (they
+    run for minutes: they must not take every worker from the runs)."""
+    return await pool.run(jobs.verify_case, case_id, deadline=deadline, share="verify")
 
 
 def cell_mark_of(rec: dict | None, waiting: bool) -> tuple[str, str | None, list[str], str]:

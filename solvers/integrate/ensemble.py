@@ -238,6 +238,8 @@ def integrate_ensemble(model, p, Y0, t_out, *, method="dop853", rtol=1e-10, atol
     # integrate()'s rule (is_plain): a plain run with generated=None runs the small kernel,
     # any other the general field unless generated=True (then the generated twin); the
     # route depends on the request only, never on what is compiled
+    if generated is None and kernel is None and not generate.disk_cache_ok():
+        generated = False   # no kernel cache to write: the general kernels (jit.py)
     plain = generated is not False and is_plain(
         model, method, project=bool(codes.size), section=section, compensated=compensated,
         fixed=fixed, dense_output=dense_output)

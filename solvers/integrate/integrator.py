@@ -260,7 +260,7 @@ def generated_ready(model: int, p, method: str = "dop853") -> bool:
     """True when `integrate(..., generated=None)` would run the case's generated field:
     the model has one and its integrator for this tableau is compiled (in this process or
     in the on-disk cache, as solvers/warmup.py leaves it), so the call pays no compile."""
-    if model not in generate.GENERATED_MODELS:
+    if model not in generate.GENERATED_MODELS or not generate.disk_cache_ok():
         return False
     p = np.asarray(p, dtype=np.float64)
     return _ready((int(model), p.tobytes(), method), model, p)
@@ -380,6 +380,8 @@ def integrate(model, p, y0, t_out, *, method="dop853", rtol=1e-10, atol=1e-12,
     A run with a section or a projection takes it only when asked (a Poincare map decides
     by its size: solvers/maps/poincare.py map_kernel): it compiles once per structure.
     """
+    if generated is None and kernel is None and not generate.disk_cache_ok():
+        generated = False   # no kernel cache to write: the general kernels (jit.py)
     if (kernel is None and generated is not False and method in SMALL_METHODS
             and h_fixed is None and section is None and dense_output
             and project_values is None and not len(project_codes) and project_every >= 1

@@ -45,6 +45,7 @@ in `dev`); without it `method="taylor"` is an InputError saying so.
 
 from __future__ import annotations
 
+import contextlib
 import hashlib
 import math
 import os
@@ -196,7 +197,8 @@ def disk_dir() -> Path:
     from solvers.kernels.generate import cache_dir
 
     d = cache_dir() / "taylor"
-    d.mkdir(parents=True, exist_ok=True)
+    with contextlib.suppress(OSError):    # not writable: compiled integrators stay in memory
+        d.mkdir(parents=True, exist_ok=True)
     return d
 
 
@@ -260,7 +262,8 @@ def _store(key: tuple, entry: Compiled) -> None:
                         protocol=pickle.HIGHEST_PROTOCOL)
         os.replace(tmp, path)
     except OSError:
-        tmp.unlink(missing_ok=True)
+        with contextlib.suppress(OSError):
+            tmp.unlink(missing_ok=True)
 
 
 def compiled(model: int, p, precision: str, tol: float) -> tuple[Compiled, str | None]:

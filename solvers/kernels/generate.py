@@ -46,6 +46,7 @@ own cache then keeps their machine code next to them.
 
 from __future__ import annotations
 
+import contextlib
 import hashlib
 import importlib.util
 import os
@@ -471,11 +472,54 @@ def numba_source(model: int, p, fold: bool = False) -> str:
 
 def cache_dir() -> Path:
     """ROLLING_KERNEL_CACHE, else ~/.cache/rolling-hierarchy/kernels (generated code is not
-    written into the package: an installed package may be read-only)."""
+    written into the package: an installed package may be read-only). Made when missing;
+    a directory that cannot be made is returned all the same (what reads it finds
+    nothing, what writes it falls back: cached_module, cache_probe)."""
     d = os.environ.get("ROLLING_KERNEL_CACHE")
     base = Path(d) if d else Path.home() / ".cache" / "rolling-hierarchy" / "kernels"
-    base.mkdir(parents=True, exist_ok=True)
+    try:
+        base.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        from solvers.kernels.jit import degrade
+
+        degrade(f"the kernel cache {base}", exc)
     return base
+
+
+def cache_probe() -> str | None:
+    """None when the kernel cache and its __pycache__ (numba's files for the generated
+    modules) take a written file now, else why not (a read-only mount, a full disk, a
+    path under a file)."""
+    import tempfile
+
+    base = cache_dir()
+    try:
+        for d in (base, base / "__pycache__"):
+            d.mkdir(parents=True, exist_ok=True)
+            with tempfile.TemporaryFile(dir=d) as f:
+                f.write(b"probe")
+                f.flush()
+    except OSError as exc:
+        return f"{base} cannot be written ({type(exc).__name__}: {exc.strerror or exc})"
+    return None
+
+
+_PROBED: list[str | None] = []
+
+
+def disk_cache_ok() -> bool:
+    """Whether this process writes its generated kernels to the disk cache (probed once
+    per process). When not, a run that would compile a kernel per case structure (the
+    small kernels, the generated field) runs the general kernels instead, which compile
+    once per process whatever the case: the kernel cache degrades, the runs go on."""
+    if not _PROBED:
+        why = cache_probe()
+        _PROBED.append(why)
+        if why is not None:
+            from solvers.kernels.jit import degrade
+
+            degrade("the kernel cache", why)
+    return _PROBED[0] is None
 
 
 @cache
@@ -510,15 +554,44 @@ def cached_module(name: str, source):
     if mod is not None:
         return mod
     path = cache_dir() / f"{name}.py"
-    if not path.exists():
-        tmp = path.with_suffix(f".{os.getpid()}.{threading.get_ident()}.tmp")
-        tmp.write_text(source())
-        os.replace(tmp, path)
-    spec = importlib.util.spec_from_file_location(name, path)
-    mod = importlib.util.module_from_spec(spec)
-    sys.modules[name] = mod
-    spec.loader.exec_module(mod)
+    text = None
+    try:
+        if not path.exists():
+            text = source()
+            tmp = path.with_suffix(f".{os.getpid()}.{threading.get_ident()}.tmp")
+            try:
+                tmp.write_text(text)
+                os.replace(tmp, path)
+            except OSError:
+                with contextlib.suppress(OSError):
+                    tmp.unlink(missing_ok=True)
+                raise
+        spec = importlib.util.spec_from_file_location(name, path)
+        mod = importlib.util.module_from_spec(spec)
+        sys.modules[name] = mod
+        spec.loader.exec_module(mod)
+    except OSError as exc:      # not written (read-only, full) or gone since: in memory
+        from solvers.kernels.jit import degrade
+
+        degrade(f"the generated kernels' sources in {path.parent}", exc)
+        mod = _memory_module(name, text if text is not None else source())
     _LOADED[name] = mod
+    return mod
+
+
+def _memory_module(name: str, text: str):
+    """The module `name` made from its text without a file: numba finds no place to cache
+    its functions and compiles them in memory (solvers/kernels/jit.py). The text is put in
+    linecache, so that tracebacks and inspect show it."""
+    import linecache
+    import types
+
+    filename = f"<generated kernel {name}>"
+    linecache.cache[filename] = (len(text), None, text.splitlines(True), filename)
+    mod = types.ModuleType(name)
+    mod.__file__ = filename
+    sys.modules[name] = mod
+    exec(compile(text, filename, "exec"), mod.__dict__)
     return mod
 
 

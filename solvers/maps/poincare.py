@@ -32,7 +32,7 @@ from solvers.kernels import layout as L
 from solvers.kernels.integrals import NAMES, integral_series
 from solvers.kernels.sections import SECTION_ANDOYER_G
 from solvers.maps.andoyer import TWO_PI, g_angle, map_point, on_energy_level
-from solvers.models.cases import Model, build, initial_state
+from solvers.models.cases import Model, build, check_derived, initial_state
 
 MAX_POINTS = 100_000
 MAX_TRAJECTORIES = 1_000
@@ -293,8 +293,10 @@ def map_kernel(model: Model, spec: MapSpec, trajectories: int) -> str:
     if spec.kernel != "auto":
         return spec.kernel
     from solvers.integrate.integrator import small_fits
+    from solvers.kernels.generate import disk_cache_ok
 
-    fits = spec.generated is not False and small_fits(model.model, spec.method)
+    fits = (spec.generated is not False and small_fits(model.model, spec.method)
+            and disk_cache_ok())
     return "small" if fits and trajectories * spec.points >= SMALL_MAP_CROSSINGS else "general"
 
 
@@ -548,11 +550,17 @@ def starts_for(model: Model, spec: MapSpec, *, trajectories: int = 8, initial=No
     if states is not None:
         return [initial_state(model, s) for s in states]
     if initial is not None:
-        return given_initial(model, spec, initial)
-    if not 1 <= trajectories <= MAX_TRAJECTORIES:
-        raise InputError(f"trajectories = {trajectories!r}: must lie in "
-                         f"[1, {MAX_TRAJECTORIES}]")
-    return sample_initial(model, spec, trajectories, np.random.default_rng(seed))
+        starts = given_initial(model, spec, initial)
+    else:
+        if not 1 <= trajectories <= MAX_TRAJECTORIES:
+            raise InputError(f"trajectories = {trajectories!r}: must lie in "
+                             f"[1, {MAX_TRAJECTORIES}]")
+        starts = sample_initial(model, spec, trajectories, np.random.default_rng(seed))
+    # a level so high that its starts overflow (energy = 1e308) is bad input, refused
+    # here for the API, the CLI and the sweeps alike, in the same words
+    for s in starts:
+        check_derived(model, s, blame=f"energy = {spec.energy!r}")
+    return starts
 
 
 def poincare(case: str, params: dict | None, spec: MapSpec, *, trajectories: int = 8,

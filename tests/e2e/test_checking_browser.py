@@ -42,7 +42,7 @@ def test_checking_state_then_a_restart_serves_stored_verdicts_at_once(page, tmp_
         expect(page.locator("#claimlist p.checked").first).to_contain_text("being checked now")
         # the check of this case finishes (asked for directly, not waiting for its turn in
         # the background queue): the open page redraws itself, with no reload
-        r = httpx.post(f"{url}/api/verify/{CASE}", timeout=300.0)
+        r = httpx.post(f"{url}/api/verify/{CASE}", json={}, timeout=300.0)
         assert r.status_code == 200, r.text
         page.locator("body[data-checked='1']").wait_for(state="attached", timeout=30_000)
         assert page.locator("#claimlist article.claim.pending").count() == 0

@@ -20,7 +20,7 @@ def ready(page):
 @pytest.fixture(scope="module")
 def checked(server):
     for cid in CASES:
-        r = httpx.post(f"{server}/api/verify/{cid}", timeout=600)
+        r = httpx.post(f"{server}/api/verify/{cid}", json={}, timeout=600)
         assert r.status_code == 200, r.text
     return server
 

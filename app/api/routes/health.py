@@ -16,8 +16,18 @@ router = APIRouter(tags=["health"])
 async def health(request: Request, pool: PoolDep, verdicts: VerdictsDep,
                  settings: SettingsDep) -> dict:
     """Liveness and load: worker pool occupancy, the state of the verification and of the
-    kernels' compile (which parts are still warming)."""
-    return {"status": "ok", "version": __version__, "pool": asdict(pool.stats()),
+    kernels' compile (which parts are still warming), and whether a part of the service
+    works in a lesser way: status "degraded" then, and `degraded` names each part."""
+    cache = request.app.state.kernel_cache
+    cache.recheck()
+    degraded = []
+    if cache.degraded:
+        degraded.append("kernel_cache")
+    if pool.degraded:
+        degraded.append("workers")
+    return {"status": "degraded" if degraded else "ok", "degraded": degraded,
+            "version": __version__, "pool": asdict(pool.stats()),
+            "kernel_cache": cache.public(),
             "limits": {"deadline_s": settings.deadline_s, "max_steps": settings.max_steps,
                        "max_samples": min(settings.max_samples, MAX_SAMPLES),
                        "max_frames": min(settings.max_frames, MAX_FRAMES)},

@@ -28,7 +28,7 @@ import anyio
 from fastapi import APIRouter, Query, Request
 from fastapi.responses import HTMLResponse, Response, StreamingResponse
 
-from app.api.deps import PoolDep, SettingsDep
+from app.api.deps import JSON_ONLY, PoolDep, SettingsDep
 from app.core.disconnect import cancel_on_disconnect
 from app.core.pool import DeadlineExceeded
 from app.schemas.common import (
@@ -63,10 +63,6 @@ def resolve(req: PoincareRequest, max_steps: int) -> tuple[dict, dict, list[list
     model = map_model(req.case, params, allow_any_inertia=req.allow_any_inertia)
     starts = starts_for(model, spec, trajectories=req.trajectories, initial=req.initial,
                         seed=req.seed)
-    from solvers.models.cases import check_derived
-
-    for s in starts:   # a level so high that its starts overflow (energy = 1e308)
-        check_derived(model, s, blame=f"energy = {req.energy!r}")
     # the kernel by the whole map's size, before its trajectories become separate jobs
     spec = resolve_kernel(model, spec, len(starts))
     header = {"case": req.case, "params": model.params, "energy": spec.energy,
@@ -136,7 +132,8 @@ async def _pilot(pool, settings, starts, job, points, end) -> float:
     return per_point * points * rounds
 
 
-@router.post("/poincare", response_model=PoincarePublic,
+@router.post("/poincare", dependencies=[JSON_ONLY],
+             response_model=PoincarePublic,
              responses={**PROBLEM_RESPONSES, **BUSY_RESPONSES, **GUARD_RESPONSES,
                         **DEADLINE_RESPONSES,
                         200: {"content": {"application/x-ndjson": {}},
@@ -172,7 +169,10 @@ async def poincare(req: PoincareRequest, request: Request, pool: PoolDep,
     def problem(exc) -> str:
         status = (504 if isinstance(exc, DeadlineExceeded) else
                   422 if isinstance(exc, InputError) else 503)
-        return json.dumps({"event": "error", "status": status, "detail": str(exc)}) + "\n"
+        event = {"event": "error", "status": status, "detail": str(exc)}
+        if status == 503:   # busy, no worker, the server stopping: when to come back
+            event["retry_after"] = getattr(exc, "retry_after", 1)
+        return json.dumps(event) + "\n"
 
     async def events():
         t0 = anyio.current_time()

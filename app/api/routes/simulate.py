@@ -13,7 +13,7 @@ import numpy as np
 from fastapi import APIRouter, Query, Request
 from fastapi.responses import Response
 
-from app.api.deps import PoolDep, SettingsDep
+from app.api.deps import JSON_ONLY, PoolDep, SettingsDep
 from app.core.disconnect import cancel_on_disconnect
 from app.schemas.common import (
     BUSY_RESPONSES,
@@ -120,7 +120,8 @@ _RUN_DESCRIPTION = (
     "invariants (column -> invariant) and stats), or text/csv (as format=csv)")
 
 
-@router.post("/simulate", response_model=SimulateResponse,
+@router.post("/simulate", dependencies=[JSON_ONLY],
+             response_model=SimulateResponse,
              responses={**PROBLEM_RESPONSES, **BUSY_RESPONSES, **GUARD_RESPONSES,
                         **DEADLINE_RESPONSES, **NOT_ACCEPTABLE_RESPONSES,
                         200: {"content": _RUN_CONTENT, "description": _RUN_DESCRIPTION}})
@@ -151,7 +152,8 @@ async def simulate(req: SimulateRequest, request: Request, pool: PoolDep,
     return Response(body, media_type=media, headers={"Vary": "Accept"})
 
 
-@router.post("/validate", response_model=ValidatePublic,
+@router.post("/validate", dependencies=[JSON_ONLY],
+             response_model=ValidatePublic,
              responses={**PROBLEM_RESPONSES, **GUARD_RESPONSES})
 async def validate(req: SimulateRequest, settings: SettingsDep) -> dict:
     """Check a run without running it (the explorer calls this as you type): 200 with the
@@ -163,7 +165,8 @@ async def validate(req: SimulateRequest, settings: SettingsDep) -> dict:
             "invariants_text": [invariant_name(n) for n in model.integral_names]}
 
 
-@router.post("/scene", response_model=ScenePublic,
+@router.post("/scene", dependencies=[JSON_ONLY],
+             response_model=ScenePublic,
              responses={**PROBLEM_RESPONSES, **BUSY_RESPONSES, **GUARD_RESPONSES,
                         **DEADLINE_RESPONSES})
 async def scene(req: SceneRequest, request: Request, pool: PoolDep,
@@ -194,7 +197,8 @@ async def methods() -> list[dict]:
             for m in METHODS]
 
 
-@router.post("/simulate/compiles", response_model=CompilesPublic,
+@router.post("/simulate/compiles", dependencies=[JSON_ONLY],
+             response_model=CompilesPublic,
              responses={**PROBLEM_RESPONSES, **GUARD_RESPONSES})
 async def simulate_compiles(req: SimulateRequest, request: Request,
                             settings: SettingsDep) -> dict:
@@ -205,7 +209,8 @@ async def simulate_compiles(req: SimulateRequest, request: Request,
     return _compiles(request, settings, await _keys(resolved))
 
 
-@router.post("/scene/compiles", response_model=CompilesPublic,
+@router.post("/scene/compiles", dependencies=[JSON_ONLY],
+             response_model=CompilesPublic,
              responses={**PROBLEM_RESPONSES, **GUARD_RESPONSES})
 async def scene_compiles(req: SceneRequest, request: Request, settings: SettingsDep) -> dict:
     """As /api/simulate/compiles, for POST /api/scene."""

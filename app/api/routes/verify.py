@@ -4,16 +4,17 @@ import time
 
 from fastapi import APIRouter, HTTPException, Request
 
-from app.api.deps import PoolDep, SettingsDep, VerdictsDep
+from app.api.deps import JSON_ONLY, PoolDep, SettingsDep, VerdictsDep
 from app.core.disconnect import cancel_on_disconnect
 from app.schemas.common import (
     BUSY_RESPONSES,
     DEADLINE_RESPONSES,
     GUARD_RESPONSES,
     NOT_FOUND,
+    PROBLEM_RESPONSES,
     Problem,
 )
-from app.schemas.verify import MarksPublic, VerdictPublic, VerifyPublic
+from app.schemas.verify import MarksPublic, VerdictPublic, VerifyPublic, VerifyRequest
 from app.services import verdicts as service
 from app.services import views
 from catalogue.load import load_catalogue
@@ -21,11 +22,13 @@ from catalogue.load import load_catalogue
 router = APIRouter(tags=["verify"])
 
 
-@router.post("/verify/{case_id:path}", response_model=VerifyPublic,
+@router.post("/verify/{case_id:path}", dependencies=[JSON_ONLY],
+             response_model=VerifyPublic,
              responses={**NOT_FOUND, **BUSY_RESPONSES, **GUARD_RESPONSES, **DEADLINE_RESPONSES,
+                        **PROBLEM_RESPONSES,
                         501: {"model": Problem, "description": "verification not installed"}})
 async def verify_case(case_id: str, request: Request, pool: PoolDep, settings: SettingsDep,
-                      store: VerdictsDep) -> dict:
+                      store: VerdictsDep, body: VerifyRequest | None = None) -> dict:
     """Check every claim of the case (solvers.verify, in a worker) and keep the verdicts:
     verified, fails, evidence or unchecked, with the residual and a message."""
     try:

@@ -289,7 +289,7 @@ async function reverify() {
   btn.disabled = true;
   msg.textContent = "Checking every claim of this case…";
   try {
-    const r = await api(`/api/verify/${C.id}`, { method: "POST" });
+    const r = await api(`/api/verify/${C.id}`, { method: "POST", body: {} });
     C = await api(`/api/cases/${C.id}`);
     showTally(); showCells(); showClaims();
     msg.textContent = `Done in ${fmt(r.seconds, 2)} s.`;
