@@ -125,6 +125,18 @@ def test_bibtex_export_has_one_entry_per_misprint(client, rows):
     entry = entry[:entry.index("\n}\n")]
     assert f"url          = {{http://testserver/errata#{e['anchor']}}}" in entry
     assert "As printed (fails)" in entry and "Corrected, checked by computation" in entry
+    # formulas a citing document can typeset: the paper's own macros expanded
+    for name in errata_pages.paper_macros():
+        assert not re.search(re.escape(name) + r"(?![A-Za-z])", r.text), name
+    assert "\\gamma_3" in entry
+
+
+def test_the_paper_macros_expand_as_on_the_pages():
+    expand = errata_pages.expand
+    assert expand(r"\pt{H}{x_j} + \gam_3 \br \bs r \gamma") == \
+        r"\frac{\partial H}{\partial x_j} + \gamma_3 \boldsymbol{r} \boldsymbol r \gamma"
+    assert errata_pages._inline("a &= b\\\\ c &= d\\\\") == \
+        r"$\begin{aligned}a &= b\\ c &= d\end{aligned}$"
 
 
 def test_a_public_url_is_used_by_the_exports(catalogue_records):

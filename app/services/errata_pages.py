@@ -15,9 +15,12 @@ from __future__ import annotations
 
 import csv
 import io
+import json
 import re
 from datetime import date
+from functools import cache
 from html import escape
+from pathlib import Path
 
 from app import __version__
 from app.services import reader_pages
@@ -271,10 +274,45 @@ def errata_csv(errata: list[dict], base: str) -> str:
     return out.getvalue()
 
 
+LATEX_JS = Path(__file__).resolve().parents[1] / "static" / "js" / "latex.js"
+
+
+@cache
+def paper_macros() -> dict[str, str]:
+    """The paper's own macros, as the pages' KaTeX defines them (latex.js MACROS: one
+    definition for the pages and the exports)."""
+    block = LATEX_JS.read_text(encoding="utf-8").split("export const MACROS = {", 1)[1]
+    block = block.split("};", 1)[0]
+    return {json.loads(f'"{k}"'): json.loads(f'"{v}"')
+            for k, v in re.findall(r'^\s*"((?:[^"\\]|\\.)+)":\s*"((?:[^"\\]|\\.)*)",',
+                                   block, re.M)}
+
+
+def _fill(body: str, m: re.Match) -> str:
+    return re.sub(r"#(\d)", lambda k: m[int(k[1])], body)
+
+
+def expand(tex: str) -> str:
+    """The paper's macros expanded, so that a citing document needs only amsmath: those
+    with brace arguments first, then the others (the same as cite.js expandMacros)."""
+    for name, body in paper_macros().items():
+        n = max((int(k) for k in re.findall(r"#(\d)", body)), default=0)
+        if n:
+            pat = re.escape(name) + r"(?![A-Za-z])" + r"\s*\{([^{}]*)\}" * n
+            tex = re.sub(pat, lambda m, b=body: _fill(b, m), tex)
+
+    def one(m: re.Match) -> str:
+        body = paper_macros().get(m[0])
+        return body if body is not None and "#" not in body else m[0]
+
+    return re.sub(r"\\[A-Za-z]+(?![A-Za-z])", one, tex)
+
+
 def _inline(tex: str | None) -> str:
-    """A display as one line of inline math for a BibTeX note (as cite.js texInline): an
-    alignment outside any environment put in `aligned`, as the pages' KaTeX reads it."""
-    t = re.sub(r"(\\\\\s*)+$", "", (tex or "").strip())
+    """A display as one line of inline math for a BibTeX note (as cite.js texInline): the
+    paper's macros expanded, an alignment outside any environment put in `aligned`, as the
+    pages' KaTeX reads it."""
+    t = re.sub(r"(\\\\\s*)+$", "", expand(tex or "").strip())
     if "$" not in t:
         if re.search(r"(^|[^\\])&", t) and "\\begin{" not in t:
             t = f"\\begin{{aligned}}{t}\\end{{aligned}}"

@@ -9,7 +9,7 @@
 "use strict";
 
 import { api, escapeHtml } from "./api.js";
-import { mathHtml, printedHtml } from "./latex.js";
+import { MACROS, mathHtml, printedHtml } from "./latex.js";
 
 let DATA = null;
 
@@ -120,10 +120,26 @@ function claimLabel(cl) {
   return `${cl.kind.replace(/-/g, " ")}${cl.number ? ` ${cl.number}` : ""}`;
 }
 
-// a formula in a BibTeX note: inline math on one line, an alignment outside any
-// environment put in "aligned" as mathHtml does (errata_pages._inline)
+/** The paper's own macros (latex.js MACROS) expanded, so that a citing document needs
+ * only amsmath: those with brace arguments first, then the others (errata_pages.expand). */
+export function expandMacros(tex) {
+  let t = tex;
+  for (const [name, body] of Object.entries(MACROS)) {
+    const n = Math.max(0, ...[...body.matchAll(/#(\d)/g)].map((m) => Number(m[1])));
+    if (!n) continue;
+    const re = new RegExp(`\\\\${name.slice(1)}(?![A-Za-z])${"\\s*\\{([^{}]*)\\}".repeat(n)}`, "g");
+    t = t.replace(re, (...m) => body.replace(/#(\d)/g, (_, k) => m[Number(k)]));
+  }
+  return t.replace(/\\([A-Za-z]+)(?![A-Za-z])/g, (all, name) => {
+    const body = MACROS[`\\${name}`];
+    return body && !body.includes("#") ? body : all;
+  });
+}
+
+// a formula in a BibTeX note: inline math on one line, the paper's macros expanded, an
+// alignment outside any environment put in "aligned" as mathHtml does (errata_pages._inline)
 function texInline(tex) {
-  let t = tex.trim().replace(/(\\\\\s*)+$/, "");
+  let t = expandMacros(tex).trim().replace(/(\\\\\s*)+$/, "");
   if (!t.includes("$")) {
     if (/(^|[^\\])&/.test(t) && !/\\begin\{/.test(t)) t = `\\begin{aligned}${t}\\end{aligned}`;
     t = `$${t}$`;
@@ -138,7 +154,7 @@ export function claimCitation(data, c, cl) {
   const v = cl.verdict || {};
   const mark = v.mark || "pending";
   const m = (data.marks || {})[mark] || { shape: "", name: mark };
-  const markWords = mark === "pending" ? "checking (not yet decided)" : `${m.shape} ${m.name}`.trim();
+  const markWords = mark === "pending" ? "checking (not yet decided)" : m.name;
   const corr = (cl.corrections || []).find((r) => r.printed_tex) || null;
   const base = baseUrl(data);
   const errata = (v.errata || []).map((e) => `${base}/errata#e-${e}`);
@@ -170,7 +186,7 @@ export function claimCitation(data, c, cl) {
     printedLabel = mark === "pending" ? "as printed (checking)" : `as printed (${m.name})`;
   }
   if (errata.length) note += `. Erratum: ${errata.join(", ")}`;
-  const lead = `<div class="cite-shown"><p class="cite-mark">Mark: <strong class="badge ${escapeHtml(mark)}">${escapeHtml(markWords)}</strong>` +
+  const lead = `<div class="cite-shown"><p class="cite-mark">Mark: <strong class="badge ${escapeHtml(mark)}">${escapeHtml(`${m.shape || ""} ${markWords}`.trim())}</strong>` +
     `${v.mark_note ? ` (${escapeHtml(v.mark_note.replace(/\.$/, ""))})` : ""}.</p>` +
     (holds && corr && mark === "after-correction"
       ? `<p>The formula that holds (the project's correction):</p><div class="printed cite-holds" tabindex="0">${mathHtml(holds, true)}</div>` : "") +
