@@ -149,3 +149,17 @@ def test_a_public_url_is_used_by_the_exports(catalogue_records):
         text = c.get("/errata.csv").text
         assert "https://example.org/rolling/errata#e-sphere/body-of-revolution/measure" in text
         assert c.get("/api/cite").json()["public_url"] == "https://example.org/rolling"
+
+
+def test_the_page_is_kept_until_the_verdicts_change(catalogue_records, tmp_path):
+    app = create_app(settings_for_tests(warm_workers=False, cache_dir=tmp_path))
+    with TestClient(app) as c:
+        pages, store = app.state.pages, app.state.verdicts
+        empty = c.get("/errata").text
+        assert "No misprint found yet." in empty and "Loading…" not in empty
+        n = pages.renders
+        assert c.get("/errata").text == empty and pages.renders == n
+        cid = "sphere/body-of-revolution"
+        store.put(cid, [dict(r) for r in catalogue_records if r["case"] == cid])
+        page = c.get("/errata").text
+        assert pages.renders == n + 1 and 'id="e-sphere/body-of-revolution/measure"' in page

@@ -87,7 +87,11 @@ async def errata_page(settings: SettingsDep, verdicts: VerdictsDep,
                                         len(verdicts.records), len(verdicts.case_ids))
         return render_page(html, "errata.html")
 
-    return HTMLResponse(pages.get("/errata", pages.stamp(verdicts, path), build))
+    # the figure findings come from a file of their own: its change is a new page too
+    figures = settings.static_dir / "data" / "paper_figures.json"
+    stamp = (*pages.stamp(verdicts, path),
+             figures.stat().st_mtime_ns if figures.is_file() else None)
+    return HTMLResponse(pages.get("/errata", stamp, build))
 
 
 @router.get("/errata.csv")
