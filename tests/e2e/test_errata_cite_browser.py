@@ -205,7 +205,11 @@ def test_a_corrected_claims_cite_box_says_what_was_shown(page, verified):
     assert "checked by computation" not in note
     assert f"url     = {{{verified}/case/{cid}#{anchor}}}" in sw
     os.makedirs("/tmp/cite-shots", exist_ok=True)
-    box.screenshot(path="/tmp/cite-shots/measure-3.2-cite.png")
+    # the whole claim with its box open, from the full page (the sticky bars at its top)
+    r = art.bounding_box()
+    y = page.evaluate("window.scrollY")
+    page.screenshot(path="/tmp/cite-shots/measure-3.2-cite.png", full_page=True,
+                    clip={"x": r["x"], "y": r["y"] + y, "width": r["width"], "height": r["height"]})
     # CSL-JSON and RIS beside the BibTeX, with the same key
     box.locator("details.cite-formats summary").click()
     csl = box.locator('pre[data-cite="csl"]').text_content()
