@@ -180,8 +180,9 @@ def cite_data(base_url: str | None = None) -> dict:
     """What the Cite boxes need (GET /api/cite, cite.js): the paper's entry from
     catalogue/references.yaml and the explorer's; the page's URL, the year and the access
     date are added where the page is shown (in the browser, or `bibtex_project`).
-    `public_url`: the configured public address (ROLLING_PUBLIC_URL), else None and the
-    page's own address is used; `marks`: each mark's shape and name, for a claim's box."""
+    `base_url` (returned as `public_url`): the configured public address
+    (ROLLING_PUBLIC_URL), else None and the page's own address is used; `marks`: each
+    mark's shape and name, for a claim's box."""
     from solvers.verify import marks as vocab
 
     r = load_catalogue().reference(PAPER_ID)
