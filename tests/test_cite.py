@@ -106,7 +106,7 @@ def test_bibtex_of_the_paper_and_of_the_explorer(client):
     from datetime import date
     sw = reader_pages.bibtex_project("http://example.org/case/plane/chaplygin-ball",
                                      date(2026, 1, 2))
-    assert sw.startswith("@software{RollingHierarchy,")
+    assert sw.startswith("@software{RollingHierarchy:case:plane:chaplygin-ball,")   # the page's key
     assert "author  = {{rolling-hierarchy contributors}}" in sw
     assert f"version = {{{__version__}}}" in sw and "year    = {2026}" in sw
     assert "url     = {http://example.org/case/plane/chaplygin-ball}" in sw
@@ -126,3 +126,38 @@ def test_search_results_link_to_the_claim(client):
     page = client.get("/search", params={"q": "chaplygin"}).text
     first = r["claims"][0]
     assert f'href="{first["href"]}"' in page
+
+
+def test_keys_are_stable_unique_and_bibtex_legal():
+    """Issue 38: one key per page and claim, derived from its id, in characters BibTeX reads;
+    the same rule as cite.js citeKey."""
+    key = reader_pages.cite_key
+    assert key("sphere/body-of-revolution/measure") == \
+        "RollingHierarchy:sphere:body-of-revolution:measure"
+    assert key("") == key("/") == "RollingHierarchy"
+    assert key("/bibliography") == "RollingHierarchy:bibliography"
+    ids = [c.id for c in load_catalogue().claims()]
+    keys = [key(i) for i in ids]
+    assert len(set(keys)) == len(ids)
+    for k in keys:
+        assert re.fullmatch(r"RollingHierarchy:[A-Za-z0-9_.:-]+", k), k
+    js = open("app/static/js/cite.js", encoding="utf-8").read()
+    assert 'replace(/[^A-Za-z0-9_.-]+/g, ":")' in js
+
+
+def test_cite_data_gives_the_public_url_the_version_and_the_marks(monkeypatch):
+    with TestClient(create_app(settings_for_tests(
+            warm_workers=False, public_url="https://example.org/rh/"))) as c:
+        d = c.get("/api/cite").json()
+    assert d["public_url"] == "https://example.org/rh" and d["version"] == __version__
+    assert d["marks"]["after-correction"] == {"shape": "✎", "name": "holds after correction"}
+    # the server-built boxes: the configured address, and the page's own key
+    from app.core import config
+    monkeypatch.setenv("ROLLING_PUBLIC_URL", "https://example.org/rh")
+    config.get_settings.cache_clear()
+    try:
+        sw = reader_pages.bibtex_project("/bibliography")
+    finally:
+        config.get_settings.cache_clear()
+    assert sw.startswith("@software{RollingHierarchy:bibliography,")
+    assert "url     = {https://example.org/rh/bibliography}" in sw

@@ -8,7 +8,7 @@ The defaults are what `rolling serve` / `./dev serve` run with on a 2-core machi
 from functools import cache
 from pathlib import Path
 
-from pydantic import Field
+from pydantic import Field, field_validator
 from pydantic_settings import BaseSettings, SettingsConfigDict
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -82,6 +82,14 @@ class Settings(BaseSettings):
     # repository root. Not built: /guide/ says how to build it (app/api/routes/guide.py)
     guide_dir: Path | None = None
     log_level: str = "info"
+    # the public address of a published copy (https://example.org/rolling): the Cite boxes
+    # and the errata's exports give it instead of the address the page was asked for
+    public_url: str | None = None
+
+    @field_validator("public_url")
+    @classmethod
+    def _no_trailing_slash(cls, v: str | None) -> str | None:
+        return v.rstrip("/") or None if v else None
 
     def trusted_hosts(self) -> list[str]:
         if self.allowed_hosts is not None:

@@ -158,10 +158,33 @@ SOFTWARE_TITLE = ("Rolling hierarchy: a checked knowledge base of a rigid body r
                   "plane and a sphere")
 
 
-def cite_data() -> dict:
+SOFTWARE_KEY = "RollingHierarchy"
+
+
+def cite_key(what: str = "") -> str:
+    """The explorer's BibTeX key for a page or a claim, stable and unique: the claim id or
+    the page's path after the project's key, in characters every BibTeX reads
+    ("sphere/body-of-revolution/measure" -> "RollingHierarchy:sphere:body-of-revolution:measure";
+    the same as cite.js citeKey)."""
+    rest = re.sub(r"[^A-Za-z0-9_.-]+", ":", what).strip(":")
+    return f"{SOFTWARE_KEY}:{rest}" if rest else SOFTWARE_KEY
+
+
+def public_url() -> str | None:
+    from app.core.config import get_settings
+
+    return get_settings().public_url
+
+
+def cite_data(base_url: str | None = None) -> dict:
     """What the Cite boxes need (GET /api/cite, cite.js): the paper's entry from
     catalogue/references.yaml and the explorer's; the page's URL, the year and the access
-    date are added where the page is shown (in the browser, or `bibtex_project`)."""
+    date are added where the page is shown (in the browser, or `bibtex_project`).
+    `base_url` (returned as `public_url`): the configured public address
+    (ROLLING_PUBLIC_URL), else None and the page's own address is used; `marks`: each
+    mark's shape and name, for a claim's box."""
+    from solvers.verify import marks as vocab
+
     r = load_catalogue().reference(PAPER_ID)
     paper = {"author": " and ".join(_bib_name(a) for a in r.authors), "title": r.title,
              "journal": r.journal, "volume": r.volume, "number": r.number,
@@ -171,8 +194,10 @@ def cite_data() -> dict:
                 "version": __version__,
                 "note": "Every claim of Borisov and Mamaev (2002), Tables 1 and 2, checked by "
                         "computation"}
+    marks = {m.id: {"shape": m.shape, "name": m.name} for m in vocab.vocabulary()}
     return {"paper": {"type": "article", "key": "BorisovMamaev2002", "fields": paper},
-            "software": {"type": "software", "key": "RollingHierarchy", "fields": software}}
+            "software": {"type": "software", "key": SOFTWARE_KEY, "fields": software},
+            "public_url": base_url, "version": __version__, "marks": marks}
 
 
 def _bib_name(name: str) -> str:
@@ -193,12 +218,19 @@ def bibtex_paper() -> str:
     return bibtex(cite_data()["paper"])
 
 
-def bibtex_project(url: str = "/", today: date | None = None) -> str:
+def bibtex_project(url: str = "/", today: date | None = None, key: str | None = None) -> str:
     """The explorer's entry for the page at `url`, accessed `today` (the server's date; the
-    page's script puts in the reader's own date and the page's full address)."""
+    page's script puts in the reader's own date and the page's full address). `url` is a
+    path: with a public address configured it is put after it. The key is the page's."""
     today = today or date.today()
-    return bibtex(cite_data()["software"], year=str(today.year), url=url,
-                  urldate=today.isoformat())
+    path = url
+    base = public_url()
+    if url.startswith("/"):
+        url = f"{base}{url}" if base else url
+    else:
+        path = re.sub(r"^[a-z]+://[^/]+", "", url)
+    entry = {**cite_data()["software"], "key": key or cite_key(path.split("#")[0])}
+    return bibtex(entry, year=str(today.year), url=url, urldate=today.isoformat())
 
 
 def _pre(text: str) -> str:
@@ -213,8 +245,8 @@ def cite_box(url: str = "/") -> str:
             "(Regular and Chaotic Dynamics 7(2), 2002, pp. 177–200).</p>"
             f'<pre class="bibtex" data-cite="paper" tabindex="0">{_pre(bibtex_paper())}</pre>'
             f'<p>This explorer (version {escape(__version__)}), as this page shows it:</p>'
-            f'<pre class="bibtex" data-cite="software" tabindex="0">'
-            f"{_pre(bibtex_project(url))}</pre>"
+            f'<pre class="bibtex" data-cite="software" data-key="{escape(cite_key(url))}" '
+            f'tabindex="0">{_pre(bibtex_project(url))}</pre>'
             '<link rel="stylesheet" href="/static/css/cite.css">'
             '<script type="module" src="/static/js/cite.js"></script></section>')
 

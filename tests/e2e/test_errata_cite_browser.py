@@ -122,7 +122,7 @@ def test_case_page_has_a_cite_box_permalinks_and_what_was_checked(page, verified
     anchor = first.get_attribute("id")
     link.click()
     assert page.evaluate("location.hash") == f"#{anchor}"
-    first.locator("details.cite-claim summary").click()
+    first.locator("details.cite-claim > summary").click()
     box = first.locator("details.cite-claim")
     assert "@article{" in box.locator('pre[data-cite="paper"]').text_content()
     assert f"url     = {{{verified}/case/{cid}#{anchor}}}" in box.locator(
@@ -168,3 +168,69 @@ def test_bibliography_cite_box_takes_the_pages_address_and_todays_date(page, ver
     expect(sw).to_contain_text(f"urldate = {{{date.today().isoformat()}}}")
     assert page.locator('li[data-status="unresolved"]').count() > 30
     expect(page.locator("#ref-this-paper")).to_contain_text("complete")
+
+
+def test_a_corrected_claims_cite_box_says_what_was_shown(page, verified):
+    """Issue 38: the Cite box of a misprinted claim (the measure (3.2) of a body of
+    revolution on a sphere) gives its mark, the corrected formula that holds, the printed
+    one labelled as printed, the erratum's address and a key of its own; no claim of the
+    case has a note that cites a misprinted formula as checked."""
+    import os
+
+    cid = "sphere/body-of-revolution"
+    claim = f"{cid}/measure"
+    data = httpx.get(f"{verified}/api/cases/{cid}").json()
+    rec = next(c for c in data["claims"] if c["id"] == claim)
+    assert rec["verdict"]["mark"] == "after-correction"
+    corrected = next(r["printed_tex"] for r in rec["corrections"] if r.get("printed_tex"))
+    page.goto(f"{verified}/case/{cid}")
+    page.wait_for_function("document.body?.dataset.cite === '1'")
+    anchor = "claim-" + re.sub(r"[^A-Za-z0-9_-]+", "_", claim)
+    art = page.locator(f"#{anchor}")
+    box = art.locator("details.cite-claim")
+    box.locator(":scope > summary").click()
+    expect(box.locator(".cite-mark")).to_contain_text("✎ holds after correction")
+    assert box.locator(".cite-holds .katex").count() == 1          # the corrected form, typeset
+    expect(box.locator(".cite-shown")).to_contain_text("as printed (fails; misprint)")
+    expect(box.locator(f'.cite-erratum a[href="/errata#e-{claim}"]')).to_be_visible()
+    sw = box.locator('pre[data-cite="software"]').text_content()
+    key = "RollingHierarchy:sphere:body-of-revolution:measure"
+    assert sw.startswith(f"@software{{{key},"), sw
+    note = re.search(r"^  note\s+= \{(.*)\},?$", sw, re.M)[1]
+    assert "Mark: holds after correction" in note
+    assert not re.search(r"\\gam(?![a-z])", note) and "\\gamma_3" in note   # macros expanded
+    assert "the project's correction: $" in note and "As printed (fails): $" in note
+    assert re.sub(r"\s+", " ", corrected).strip()[:40] in note, (corrected, note)
+    assert f"{verified}/errata#e-{claim}" in note
+    assert "checked by computation" not in note
+    assert f"url     = {{{verified}/case/{cid}#{anchor}}}" in sw
+    os.makedirs("/tmp/cite-shots", exist_ok=True)
+    # the whole claim with its box open, from the full page (the sticky bars at its top)
+    r = art.bounding_box()
+    y = page.evaluate("window.scrollY")
+    page.screenshot(path="/tmp/cite-shots/measure-3.2-cite.png", full_page=True,
+                    clip={"x": r["x"], "y": r["y"] + y, "width": r["width"], "height": r["height"]})
+    # CSL-JSON and RIS beside the BibTeX, with the same key
+    box.locator("details.cite-formats summary").click()
+    csl = box.locator('pre[data-cite="csl"]').text_content()
+    assert f'"id": "{key}"' in csl and '"type": "software"' in csl
+    ris = box.locator('pre[data-cite="ris"]').text_content()
+    assert "TY  - COMP" in ris and f"ID  - {key}" in ris and "DO  - 10.1070/" in ris
+    # every claim of the case: a key of its own; a misprinted one cited with its mark and
+    # correction, never its printed form as checked
+    entries = page.locator('details.cite-claim pre[data-cite="software"]').evaluate_all(
+        "els => els.map((e) => e.textContent)")
+    assert len(entries) == len(data["claims"])
+    keys = [re.match(r"@software\{([^,]+),", e)[1] for e in entries]
+    assert len(set(keys)) == len(keys)
+    errata = {e["claim"] for e in httpx.get(f"{verified}/api/errata").json()
+              if e["case"] == cid}
+    assert claim in errata
+    for c, entry in zip(data["claims"], entries, strict=True):
+        note = re.search(r"^  note\s+= \{(.*)\},?$", entry, re.M)[1]
+        assert "checked by computation" not in note, (c["id"], note)
+        assert note.startswith(f"{data['title']}: the claim ") and " Mark: " in note, note
+        if c["id"] in errata:
+            assert c["verdict"]["mark"] == "after-correction", c["id"]
+            assert "Mark: holds after correction" in note and "As printed (fails): " in note
+            assert f"{verified}/errata#e-" in note, (c["id"], note)

@@ -1,4 +1,5 @@
-"""The explorer's pages: / (Tables 1 and 2), /case/{id} (a permalink per case), /errata, and
+"""The explorer's pages: / (Tables 1 and 2), /case/{id} (a permalink per case), /errata (with
+its exports /errata.csv and /errata.bib), and
 plotly.js served from the installed plotly package (not copied into the repository)."""
 
 from functools import cache
@@ -9,7 +10,7 @@ from fastapi.responses import FileResponse, HTMLResponse, RedirectResponse, Resp
 
 from app.api.deps import PagesDep, SettingsDep, VerdictsDep
 from app.core.errors import not_found_page
-from app.services import ssr, views
+from app.services import errata_pages, ssr, views
 from app.services.reader_pages import render_page
 
 router = APIRouter(include_in_schema=False)
@@ -57,10 +58,60 @@ async def case_page(case_id: str, settings: SettingsDep, verdicts: VerdictsDep,
     return HTMLResponse(pages.get(f"/case/{case_id}", pages.stamp(verdicts, path), build))
 
 
+def _errata_rows(verdicts, settings) -> tuple[list[dict], list[dict], list[dict]]:
+    from app.api.routes.errata import _figure_findings, _records
+    from catalogue.load import load_catalogue
+    from solvers.verify import errata
+
+    records, cat = _records(verdicts), load_catalogue()
+    return (errata.errata(records, cat), errata.conventions(records, cat),
+            errata.findings(records, cat) + _figure_findings(
+                settings.static_dir / "data" / "paper_figures.json"))
+
+
+def _base_url(request: Request, settings) -> str:
+    """The configured public address, else the address this request was made to."""
+    return settings.public_url or str(request.base_url).rstrip("/")
+
+
 @router.get("/errata")
-async def errata_page(settings: SettingsDep) -> HTMLResponse:
-    return HTMLResponse(render_page((settings.static_dir / "errata.html").read_text(),
-                                    "errata.html"))
+async def errata_page(settings: SettingsDep, verdicts: VerdictsDep,
+                      pages: PagesDep) -> HTMLResponse:
+    # the counts, the index and every row in the HTML itself (readable with scripts off);
+    # errata.js redraws them with typeset formulas
+    path = settings.static_dir / "errata.html"
+
+    def build() -> str:
+        ers, cvs, fds = _errata_rows(verdicts, settings)
+        html = errata_pages.errata_page(path.read_text(), ers, cvs, fds, verdicts.state,
+                                        len(verdicts.records), len(verdicts.case_ids))
+        return render_page(html, "errata.html")
+
+    # the figure findings come from a file of their own: its change is a new page too
+    figures = settings.static_dir / "data" / "paper_figures.json"
+    stamp = (*pages.stamp(verdicts, path),
+             figures.stat().st_mtime_ns if figures.is_file() else None)
+    return HTMLResponse(pages.get("/errata", stamp, build))
+
+
+@router.get("/errata.csv")
+async def errata_csv(request: Request, settings: SettingsDep,
+                     verdicts: VerdictsDep) -> Response:
+    """The misprints' table, one line per row (the verdicts computed so far)."""
+    ers, _, _ = _errata_rows(verdicts, settings)
+    return Response(errata_pages.errata_csv(ers, _base_url(request, settings)),
+                    media_type="text/csv; charset=utf-8",
+                    headers={"Content-Disposition": 'inline; filename="errata.csv"'})
+
+
+@router.get("/errata.bib")
+async def errata_bib(request: Request, settings: SettingsDep,
+                     verdicts: VerdictsDep) -> Response:
+    """The paper's BibTeX entry and one @misc per misprint (the explorer's erratum)."""
+    ers, _, _ = _errata_rows(verdicts, settings)
+    return Response(errata_pages.errata_bibtex(ers, _base_url(request, settings)),
+                    media_type="application/x-bibtex; charset=utf-8",
+                    headers={"Content-Disposition": 'inline; filename="errata.bib"'})
 
 
 @router.get("/vendor/plotly.min.js")

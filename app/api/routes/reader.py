@@ -9,7 +9,7 @@ from typing import Annotated, Literal
 from fastapi import APIRouter, Query
 from fastapi.responses import HTMLResponse
 
-from app.api.deps import VerdictsDep
+from app.api.deps import SettingsDep, VerdictsDep
 from app.services import howcheck, reader_pages
 from app.services import search as search_service
 from app.services.search import facets, search
@@ -49,10 +49,12 @@ async def references_api() -> list[dict]:
 
 
 @router.get("/cite")
-async def cite_api() -> dict:
+async def cite_api(settings: SettingsDep) -> dict:
     """The BibTeX fields of the paper (with its DOI) and of this explorer (author, version);
-    a page's Cite box adds its own URL, the year and the access date."""
-    return reader_pages.cite_data()
+    a page's Cite box adds its own URL (after `public_url`, when the explorer is published
+    at a configured address), the year and the access date, and a claim's box its mark and
+    the formula that holds."""
+    return reader_pages.cite_data(settings.public_url)
 
 
 @router.get("/how-we-check")

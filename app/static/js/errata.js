@@ -150,27 +150,65 @@ function findingHtml(e) {
     exactHtml(e.exact, "claim") + reproHtml(e.reproduce) + `</div></details>`;
 }
 
-// ---- the index by section: every row's display, linked to its anchor
+// ---- the index by section: each display once, with a link to each of its rows
+// (app/services/errata_pages.py renders the same index on the server)
+
+const tipOf = (e) => `${caseTitle(e)}${e.claim_name ? `, ${e.claim_name}` : ""}`;
+
+function groupedLinks(rows) {
+  const groups = new Map();
+  for (const [label, e] of rows) {
+    if (!groups.has(label)) groups.set(label, []);
+    groups.get(label).push(e);
+  }
+  const out = [...groups.entries()].map(([label, es]) => {
+    let first = `<a href="#${escapeHtml(es[0].anchor)}" title="${escapeHtml(tipOf(es[0]))}">${escapeHtml(label)}</a>`;
+    if (es.length > 1) {
+      first += ` <span class="rows">(${es.length} rows: ${es.map((e, i) =>
+        `<a href="#${escapeHtml(e.anchor)}" title="${escapeHtml(tipOf(e))}">${i + 1}</a>`).join(" ")})</span>`;
+    }
+    return `<span class="idx">${first}</span>`;
+  });
+  return out.join(" ") || "—";
+}
+
+/** What makes two rows one misprint: the display corrected (errata_pages.misprint_key). */
+const misprintKey = (e) => e.corrected_label || e.corrected_where || e.corrected_formula || e.claim;
+
+export function counts(errata) {
+  const own = errata.filter((e) => e.kind !== "inherited");
+  return { rows: errata.length, misprints: new Set(own.map(misprintKey)).size,
+    misprintRows: own.length, inherited: errata.length - own.length };
+}
+
+/** "23 misprints, and 5 inherited rows that repeat one" (errata_pages.counts_sentence). */
+export function countsSentence(errata) {
+  const n = counts(errata);
+  let words = `${n.misprints} misprint${n.misprints === 1 ? "" : "s"}`;
+  const extra = n.misprintRows - n.misprints;
+  if (extra > 0) words += ` (${extra} more row${extra === 1 ? "" : "s"} where several cases use the same display)`;
+  return `${words}, and ${n.inherited} inherited row${n.inherited === 1 ? "" : "s"} that repeat${n.inherited === 1 ? "s" : ""} one`;
+}
 
 function indexHtml(errata, conventions, findings) {
   const secs = new Map();
   const add = (e, what, label) => {
-    const tip = `${caseTitle(e)}${e.claim_name ? `, ${e.claim_name}` : ""}${e.place && e.place !== label && !(e.claim_name || "").endsWith(e.place) ? `, claim at ${e.place}` : ""}`;
     const s = sectionOf(e);
     if (!secs.has(s)) secs.set(s, { title: e.section_title || "", errata: [], conventions: [], findings: [] });
     const rec = secs.get(s);
     if (e.section_title) rec.title = e.section_title;
-    rec[what].push(`<a href="#${escapeHtml(e.anchor)}" title="${escapeHtml(tip)}">${escapeHtml(label)}</a>`);
+    rec[what].push([label, e]);
   };
   errata.forEach((e) => add(e, "errata", e.corrected_display || e.place));
   conventions.forEach((e) => add(e, "conventions", e.place));
   findings.forEach((e) => add(e, "findings", e.place || e.title));
   const TITLES = { 1: "Equations of motion", 2: "Body on a plane", 3: "Body on a sphere" };
+  const n = counts(errata);
   const rows = [...secs.entries()].sort(([a], [b]) => a.localeCompare(b)).map(([s, r]) =>
     `<tr id="index-${escapeHtml(s)}"><th scope="row">Section ${escapeHtml(s)}. ${escapeHtml(r.title || TITLES[s] || "")}</th>` +
-    `<td>${r.errata.join(" ") || "—"}</td><td>${r.conventions.join(" ") || "—"}</td><td>${r.findings.join(" ") || "—"}</td></tr>`);
+    `<td>${groupedLinks(r.errata)}</td><td>${groupedLinks(r.conventions)}</td><td>${groupedLinks(r.findings)}</td></tr>`);
   return `<div class="table-wrap"><table class="eindex"><thead><tr><th scope="col">section</th>` +
-    `<th scope="col">misprints (${errata.length}): the corrected displays</th><th scope="col">conventions (${conventions.length})</th>` +
+    `<th scope="col">misprints (${n.misprints}, in ${n.rows} rows): the corrected displays</th><th scope="col">conventions (${conventions.length})</th>` +
     `<th scope="col">findings (${findings.length})</th></tr></thead><tbody>${rows.join("")}</tbody></table></div>`;
 }
 
@@ -222,6 +260,10 @@ const [cases, ers, cvs, fds] = await Promise.all(
   [load("/api/cases"), load("/api/errata"), load("/api/conventions"), load("/api/findings")]);
 if (Array.isArray(cases)) CASES = Object.fromEntries(cases.map((c) => [c.id, c.title]));
 const e = show("errata-list", ers, (l) => grouped(l, erratumHtml), "No misprint found yet.");
+if (e.length) {
+  const n = counts(e);
+  document.getElementById("n-errata").textContent = `(${n.misprints} misprints in ${n.rows} rows)`;
+}
 const c = show("conventions-list", cvs, (l) => l.map(conventionHtml).join(""), "None yet.");
 const f = show("findings-list", fds, (l) => l.map(findingHtml).join(""), "None found yet.");
 document.getElementById("index-table").innerHTML = indexHtml(e, c, f);
@@ -229,7 +271,7 @@ try {
   const h = await api("/api/health");
   const v = h.verification;
   document.getElementById("errata-status").textContent =
-    `${e.length} misprinted formulas, ${c.length} conventions, ${f.length} findings` +
+    `${countsSentence(e)}; ${c.length} conventions, ${f.length} findings` +
     (v.state === "done" ? "." : ` — verification ${v.state}: ${v.cases_done} of ${v.cases_total} cases so far.`);
 } catch { /* the tables stand on their own */ }
 window.addEventListener("hashchange", openTarget);
