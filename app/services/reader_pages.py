@@ -8,6 +8,7 @@ import re
 from datetime import date
 from html import escape
 from pathlib import Path
+from urllib.parse import urlsplit
 
 from app import __version__
 from app.services import howcheck, site_shell, ssr
@@ -255,9 +256,10 @@ def _checked_html(c) -> str:
     """One place an entry was read: its kind, what it is, how much was read, its address."""
     access = {"full": "read in full", "abstract": "abstract page read",
               "snippet": "only a snippet of the list read"}[c.access]
+    site = urlsplit(c.url).hostname or c.url
     return (f'<li class="checked" data-kind="{escape(c.kind)}" data-access="{c.access}">'
-            f"{escape(c.kind)}: {escape(c.source)} ({access}), "
-            f'<a href="{escape(c.url)}" rel="nofollow noopener">{escape(c.url)}</a></li>')
+            f"{escape(c.kind)}: {escape(c.source)} ({access}), at "
+            f'<a href="{escape(c.url)}" rel="nofollow noopener">{escape(site)}</a></li>')
 
 
 def _reference_html(r) -> str:
@@ -295,6 +297,25 @@ def _reference_html(r) -> str:
             f"{seed_years}{extra}{checked}<p>Cited for:</p><ul>{used}</ul>{remark}</li>")
 
 
+def _record_words(record: str) -> str:
+    """A claim or cell record as a reader names it: "Balanced ellipsoid: measure (2.30)",
+    "Balanced ellipsoid: the Hamiltonian form cell"."""
+    parts = record.split("/")
+    case_id, rest = "/".join(parts[:2]), "/".join(parts[2:])
+    case = next((c for c in load_catalogue().cases() if c.id == case_id), None)
+    title = case.title if case else case_id
+    if rest.startswith("cell/"):
+        row = rest.removeprefix("cell/").replace("_", " ").replace("hamiltonian", "Hamiltonian")
+        return f"{title}: the {row} cell"
+    claim = next((c for c in case.claims if c.id == record), None) if case else None
+    if claim is None:
+        return f"{title}: {re.sub(r'[/_*-]+', ' ', rest)}"
+    number = printed(claim.label)
+    if number is None:
+        return f"{title}: {re.sub(r'[/_*-]+', ' ', rest)}"
+    return f"{title}: {claim.kind.value.replace('-', ' ')} {number}"
+
+
 def _since_2002_html() -> str:
     """The later literature and the 'since 2002' notes (catalogue/since_2002.yaml), each
     note linked to its claim or cell on the case page."""
@@ -302,7 +323,7 @@ def _since_2002_html() -> str:
     notes = "".join(
         f'<li class="since-note" data-record="{escape(n.record)}">'
         f'<a href="/case/{escape("/".join(n.record.split("/")[:2]))}#'
-        f'{escape(ssr._anchor(n.record))}"><code>{escape(n.record)}</code></a>'
+        f'{escape(ssr._anchor(n.record))}">{escape(_record_words(n.record))}</a>'
         f"{ssr.since_html(note_json(n))}</li>" for n in data.notes)
     return ('<h2 id="since-2002">Since 2002</h2><p>What later work says about every open '
             "cell, open claim, refuted conjecture and non-existence result, with how much of "

@@ -169,3 +169,18 @@ def test_glossary_tooltip_opens_on_click(page, server):
     # an empty required field says what to enter
     placeholder = page.locator("#f-p-I1").get_attribute("placeholder")
     assert placeholder.startswith("enter I1") and "> 0" in placeholder
+
+
+def test_since_2002_notes_stay_beside_their_claims_after_the_scripts_ran(page, server):
+    """The notes come rendered by the server; the case page's scripts redraw the claims and
+    must put every note back (beside its claim, or in the open cells' section)."""
+    notes = httpx.get(server + "/api/cases/plane/ellipsoid", timeout=30).json()["since_2002"]
+    assert notes
+    page.goto(server + "/case/plane/ellipsoid")
+    ready(page)
+    shown = page.locator("#claimlist aside.since-2002")
+    expect(shown).to_have_count(len(notes))
+    for n in notes:
+        if "/cell/" not in n["record"]:
+            anchor = "claim-" + re.sub(r"[^A-Za-z0-9_-]+", "_", n["record"])
+            expect(page.locator(f"#{anchor} > aside.since-2002")).to_have_count(1)

@@ -245,9 +245,20 @@ function claimHtml(c) {
     `<details class="dev"><summary>Details</summary><dl>${dev}</dl>${notes}</details>${corr}</article>`;
 }
 
+// The "since 2002" notes come rendered by the server beside their claims and cells
+// (app/services/ssr.py since_html); a redraw of the claims puts the same nodes back.
+let SINCE = null;
 function showClaims() {
-  $("claimlist").innerHTML = C.claims.length ? C.claims.map(claimHtml).join("")
+  const list = $("claimlist");
+  SINCE = SINCE || { notes: [...list.querySelectorAll("article.claim > aside.since-2002")],
+                     cells: list.querySelector("section.since-cells") };
+  list.innerHTML = C.claims.length ? C.claims.map(claimHtml).join("")
     : `<p class="status">No claims: ${escapeHtml(C.in_tables === false ? "this case is not in the paper's tables." : "none catalogued.")}</p>`;
+  for (const note of SINCE.notes) {
+    const claim = document.getElementById(anchor(note.dataset.record));
+    if (claim) claim.appendChild(note);
+  }
+  if (SINCE.cells) list.appendChild(SINCE.cells);
   showCite();
 }
 
