@@ -347,6 +347,7 @@ async function compute(ev) {
     const took = (performance.now() - started) / 1000;
     status.textContent = `${result.trajectories.length} trajectories, ${result.points} points each` +
       ` in ${secs(took)}` + (estimate !== null ? ` (estimated ${secs(estimate)})` : "");
+    document.getElementById("map-views").hidden = false;     // empty until the first map
     await window.Plotly.react(document.getElementById("map-plot"), traces(result.trajectories, 2),
       layout3d(`${result.case}, E₀ = ${result.energy}, g = ${result.section.g0}`), CONFIG);
     await window.Plotly.react(document.getElementById("map-plot-2d"), traces2d(result.trajectories),
