@@ -164,11 +164,14 @@ async function buildParams(id) {
   box.innerHTML = R.params.map((p) => {
     const ex = p.example ?? p.default;
     const v = ex === null || ex === undefined ? "" : String(ex);
+    // an optional parameter with neither example nor default (I2 of a body of revolution)
+    // equals I1 when it is left empty (the API's rule, as on the case page)
+    const hint = v === "" && !p.required ? "= I1" : v;
     const range = RANGES[p.name] ? `${p.name}: ${RANGES[p.name]}` : p.name;
     return `<label><span><span class="nm">${escapeHtml(p.name)}</span>` +
       `${p.required ? "" : ' <span class="opt">optional</span>'}</span>` +
       `<input name="p.${escapeHtml(p.name)}" data-param="${escapeHtml(p.name)}" ` +
-      `data-example="${escapeHtml(v)}" value="${escapeHtml(v)}" placeholder="${escapeHtml(v)}" ` +
+      `data-example="${escapeHtml(v)}" value="${escapeHtml(v)}" placeholder="${escapeHtml(hint)}" ` +
       `title="${escapeHtml(range)}" inputmode="decimal" autocomplete="off" spellcheck="false" ` +
       `aria-describedby="pm-${escapeHtml(p.name)}">` +
       `<span class="msg" id="pm-${escapeHtml(p.name)}"></span></label>`;
