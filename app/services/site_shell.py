@@ -46,17 +46,25 @@ Conventions: &gamma; is the unit normal at the contact point, from the body into
 r(&gamma;) runs from the centre of mass to the contact point.</p></footer>"""
 
 
+# on a phone the links fold behind this button (app/static/js/page.js opens and closes
+# them, app/static/css/app.css hides it on a wide screen); the search box stays in view
+MENU = ('<button type="button" class="navmenu" aria-expanded="false" aria-controls="site-links">'
+        '<span class="bars" aria-hidden="true"></span>Menu</button>')
+
+
 def nav(current: str | None = None) -> str:
     here = ' aria-current="page"'
     links = "".join(f'<a href="{href}"{here if href == current else ""}>{text}</a>'
                     for href, text in NAV)
-    return links + SEARCH + '<a href="/docs">API</a>'
+    return (SEARCH + '<div class="navlinks" id="site-links">' + links
+            + '<a href="/docs">API</a></div>')
 
 
 def header(skip: str, current: str | None = None) -> str:
     return (f'<a class="skip" href="#main">{escape(skip)}</a>\n<header class="site">\n'
             '  <a class="brand" href="/"><span class="logo" aria-hidden="true"></span>'
-            f'Rolling hierarchy</a>\n  <nav aria-label="Site">{nav(current)}</nav>\n</header>')
+            f'Rolling hierarchy</a>\n  {MENU}\n'
+            f'  <nav aria-label="Site">{nav(current)}</nav>\n</header>')
 
 
 _HEADER = re.compile(r"\{\{site-header:([^}]*)\}\}")

@@ -1,7 +1,7 @@
 """Browser layout test (issue 20): in every Plotly plot of /scenes (every scene), /poincare,
 /work-precision and a case page (its run and its 3D view), no axis title, legend, plot
-title or toolbar (modebar) overlaps another, and none is cut off by the plot's own box, at
-1280 px and at 390 px (the scenes at 1280 px on their one opening in
+title or toolbar (modebar) overlaps another, no legend covers an x axis' tick labels, and
+none is cut off by the plot's own box, at 1280 px and at 390 px (the scenes at 1280 px on their one opening in
 tests/e2e/test_scenes_browser.py, which uses `problems` from here)."""
 
 from functools import partial
@@ -22,7 +22,9 @@ BOXES = """(root) => [...document.querySelectorAll('.js-plotly-plot')].map((p) =
     box: { x: r0.x, y: r0.y, w: r0.width, h: r0.height },
     items: [...pick('.gtitle', 'title'), ...pick('.g-xtitle', 'x title'),
       ...pick('.g-ytitle', 'y title'), ...pick('.g-y2title', 'y2 title'),
-      ...pick('.legend .bg', 'legend'), ...pick('.modebar', 'toolbar')] };
+      ...pick('.legend .bg', 'legend'), ...pick('.modebar', 'toolbar')],
+    // the x axes' tick labels (2D plots), which a legend under the plot must clear
+    ticks: pick('.xaxislayer-above text, .xaxislayer-below text', 'x tick labels') };
 })"""
 
 
@@ -40,6 +42,9 @@ def problems(page) -> list[str]:
             for b in items[i + 1:]:
                 if overlap(a, b) > 4:          # px^2: touching is fine, covering is not
                     out.append(f"{plot['id']}: {a['kind']} overlaps {b['kind']} ({a}, {b})")
+            if a["kind"] == "legend":
+                out += [f"{plot['id']}: legend overlaps an x tick label ({a}, {t})"
+                        for t in plot["ticks"] if overlap(a, t) > 4]
             inside = overlap(a, box) / (a["w"] * a["h"])
             if inside < 0.98:
                 out.append(f"{plot['id']}: {a['kind']} cut off by the plot's box ({a}, {box})")

@@ -6,6 +6,10 @@
 // after the scripts drew the page and when the window is resized.
 // 2. The pinned site header wraps to one, two or three rows with the width: its height goes
 // to --header-h, so that a page's own pinned bar (.pagenav) sits just under it.
+// 3. The site's menu button (a phone: app/services/site_shell.py MENU) opens and closes the
+// navigation's links; Escape closes them and gives the focus back to the button.
+// 4. A disclosure marked data-open-wide (the home page's legend) is open on a wide screen
+// and closed on a phone, where it would push the tables off the first screen.
 "use strict";
 
 const BOXES = ".katex-display, .table-wrap, .scroll-x, pre, #cells, #map-table, .printed";
@@ -32,6 +36,25 @@ function soon() {
   requestAnimationFrame(() => { queued = false; mark(); headerHeight(); });
 }
 
+function menu() {
+  const button = document.querySelector("header.site .navmenu");
+  if (!button) return;
+  const set = (open) => { button.setAttribute("aria-expanded", String(open)); soon(); };
+  button.addEventListener("click", () => set(button.getAttribute("aria-expanded") !== "true"));
+  document.addEventListener("keydown", (e) => {
+    if (e.key !== "Escape" || button.getAttribute("aria-expanded") !== "true") return;
+    set(false);
+    button.focus();
+  });
+}
+
+const WIDE = window.matchMedia("(min-width: 701px)");
+function disclosures() {
+  for (const d of document.querySelectorAll("details[data-open-wide]")) d.open = WIDE.matches;
+}
+
+menu();
+disclosures();
 new MutationObserver(soon).observe(document.documentElement, { childList: true, subtree: true });
 addEventListener("resize", soon);
 soon();

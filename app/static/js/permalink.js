@@ -20,15 +20,7 @@ export function runQuery(req) {
  * as case.js sets `run` and poincare.js sets `map`), scroll to it: a link to a run opens at
  * its result, not at the top of the page far above it (on a phone, screens above). */
 export function scrollToResultWhenDone(flag, id) {
-  const go = () => {
-    const el = document.getElementById(id);
-    if (!el) return;
-    // below the site's sticky header, not under it
-    const head = document.querySelector("header.site");
-    const pos = head ? getComputedStyle(head).position : "";
-    const cover = pos === "sticky" || pos === "fixed" ? head.getBoundingClientRect().height : 0;
-    window.scrollTo({ top: el.getBoundingClientRect().top + window.scrollY - cover - 8 });
-  };
+  const go = () => scrollToResult(id);
   if (document.body.dataset[flag]) { go(); return; }
   const seen = new MutationObserver(() => {
     if (!document.body.dataset[flag]) return;
@@ -36,6 +28,16 @@ export function scrollToResultWhenDone(flag, id) {
     go();
   });
   seen.observe(document.body, { attributes: true, attributeFilter: [`data-${flag}`] });
+}
+
+/** Scroll the element `id` to the top of the screen, below the site's sticky header. */
+export function scrollToResult(id) {
+  const el = document.getElementById(id);
+  if (!el) return;
+  const head = document.querySelector("header.site");
+  const pos = head ? getComputedStyle(head).position : "";
+  const cover = pos === "sticky" || pos === "fixed" ? head.getBoundingClientRect().height : 0;
+  window.scrollTo({ top: el.getBoundingClientRect().top + window.scrollY - cover - 8 });
 }
 
 /** Fill the case page's simulate form from a run query; true when the query asks for a

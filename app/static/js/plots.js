@@ -39,6 +39,27 @@ function base(title, extra = {}) {
   };
 }
 
+// Plotly pushes the bottom margin for a legend under the plot and for the x axis's tick
+// labels and title each on its own, the larger push winning: a legend of two or three rows
+// (a phone) then lay on the tick labels. Once the legend's height is known the bottom margin
+// becomes the sum of the two, and the figure grows by it so that the axes keep their room;
+// again after every redraw (a resized window rewraps the legend).
+function roomForLegend(el, height, axisRoom = 48) {
+  const fit = () => {
+    const lg = el.querySelector(".legend .bg");
+    if (!lg) return undefined;
+    const h = Math.ceil(lg.getBoundingClientRect().height);
+    const b = axisRoom + h + 6;
+    if (Math.abs(((el.layout || {}).margin || {}).b - b) <= 2) return undefined;
+    return window.Plotly.relayout(el, { "margin.b": b, height: height + h });
+  };
+  if (!el.dataset.legendRoom) {
+    el.dataset.legendRoom = "1";
+    el.on("plotly_afterplot", fit);
+  }
+  return fit();
+}
+
 export function invariantName(n) {
   return INVARIANT_NAMES[n] || n;
 }
@@ -60,7 +81,7 @@ export function plotState(el, run) {
     yaxis2: { title: { text: second }, domain: [0, 0.45], zeroline: false },
     height: 420,
   });
-  return window.Plotly.react(el, traces, layout, CONFIG);
+  return window.Plotly.react(el, traces, layout, CONFIG).then(() => roomForLegend(el, 420));
 }
 
 export function plotDrift(el, run) {
@@ -83,7 +104,7 @@ export function plotDrift(el, run) {
     yaxis: { title: { text: "relative drift" }, type: "log", exponentformat: "power" },
     height: 420,
   });
-  return window.Plotly.react(el, traces, layout, CONFIG);
+  return window.Plotly.react(el, traces, layout, CONFIG).then(() => roomForLegend(el, 420));
 }
 
 export function sphereMesh(radius = 1, n = 36, centre = [0, 0, 0]) {

@@ -1,10 +1,14 @@
 // The 3D point maps page: the paper's Figs. 3, 5, 6 and 7 (static/data/paper_figures.json,
 // written by bench/paper_figures.py) and maps computed on demand by POST /api/poincare
-// (?stream=true: NDJSON progress events, then the result).
+// (?stream=true: NDJSON progress events, then the result). The form has one field per
+// parameter of the chosen case (GET /api/cases/{id}), filled with the case's example and
+// checked against the glossary's range as it is typed; a field left empty takes the
+// example (the request says example: true, and the server merges). A map is drawn twice,
+// in 3D (L/G, H/G, l) and in 2D (l, L/G), from the same points.
 "use strict";
 
 import { api, download, escapeHtml, fmt } from "./api.js";
-import { applyFormQuery, csvText, formQuery, setQuery } from "./permalink.js";
+import { applyFormQuery, csvText, formQuery, scrollToResult, setQuery } from "./permalink.js";
 import { LEGEND_BELOW, MODEBAR } from "./plots.js";
 
 let lastMap = null;    // {request, result} of the last map computed here
@@ -108,16 +112,134 @@ async function draw(el) {
 
 window.addEventListener("beforeprint", () => { for (const el of [...PENDING.keys()]) draw(el); });
 
-function parseParams(text) {
+// the map seen from above the section: each point at (l, L/G), in its trajectory's colour
+function traces2d(trajectories) {
+  const many = trajectories.reduce((n, t) => n + t.points.length, 0) > 5000;
+  return trajectories.map((t, i) => ({
+    type: many ? "scattergl" : "scatter", mode: "markers", name: `trajectory ${i + 1}`,
+    x: t.points.map((p) => p[2]), y: t.points.map((p) => p[0]),
+    marker: { size: 3, color: PALETTE[i % PALETTE.length], opacity: 0.85 },
+    hovertemplate: "l %{x:.4f}<br>L/G %{y:.4f}<extra></extra>",
+  }));
+}
+
+function layout2d(title) {
+  const PI = Math.PI;
+  return {
+    title: { text: title, font: { size: 14 }, x: 0.02 },
+    autosize: true,
+    margin: { l: 60, r: 40, t: 36, b: 52 },
+    showlegend: false,        // the 3D view beside it names the colours
+    modebar: MODEBAR,
+    // five ticks on l, in multiples of pi/2, and five on L/G: none runs into the next
+    xaxis: { title: { text: "l" }, range: [0, 2 * PI], tickvals: [0, PI / 2, PI, 1.5 * PI, 2 * PI],
+      ticktext: ["0", "π/2", "π", "3π/2", "2π"], zeroline: false },
+    yaxis: { title: { text: "L/G" }, range: [-1.05, 1.05], tickvals: [-1, -0.5, 0, 0.5, 1],
+      zeroline: false },
+  };
+}
+
+// ---- the parameter fields of the chosen case
+
+const RUNNABLE = new Map();    // case id -> the promise of its GET /api/cases/{id} .runnable
+let RANGES = {};               // parameter -> its valid range in words (the glossary's)
+
+function runnable(id) {
+  if (!RUNNABLE.has(id)) RUNNABLE.set(id, api(`/api/cases/${id}`).then((c) => c.runnable));
+  return RUNNABLE.get(id);
+}
+
+async function glossary() {
+  const g = await api("/api/glossary").catch(() => ({ entries: [] }));
+  const entries = Array.isArray(g.entries) ? g.entries : Object.values(g.entries || {});
+  RANGES = Object.fromEntries(entries.filter((e) => e.range).map((e) => [e.symbol, e.range]));
+}
+
+let building = Promise.resolve();     // the fields of the case chosen last, being built
+
+async function buildParams(id) {
+  const R = await runnable(id);
+  const box = document.getElementById("param-fields");
+  if (document.getElementById("case").value !== id) return;   // a later choice won
+  box.innerHTML = R.params.map((p) => {
+    const ex = p.example ?? p.default;
+    const v = ex === null || ex === undefined ? "" : String(ex);
+    // an optional parameter with neither example nor default (I2 of a body of revolution)
+    // equals I1 when it is left empty (the API's rule, as on the case page)
+    const hint = v === "" && !p.required ? "= I1" : v;
+    const range = RANGES[p.name] ? `${p.name}: ${RANGES[p.name]}` : p.name;
+    return `<label><span><span class="nm">${escapeHtml(p.name)}</span>` +
+      `${p.required ? "" : ' <span class="opt">optional</span>'}</span>` +
+      `<input name="p.${escapeHtml(p.name)}" data-param="${escapeHtml(p.name)}" ` +
+      `data-example="${escapeHtml(v)}" value="${escapeHtml(v)}" placeholder="${escapeHtml(hint)}" ` +
+      `title="${escapeHtml(range)}" inputmode="decimal" autocomplete="off" spellcheck="false" ` +
+      `aria-describedby="pm-${escapeHtml(p.name)}">` +
+      `<span class="msg" id="pm-${escapeHtml(p.name)}"></span></label>`;
+  }).join("");
+  box.dataset.case = id;
+  checkParams();
+}
+
+// what is wrong with the value typed for a parameter ("" when nothing is)
+function paramProblem(name, raw) {
+  const t = raw.trim();
+  if (t === "") return "";
+  const x = Number(t);
+  if (!Number.isFinite(x)) return `${name}: enter a number (empty: the example)`;
+  const range = RANGES[name] || "";
+  if (/^>\s*0/.test(range) && !(x > 0)) return `${name} = ${t}: must be positive`;
+  if (/^≥\s*0/.test(range) && !(x >= 0)) return `${name} = ${t}: must be ≥ 0`;
+  return "";
+}
+
+// each field's own message; the moments of inertia also against the triangle inequality.
+// The first problem, or "" when the fields can be sent.
+function checkParams() {
+  const inputs = [...document.querySelectorAll("#param-fields input")];
+  const problems = new Map(inputs.map((el) => [el, paramProblem(el.dataset.param, el.value)]));
+  const value = (n) => {
+    const el = inputs.find((e) => e.dataset.param === n);
+    if (!el || problems.get(el)) return null;
+    const t = el.value.trim() === "" ? el.dataset.example : el.value.trim();
+    return t === "" ? null : Number(t);
+  };
+  const I = ["I1", "I2", "I3"].map(value);
+  if (I.every((x) => x !== null && x > 0)) {
+    I.forEach((x, i) => {
+      const others = I[(i + 1) % 3] + I[(i + 2) % 3];
+      const el = inputs.find((e) => e.dataset.param === `I${i + 1}`);
+      if (x > others * (1 + 1e-12) && !problems.get(el)) {
+        problems.set(el, `I${i + 1} = ${x} is more than the sum of the other two (${others}): ` +
+          "no rigid body has these moments");
+      }
+    });
+  }
+  let first = "";
+  for (const el of inputs) {
+    const msg = problems.get(el);
+    document.getElementById(`pm-${el.dataset.param}`).textContent = msg;
+    if (msg) el.setAttribute("aria-invalid", "true");
+    else el.removeAttribute("aria-invalid");
+    if (msg && !first) first = msg;
+  }
+  return first;
+}
+
+function paramValues() {
   const out = {};
-  for (const item of text.split(/[\s,;]+/).filter(Boolean)) {
-    const [k, v] = item.split("=");
-    if (!k || v === undefined || !Number.isFinite(Number(v))) {
-      throw new Error(`parameter ${JSON.stringify(item)}: expected NAME=NUMBER`);
-    }
-    out[k.trim()] = Number(v);
+  for (const el of document.querySelectorAll("#param-fields input")) {
+    if (el.value.trim() !== "") out[el.dataset.param] = Number(el.value.trim());
   }
   return out;
+}
+
+// an address written before the fields (?params=I1=1 I2=2): its values into the fields
+function legacyParams(text) {
+  for (const item of String(text || "").split(/[\s,;]+/).filter(Boolean)) {
+    const [k, v] = item.split("=");
+    const el = k && document.querySelector(`#param-fields input[data-param="${CSS.escape(k.trim())}"]`);
+    if (el && v !== undefined) el.value = v.trim();
+  }
 }
 
 async function cases() {
@@ -145,20 +267,27 @@ function table(result) {
 
 async function compute(ev) {
   ev.preventDefault();
-  const form = new FormData(ev.target);
   const status = document.getElementById("map-status");
   const bar = document.getElementById("progress");
   const button = document.getElementById("run");
   status.classList.remove("error");
+  await building;                       // the fields of the case chosen last
+  const form = new FormData(ev.target);
   let body;
   try {
-    const params = parseParams(String(form.get("params") || ""));
+    const problem = checkParams();
+    if (problem) {
+      document.querySelector('#param-fields input[aria-invalid="true"]')?.focus();
+      throw new Error(problem);
+    }
+    const params = paramValues();
     body = {
       case: form.get("case"), energy: Number(form.get("energy")),
       section: `g=${Number(form.get("g0"))}`, direction: Number(form.get("direction")),
       trajectories: Number(form.get("trajectories")), points: Number(form.get("points")),
       rtol: Number(form.get("rtol") || 1e-10),
-      seed: Number(form.get("seed")), params, example: Object.keys(params).length === 0,
+      // example: true, the server fills every parameter left out with the case's example
+      seed: Number(form.get("seed")), params, example: true,
     };
   } catch (e) {
     status.textContent = e.message;
@@ -221,9 +350,13 @@ async function compute(ev) {
     const took = (performance.now() - started) / 1000;
     status.textContent = `${result.trajectories.length} trajectories, ${result.points} points each` +
       ` in ${secs(took)}` + (estimate !== null ? ` (estimated ${secs(estimate)})` : "");
+    document.getElementById("map-views").hidden = false;     // empty until the first map
     await window.Plotly.react(document.getElementById("map-plot"), traces(result.trajectories, 2),
       layout3d(`${result.case}, E₀ = ${result.energy}, g = ${result.section.g0}`), CONFIG);
+    await window.Plotly.react(document.getElementById("map-plot-2d"), traces2d(result.trajectories),
+      layout2d("The same points: l against L/G"), CONFIG);
     table(result);
+    scrollToResult("map-plot");
     lastMap = { request: body, result };
     setQuery(formQuery(ev.target, { run: 1 }));     // the address now reproduces this map
     document.getElementById("map-downloads").hidden = false;
@@ -267,7 +400,6 @@ function applyDefaults(form, caseId) {
     const el = form.elements.namedItem(k);
     if (el && "value" in el) el.value = String(v);
   }
-  form.elements.namedItem("params").value = "";     // the case's example parameters
   document.getElementById("case-note").textContent = own.why
     ? `This case's defaults: ${Object.keys(own).filter((k) => k !== "why")
       .map((k) => `${k} = ${own[k]}`).join(", ")}. ${own.why}` : "";
@@ -281,12 +413,24 @@ async function loadDefaults() {
 
 const form = document.getElementById("map-form");
 form.addEventListener("submit", compute);
-form.elements.namedItem("case").addEventListener("change", (e) => applyDefaults(form, e.target.value));
-Promise.all([cases(), loadDefaults()]).then(() => {
-  applyDefaults(form, form.elements.namedItem("case").value);
+form.elements.namedItem("case").addEventListener("change", (e) => {
+  applyDefaults(form, e.target.value);
+  building = buildParams(e.target.value);
+});
+document.getElementById("param-fields").addEventListener("input", checkParams);
+Promise.all([cases(), loadDefaults(), glossary()]).then(async () => {
+  const q = new URLSearchParams(location.search);
+  const sel = form.elements.namedItem("case");
+  if ([...sel.options].some((o) => o.value === q.get("case"))) sel.value = q.get("case");
+  applyDefaults(form, sel.value);
+  building = buildParams(sel.value);
+  await building;
   document.body.dataset.defaults = "1";
-  // a permalink (?case=...&energy=...&run=1): fill the form and compute that map
-  if (applyFormQuery(form, location.search, { flag: "map", result: "map-plot" })) form.requestSubmit();
+  // a permalink (?case=...&p.I1=...&energy=...&run=1): fill the form and compute that map
+  const run = applyFormQuery(form, location.search, { flag: "map", result: "map-plot" });
+  if (q.has("params")) legacyParams(q.get("params"));
+  checkParams();
+  if (run) form.requestSubmit();
 }).catch((e) => {
   const s = document.getElementById("map-status");
   s.textContent = `Could not load the cases: ${e.message}`;

@@ -80,21 +80,31 @@ async function main() {
     sec.innerHTML = `<h2>${escapeHtml(c.id)} <span class="status">T = ${c.t_end}</span></h2>
       <p class="status">${c.note ? escapeHtml(c.note) + ". " : ""}Reference: ${escapeHtml(c.reference)}.
       ${escapeHtml(c.reference_check || "")}</p>
-      <div class="wp-plot" id="plot-${slug}" style="height: 420px"></div>
+      <div class="wp-plot" id="plot-${slug}"></div>
       ${paretoTable(s)}${buys(c, s)}`;
     root.appendChild(sec);
     const runs = data.runs.filter((r) => r.case === c.id);
+    // on a phone the legend under the plot is a column of one entry a row: the plot grows
+    // by its height, so that the axes keep their own room and no entry lands on a tick label
+    const plotTraces = traces(runs);
+    $(`plot-${slug}`).style.height = window.innerWidth < 600
+      ? `${320 + 22 * plotTraces.length}px` : "420px";
     // ticks as powers of ten (10⁻¹²), never SI prefixes (1p), and the unit in each title
     const logAxis = (title) => ({ type: "log", title: { text: title }, exponentformat: "power",
       showexponent: "all", dtick: 1 });
-    window.Plotly.newPlot(`plot-${slug}`, traces(runs), {
+    window.Plotly.newPlot(`plot-${slug}`, plotTraces, {
       // a phone gets the short form of the x-axis title: the long one is wider than the plot
-      xaxis: logAxis(window.innerWidth < 600 ? "error (max relative deviation)"
-        : "error: max relative deviation from the reference (dimensionless)"),
+      // and a tick every third power of ten, upright: fifteen of them were turned on end
+      // and drawn over the x-axis title
+      xaxis: window.innerWidth < 600 ? { ...logAxis("error (max relative deviation)"), dtick: 3,
+        tickangle: 0 } : logAxis("error: max relative deviation from the reference (dimensionless)"),
       yaxis: { ...logAxis("wall time (ms)"), dtick: undefined },
       // the legend under the x-axis title, the toolbar upright at the right edge: the
       // legend does not cover the x-axis title (tests/e2e/test_plot_layout_browser.py)
-      margin: { t: 10, r: 34 }, legend: LEGEND_BELOW, modebar: MODEBAR,
+      // (a phone: above the plot, where it pushes the top margin: under it, the x-axis
+      // title was placed before the legend's room and landed on the tick labels)
+      margin: { t: 10, r: 34 }, modebar: MODEBAR,
+      legend: window.innerWidth < 600 ? { ...LEGEND_BELOW, y: 1, yanchor: "top" } : LEGEND_BELOW,
     }, { responsive: true, displaylogo: false });
   }
   showDownloads(data);
