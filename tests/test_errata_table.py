@@ -132,7 +132,7 @@ def test_figure_findings_come_from_the_figure_data():
 
 
 def test_fig_6_has_its_own_caption_analysis(client):
-    figs = client.get("/static/data/paper_figures.json").json()
+    figs = client.get("/static/data/paper_figures.json").json()["figures"]
     n5, n6 = figs["ris-2"]["notes"], figs["ris-3"]["notes"]
     assert not set(n5) & set(n6[1:]), "Fig. 6 repeats Fig. 5"
     assert any("three trajectories" in n for n in n6)

@@ -257,7 +257,9 @@ def test_poincare_page_and_figure_data(patient_client):
     assert patient_client.get("/poincare").status_code == 200
     r = patient_client.get("/static/data/paper_figures.json")
     assert r.status_code == 200
-    figs = r.json()
+    data = r.json()
+    assert data["format"] == 1 and data["generator"] == "python bench/paper_figures.py"
+    figs = data["figures"]
     assert set(figs) == {"ris-1", "ris-2", "ris-3", "ris-4"}
     for f in figs.values():
         assert f["trajectories"] and f["notes"]

@@ -60,7 +60,7 @@ def _figure_findings(path: Path) -> list[dict]:
         return []
     key = (str(path), path.stat().st_mtime_ns)
     if _FIGURES.get("key") != key:
-        figs = json.loads(path.read_text(encoding="utf-8"))
+        figs = json.loads(path.read_text(encoding="utf-8"))["figures"]
         _FIGURES.update(key=key, out=errata.figure_findings(figs, load_catalogue()))
     return [dict(f) for f in _FIGURES["out"]]
 

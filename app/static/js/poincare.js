@@ -60,7 +60,7 @@ async function figures() {
     NUMBERS = await api("/api/printed-numbers").catch(() => ({}));
     const res = await fetch("/static/data/paper_figures.json");
     if (!res.ok) throw new Error(`${res.status} ${res.statusText}`);
-    data = await res.json();
+    data = (await res.json()).figures;
   } catch (e) {
     status.textContent = `The figure data is missing (run python bench/paper_figures.py): ${e.message}`;
     status.classList.add("error");
