@@ -23,6 +23,15 @@ ERRATA_FIELD = Field(default_factory=list, description="after-correction: the fo
                      "(their errata)")
 
 
+class SymbolRef(BaseModel):
+    """A symbol of a typeset formula and its entry on /notation (catalogue/notation.yaml)."""
+
+    id: str = Field(description="the entry's id: /notation#sym-<id>")
+    tex: str = Field(description="the symbol as the formula writes it (TeX)")
+    name: str = Field(description="what it is, in a few words")
+    href: str
+
+
 class VerdictPublic(BaseModel):
     """The outcome of a claim's check (solvers.verify), or 'unchecked' when there is none."""
 
@@ -38,6 +47,8 @@ class VerdictPublic(BaseModel):
     seconds: float | None = None
     printed: str | None = None
     printed_tex: str | None = Field(None, description="a correction's formula (TeX)")
+    symbols: list[SymbolRef] = Field(default_factory=list, description="the symbols of "
+                                     "printed_tex, each with its entry on /notation")
     computed_at: str | None = Field(None, description="when the verdict was computed (UTC)")
     version: str | None = Field(None, description="the project version that computed it")
     level: Literal["cell", "formula"] = Field(
