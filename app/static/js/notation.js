@@ -35,11 +35,14 @@ export function symbolsHtml(list) {
   return `<p class="symbols"><span class="symlabel">Symbols:</span> ${list.map(symbolLink).join(" ")}</p>`;
 }
 
+function shut(a) {
+  a.setAttribute("aria-expanded", "false");
+  document.getElementById(a.getAttribute("aria-controls") || "")?.remove();
+}
+
 function close(except) {
   for (const a of document.querySelectorAll('a.sym[aria-expanded="true"]')) {
-    if (a === except) continue;
-    a.setAttribute("aria-expanded", "false");
-    a.nextElementSibling?.classList.contains("symbox") && a.nextElementSibling.remove();
+    if (a !== except) shut(a);
   }
 }
 
@@ -55,8 +58,7 @@ async function toggle(a) {
   const open = a.getAttribute("aria-expanded") === "true";
   close(a);
   if (open) {
-    a.setAttribute("aria-expanded", "false");
-    a.nextElementSibling?.classList.contains("symbox") && a.nextElementSibling.remove();
+    shut(a);
     return;
   }
   const e = (await notation())[a.dataset.sym];
@@ -71,7 +73,8 @@ async function toggle(a) {
   box.innerHTML = boxHtml(e);
   a.setAttribute("aria-expanded", "true");
   a.setAttribute("aria-controls", box.id);
-  a.after(box);
+  // under the formula's whole list of symbols (or the page's list item), not inside it
+  (a.closest("p.symbols, li") || a).after(box);
 }
 
 document.addEventListener("click", (ev) => {
