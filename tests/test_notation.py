@@ -1,5 +1,5 @@
 """/notation defines every symbol that a typeset formula on a case page uses, and each case
-page links each of its symbols to its definition (issue 38, item 2)."""
+page links each of its symbols to its definition."""
 
 import json
 import os

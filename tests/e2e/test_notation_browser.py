@@ -1,4 +1,4 @@
-"""Symbols and their definitions in chromium (issue 38, item 2): /notation typesets every
+"""Symbols and their definitions in chromium: /notation typesets every
 entry; each formula on a case page lists its symbols as links to /notation, and a click
 opens the definition in place (Escape closes it); a misprinted claim leads with the
 corrected formula, the printed one follows labelled "as printed"."""
@@ -70,3 +70,25 @@ def test_a_formula_links_its_symbols_and_a_misprint_leads_with_its_correction(pa
     # every symbol of the page, linked in the page's own list
     for s in detail["notation"]:
         expect(page.locator(f'#symbollist a.sym[href="/notation#sym-{s["id"]}"]')).to_have_count(1)
+
+
+def test_the_new_pages_pass_the_sweeps_rules(page, server):
+    """/notation and a case page with its symbol lists and a definition box open: no
+    developer words, no internal label, every "(n.m)" a printed number, and axe finds no
+    serious or critical violation (the rules of tests/e2e/test_page_sweep_browser.py)."""
+    from tests.e2e.test_page_sweep_browser import AXE, AXE_RUN, INTERNAL
+    from tests.e2e.test_reader_pages_browser import READER_TEXT, developer_words
+    from tests.test_reader_numbers import reader_problems
+
+    for path in ("/notation", f"/case/{CASE}"):
+        page.goto(server + path)
+        if path.startswith("/case/"):
+            page.wait_for_selector("body[data-ready='1']")
+            page.locator("p.symbols a.sym").first.click()
+            expect(page.locator(".symbox")).to_have_count(1)
+        page.wait_for_load_state("networkidle")
+        reader = page.evaluate(READER_TEXT)
+        assert developer_words(reader) == {}, (path, developer_words(reader))
+        assert not INTERNAL.findall(reader) and not reader_problems(reader), path
+        page.add_script_tag(path=str(AXE))
+        assert page.evaluate(AXE_RUN) == [], path
