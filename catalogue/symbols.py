@@ -232,3 +232,16 @@ def symbols(src: str, text: bool = False) -> list[str]:
     for seg in math_segments(src, text):
         out += symbols_of_math(seg)
     return list(dict.fromkeys(out))
+
+
+_ACCENT = {"bar": "\u0304", "tilde": "\u0303", "hat": "\u0302"}
+
+
+def plain(token: str) -> str:
+    """A token in plain letters, for a screen reader's link name: `\\rho_{0}` -> "ρ0",
+    `\\bar{\\mathbf{A}}` -> "Ā", `K_{1}^{(part)}` -> "K1(part)"."""
+    s = re.sub(r"\\mathbf\{([^{}]*)\}", r"\1", token)
+    for name, mark in _ACCENT.items():
+        s = re.sub(r"\\" + name + r"\{([^{}]*)\}", lambda m, mark=mark: m[1] + mark, s)
+    s = re.sub(r"\\([A-Za-z]+)", lambda m: GREEK.get(m[1], m[1]), s)
+    return s.replace("_", "").replace("^", "").replace("{", "").replace("}", "")

@@ -191,3 +191,12 @@ def test_the_page_typesets_as_math_what_the_tokenizer_reads(tmp_path):
                          capture_output=True, text=True, timeout=60, check=True)
     assert json.loads(out.stdout.strip().splitlines()[-1]) == [is_prose(s) for s in srcs]
     assert re.search("unknown", " ".join(s for s in srcs if is_prose(s)))
+
+
+def test_a_symbol_link_has_a_name_in_plain_letters():
+    from catalogue.symbols import plain
+
+    assert [plain(t) for t in (r"\rho_{0}", r"\bar{\mathbf{A}}", r"K_{1}^{(part)}",
+                               r"\mathbf{\gamma}")] == ["ρ0", "A\u0304", "K1(part)", "γ"]
+    s = views.symbol_refs(r"\rho_0 = (I_1I_3)^{-1/2}")[0]
+    assert s["text"] == "ρ0" and s["id"] == "rho0"

@@ -28,6 +28,8 @@ class SymbolRef(BaseModel):
 
     id: str = Field(description="the entry's id: /notation#sym-<id>")
     tex: str = Field(description="the symbol as the formula writes it (TeX)")
+    text: str = Field("", description="the symbol in plain letters (a link's accessible "
+                      "name), e.g. ρ0")
     name: str = Field(description="what it is, in a few words")
     href: str
 

@@ -11,7 +11,7 @@ from html import escape
 from catalogue.load import load_catalogue, load_corrected_forms
 from catalogue.notation import entry_for, load_notation
 from catalogue.numbering import cite, printed
-from catalogue.symbols import symbols
+from catalogue.symbols import plain, symbols, symbols_of_math
 
 SECTIONS = {"1": "section 1, equations of motion", "2": "section 2, body on a plane",
             "3": "section 3, body on a sphere"}
@@ -99,11 +99,17 @@ def _entry_html(e) -> str:
             f"{used}</section>")
 
 
+def _plain_forms(e) -> str:
+    return ", ".join(plain(symbols_of_math(f)[0]) for f in e.forms[:3])
+
+
 def page() -> str:
     from app.services.reader_pages import layout
 
     n = load_notation()
-    index = " ".join(f'<a href="#sym-{escape(e.id)}">{_tex(e.tex)}</a>' for e in n.entries)
+    index = " ".join(
+        f'<a href="#sym-{escape(e.id)}" aria-label="{escape(_plain_forms(e))}: '
+        f'{escape(cite(e.name))}">{_tex(e.tex)}</a>' for e in n.entries)
     body = ("<p>Every symbol that a typeset formula on a case page uses: where the paper "
             "defines it (the number the paper prints, and its section) and what it means in "
             'the project\'s <a href="/guide/conventions/">conventions</a>. One symbol can '

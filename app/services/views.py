@@ -14,6 +14,7 @@ from catalogue.numbering import cite, cite_latex, printed
 from catalogue.plain_words import cite_names, phrases
 from catalogue.schema import Attribution, Case, Cell, Claim, StateVariables, Table
 from catalogue.since_2002 import note_json, notes_for
+from catalogue.symbols import plain as plain_symbol
 from catalogue.symbols import symbols as symbol_tokens
 from solvers.models.bodies import STATE_LABELS
 from solvers.models.cases import CaseSpec, beyond_table_ids, registry
@@ -54,7 +55,8 @@ def symbol_refs(tex: str | None, text: bool = False) -> list[dict]:
     for token in symbol_tokens(tex or "", text):
         e = entry_for(token)
         if e is not None:
-            out.append({"id": e.id, "tex": token, "name": cite(e.name),
+            out.append({"id": e.id, "tex": token, "text": plain_symbol(token),
+                        "name": cite(e.name),
                         "href": f"/notation#sym-{e.id}"})
     return out
 
