@@ -108,8 +108,8 @@ def page() -> str:
 
     n = load_notation()
     index = " ".join(
-        f'<a href="#sym-{escape(e.id)}" aria-label="{escape(_plain_forms(e))}: '
-        f'{escape(cite(e.name))}">{_tex(e.tex)}</a>' for e in n.entries)
+        f'<a href="#sym-{escape(e.id)}">{_tex(e.tex)}<span class="sr-only"> '
+        f'{escape(_plain_forms(e))}: {escape(cite(e.name))}</span></a>' for e in n.entries)
     body = ("<p>Every symbol that a typeset formula on a case page uses: where the paper "
             "defines it (the number the paper prints, and its section) and what it means in "
             'the project\'s <a href="/guide/conventions/">conventions</a>. One symbol can '

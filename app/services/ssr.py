@@ -93,9 +93,9 @@ def symbol_link(s: dict) -> str:
     same markup as the page's script (static/js/notation.js symbolLink). A click or tap
     shows the definition in place (notation.js); without scripts the link opens it."""
     return (f'<a class="sym" href="{escape(s["href"])}" data-sym="{escape(s["id"])}" '
-            f'title="{escape(s["name"])}" aria-label="{escape(s["text"])}: '
-            f'{escape(s["name"])}"><span class="tex" data-tex="{escape(s["tex"])}">'
-            f'{escape(s["tex"])}</span></a>')
+            f'title="{escape(s["name"])}"><span class="tex" data-tex="{escape(s["tex"])}">'
+            f'{escape(s["tex"])}</span><span class="sr-only"> {escape(s["text"])}: '
+            f'{escape(s["name"])}</span></a>')
 
 
 def notation_html(refs: list[dict]) -> str:

@@ -26,8 +26,8 @@ function texHtml(tex) {
 
 // one symbol (views.symbol_refs: id, tex, name, href); the same markup as ssr.symbol_link
 export function symbolLink(s) {
-  return `<a class="sym" href="${esc(s.href)}" data-sym="${esc(s.id)}" title="${esc(s.name)}" ` +
-    `aria-label="${esc(s.text)}: ${esc(s.name)}">${texHtml(s.tex)}</a>`;
+  return `<a class="sym" href="${esc(s.href)}" data-sym="${esc(s.id)}" title="${esc(s.name)}">` +
+    `${texHtml(s.tex)}<span class="sr-only"> ${esc(s.text)}: ${esc(s.name)}</span></a>`;
 }
 
 // "Symbols in this formula" under a formula
