@@ -132,6 +132,7 @@ def test_a_correction_record_lists_the_symbols_of_its_formula():
                       + CORRECTION_NOTES["sphere_revolution_density"]}
     out = views.record(rec)
     ids = [s["id"] for s in out["symbols"]]
+    assert out["change"].startswith("exponent 1 on (1 − k f₁)")
     assert "rho0" in ids and "f" in ids and "k" in ids and "I" in ids
 
 

@@ -51,6 +51,8 @@ class VerdictPublic(BaseModel):
     printed_tex: str | None = Field(None, description="a correction's formula (TeX)")
     symbols: list[SymbolRef] = Field(default_factory=list, description="the symbols of "
                                      "printed_tex, each with its entry on /notation")
+    change: str | None = Field(None, description="a correction: what it changes in the "
+                               "printed formula, in a reader's words")
     computed_at: str | None = Field(None, description="when the verdict was computed (UTC)")
     version: str | None = Field(None, description="the project version that computed it")
     level: Literal["cell", "formula"] = Field(

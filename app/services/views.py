@@ -157,6 +157,14 @@ def corrected_forms() -> dict[str, str]:
     return {fid: cf.latex for fid, cf in load_corrected_forms().items()}
 
 
+@cache
+def _corrected_changes() -> dict[str, str]:
+    """fid -> what the correction changes, in a reader's words (corrected_forms.yaml)."""
+    from catalogue.load import load_corrected_forms
+
+    return {fid: cf.change for fid, cf in load_corrected_forms().items()}
+
+
 def record(rec: dict) -> dict:
     keys = ("claim", "verdict", "residual", "message", "check", "origin", "corrects",
             "evidence", "seconds", "printed", "computed_at", "version", "level", "qualifier",
@@ -177,6 +185,7 @@ def record(rec: dict) -> dict:
             # a correction: its formula as TeX, the registered note as words
             out["printed_tex"] = corrected_forms()[m[1]]
             out["symbols"] = symbol_refs(out["printed_tex"])
+            out["change"] = cite(_corrected_changes()[m[1]])
             out["printed"] = cite(out["printed"][m.end():])
         else:
             out["printed"] = cite_latex(out["printed"])

@@ -58,6 +58,8 @@ def test_a_formula_links_its_symbols_and_a_misprint_leads_with_its_correction(pa
     # the corrected formula comes first, and is written out (no ellipsis)
     assert lead.bounding_box()["y"] < printed.bounding_box()["y"]
     assert "…" not in lead.inner_text() and "..." not in lead.inner_text()
+    # what the correction changes, in words, under the claim
+    expect(claim.locator(".correction")).to_contain_text("exponent 1 on (1 − k f₁)")
     # its symbols, each a link to its definition
     sym = claim.locator("p.symbols a.sym[data-sym=rho0]").first
     expect(sym).to_have_attribute("href", "/notation#sym-rho0")

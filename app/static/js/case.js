@@ -240,7 +240,8 @@ function claimHtml(c) {
     ? c.corrections.find((r) => r.printed_tex && r.mark === "after-correction") : null;
   const corr = c.corrections.map((r) => `<div class="correction"><strong>${r === lead ? "What the correction changes" : "The project's corrected form"}</strong>` +
     `${r.printed_tex && r !== lead ? `<div class="printed">${mathHtml(r.printed_tex, true)}</div>${symbolsHtml(r.symbols)}` : ""}` +
-    `${r.printed ? `<p class="plain">${r.printed_tex ? escapeHtml(r.printed) : printedHtml(r.printed)}</p>` : ""}${verdictLine(r)}</div>`).join("");
+    `${r === lead && r.change ? `<p class="plain">${escapeHtml(r.change)}</p>` : ""}` +
+    `${r.printed && !(r === lead && r.change) ? `<p class="plain">${r.printed_tex ? escapeHtml(r.printed) : printedHtml(r.printed)}</p>` : ""}${verdictLine(r)}</div>`).join("");
   const formulas = lead
     ? `<div class="printed corrected-lead" data-testid="corrected-lead"><span class="formlabel">corrected form, which holds</span>${mathHtml(lead.printed_tex, true)}</div>` +
       `${symbolsHtml(lead.symbols)}<div class="printed as-printed" data-testid="as-printed"><span class="formlabel">as printed</span>${printedHtml(c.printed)}</div>`
