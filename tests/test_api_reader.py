@@ -19,7 +19,7 @@ pytestmark = pytest.mark.filterwarnings("ignore::DeprecationWarning")
 # what an internal LaTeX label looks like in text a reader sees
 INTERNAL = re.compile(r"(?<![\w/.-])(eq ?[0-9][0-9.]*[-*/0-9]*|eq-[-*d0-9]+|eq\*|ris-\*?\d|"
                       r"ris\d\.eps|an-dp|rem-\*1|2-14\*)(?![\w])")
-PAGES = ["/", "/poincare", "/scenes", "/work-precision", "/how-we-check", "/glossary",
+PAGES = ["/", "/poincare", "/scenes", "/work-precision", "/how-we-check", "/glossary", "/notation",
          "/bibliography", "/search?q=ball", "/errata"]
 PAGES += [f"/case/{c.id}" for c in load_catalogue().cases()]
 

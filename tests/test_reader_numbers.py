@@ -34,7 +34,7 @@ INTERNAL = internal_label_re()
 NUMBER = re.compile(r"\((\d+\.\d+)\)")
 KNOWN = {v.strip("()") for v in printed_numbers().values() if v.startswith("(")}
 CATALOGUE_YAML = ["plane.yaml", "sphere.yaml", "formulas.yaml", "corrected_forms.yaml",
-                  "glossary.yaml", "scenes.yaml", "references.yaml"]
+                  "glossary.yaml", "scenes.yaml", "references.yaml", "notation.yaml"]
 
 
 def reader_problems(text: str) -> list[str]:

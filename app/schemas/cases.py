@@ -2,7 +2,7 @@ from typing import Any
 
 from pydantic import BaseModel, Field
 
-from app.schemas.verify import VerdictPublic, VerdictSummary
+from app.schemas.verify import SymbolRef, VerdictPublic, VerdictSummary
 
 
 class AttributionPublic(BaseModel):
@@ -73,6 +73,8 @@ class CellPublic(BaseModel):
     claims: list[str] = Field(default_factory=list)
     convention_note: str | None = None
     verdict: VerdictSummary | None = None
+    symbols: list[SymbolRef] = Field(default_factory=list, description="the symbols of the "
+                                     "cell's typeset math, each with its entry on /notation")
 
 
 class ClaimPublic(BaseModel):
@@ -95,6 +97,8 @@ class ClaimPublic(BaseModel):
     remarks: str | None = None
     verdict: VerdictPublic
     corrections: list[VerdictPublic] = Field(default_factory=list)
+    symbols: list[SymbolRef] = Field(default_factory=list, description="the symbols of the "
+                                     "printed formula, each with its entry on /notation")
 
 
 class CasePublic(CaseHead):
@@ -115,3 +119,6 @@ class CasePublic(CaseHead):
         "(catalogue/since_2002.yaml): record, kind, note, found_later, access, project, "
         "references resolved to their citations")
     verification: str = Field(description="done | running | idle | unavailable | failed")
+    notation: list[SymbolRef] = Field(default_factory=list, description="every symbol of the "
+                                      "page's typeset formulas (cells, claims, corrected "
+                                      "forms), each with its entry on /notation")

@@ -32,6 +32,17 @@ class VerifyRequest(BaseModel):
     model_config = ConfigDict(extra="forbid", json_schema_extra={"examples": [{}]})
 
 
+class SymbolRef(BaseModel):
+    """A symbol of a typeset formula and its entry on /notation (catalogue/notation.yaml)."""
+
+    id: str = Field(description="the entry's id: /notation#sym-<id>")
+    tex: str = Field(description="the symbol as the formula writes it (TeX)")
+    text: str = Field("", description="the symbol in plain letters (a link's accessible "
+                      "name), e.g. ρ0")
+    name: str = Field(description="what it is, in a few words")
+    href: str
+
+
 class VerdictPublic(BaseModel):
     """The outcome of a claim's check (solvers.verify), or 'unchecked' when there is none."""
 
@@ -47,6 +58,10 @@ class VerdictPublic(BaseModel):
     seconds: float | None = None
     printed: str | None = None
     printed_tex: str | None = Field(None, description="a correction's formula (TeX)")
+    symbols: list[SymbolRef] = Field(default_factory=list, description="the symbols of "
+                                     "printed_tex, each with its entry on /notation")
+    change: str | None = Field(None, description="a correction: what it changes in the "
+                               "printed formula, in a reader's words")
     computed_at: str | None = Field(None, description="when the verdict was computed (UTC)")
     version: str | None = Field(None, description="the project version that computed it")
     level: Literal["cell", "formula"] = Field(

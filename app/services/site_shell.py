@@ -29,8 +29,8 @@ HEAD = """<meta charset="utf-8">
 NAV = [("/#table-plane", "Table 1 · plane"), ("/#table-sphere", "Table 2 · sphere"),
        ("/poincare", "3D point maps"), ("/scenes", "Scenes"),
        ("/work-precision", "Speed &amp; accuracy"), ("/how-we-check", "How we check"),
-       ("/glossary", "Glossary"), ("/bibliography", "Bibliography"), ("/errata", "Errata"),
-       ("/guide/", "Guide")]
+       ("/glossary", "Glossary"), ("/notation", "Notation"), ("/bibliography", "Bibliography"),
+       ("/errata", "Errata"), ("/guide/", "Guide")]
 SEARCH = ('<form class="navsearch" role="search" action="/search" method="get">'
           '<label class="sr-only" for="nav-q">Search cases and claims</label>'
           '<input id="nav-q" name="q" type="search" placeholder="Search…" '

@@ -88,6 +88,25 @@ def _with_since(claim_html_text: str, c: dict, notes: dict) -> str:
         if n else claim_html_text
 
 
+def symbol_link(s: dict) -> str:
+    """A symbol of a formula as a link to its entry on /notation, its name on hover; the
+    same markup as the page's script (static/js/notation.js symbolLink). A click or tap
+    shows the definition in place (notation.js); without scripts the link opens it."""
+    return (f'<a class="sym" href="{escape(s["href"])}" data-sym="{escape(s["id"])}" '
+            f'title="{escape(s["name"])}"><span class="tex" data-tex="{escape(s["tex"])}">'
+            f'{escape(s["tex"])}</span><span class="sr-only"> {escape(s["text"])}: '
+            f'{escape(s["name"])}</span></a>')
+
+
+def notation_html(refs: list[dict]) -> str:
+    """The page's symbols, each linked to its definition (views.page_notation)."""
+    if not refs:
+        return '<p class="status">No typeset formula on this page.</p>'
+    return ('<ul class="symbols-page">' + "".join(
+        f'<li>{symbol_link(s)} <span class="symname">{escape(s["name"])}</span></li>'
+        for s in refs) + "</ul>")
+
+
 def case_page(template: str, detail: dict) -> str:
     """case.html with the case's title, its counts by mark and its claims filled in; each
     claim and open cell with its 'since 2002' note, if it has one."""
@@ -111,7 +130,10 @@ def case_page(template: str, detail: dict) -> str:
                      f'id="mark-summary">{summary}</p></div>', 1)
             .replace('<div id="claimlist"></div>',
                      f'<div id="claimlist"><p class="status ssr">{summary}</p>{claims}</div>',
-                     1))
+                     1)
+            .replace('<div id="symbollist"></div>',
+                     f'<div id="symbollist">{notation_html(detail.get("notation") or [])}'
+                     "</div>", 1))
 
 
 def shade_why(c: dict) -> str:

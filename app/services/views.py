@@ -9,10 +9,13 @@ from functools import cache
 
 from app.services.verdicts import VERDICTS, summary
 from catalogue.load import load_catalogue
+from catalogue.notation import entry_for
 from catalogue.numbering import cite, cite_latex, printed
 from catalogue.plain_words import cite_names, phrases
 from catalogue.schema import Attribution, Case, Cell, Claim, StateVariables, Table
 from catalogue.since_2002 import note_json, notes_for
+from catalogue.symbols import plain as plain_symbol
+from catalogue.symbols import symbols as symbol_tokens
 from solvers.models.bodies import STATE_LABELS
 from solvers.models.cases import CaseSpec, beyond_table_ids, registry
 from solvers.verify import marks as vocab
@@ -44,6 +47,33 @@ def table_of(case_id: str) -> Table:
     return cat.plane if case_id.startswith("plane/") else cat.sphere
 
 
+def symbol_refs(tex: str | None, text: bool = False) -> list[dict]:
+    """The symbols of a formula as a page typesets it (catalogue/symbols.py), each with its
+    entry on /notation; a symbol without an entry is left out (tests/test_notation.py
+    keeps every symbol of a case page defined)."""
+    out: list[dict] = []
+    for token in symbol_tokens(tex or "", text):
+        e = entry_for(token)
+        if e is not None:
+            out.append({"id": e.id, "tex": token, "text": plain_symbol(token),
+                        "name": cite(e.name),
+                        "href": f"/notation#sym-{e.id}"})
+    return out
+
+
+def page_notation(case: Case) -> list[dict]:
+    """Every symbol of the formulas a case page can typeset (its cells, its claims and the
+    project's corrected forms, notation_page.case_formulas), once per entry, in the page's
+    order."""
+    from app.services.notation_page import case_formulas
+
+    refs = [s for tex, text in case_formulas(case) for s in symbol_refs(tex, text)]
+    seen: dict[str, dict] = {}
+    for s in refs:
+        seen.setdefault(s["id"], s)
+    return list(seen.values())
+
+
 def cell(row_label: str, row: str, c: Cell, by_claim: dict[str, dict],
          cases: list[str] | None = None, pending: set[str] | None = None) -> dict:
     # labels stay as data; what a reader sees carries the printed numbers (catalogue/numbering)
@@ -55,7 +85,9 @@ def cell(row_label: str, row: str, c: Cell, by_claim: dict[str, dict],
             "subrow": c.subrow.model_dump() if c.subrow else None, "subrow_case": None,
             "claims": list(c.claims), "convention_note": cite(c.convention_note),
             "verdict": summary(list(c.claims), by_claim, row, cases or list(c.merged),
-                               pending)}
+                               pending),
+            "symbols": symbol_refs(c.printed + (" " + c.subrow.printed if c.subrow else ""),
+                                   text=True)}
 
 
 def table(table_id: str, by_claim: dict[str, dict], pending: set[str] | None = None) -> dict:
@@ -125,6 +157,14 @@ def corrected_forms() -> dict[str, str]:
     return {fid: cf.latex for fid, cf in load_corrected_forms().items()}
 
 
+@cache
+def _corrected_changes() -> dict[str, str]:
+    """fid -> what the correction changes, in a reader's words (corrected_forms.yaml)."""
+    from catalogue.load import load_corrected_forms
+
+    return {fid: cf.change for fid, cf in load_corrected_forms().items()}
+
+
 def record(rec: dict) -> dict:
     keys = ("claim", "verdict", "residual", "message", "check", "origin", "corrects",
             "evidence", "seconds", "printed", "computed_at", "version", "level", "qualifier",
@@ -144,6 +184,8 @@ def record(rec: dict) -> dict:
         if m and m[1] in corrected_forms():
             # a correction: its formula as TeX, the registered note as words
             out["printed_tex"] = corrected_forms()[m[1]]
+            out["symbols"] = symbol_refs(out["printed_tex"])
+            out["change"] = cite(_corrected_changes()[m[1]])
             out["printed"] = cite(out["printed"][m.end():])
         else:
             out["printed"] = cite_latex(out["printed"])
@@ -175,7 +217,8 @@ def claim(c: Claim, by_claim: dict[str, dict], corrections: dict[str, list[dict]
                            c.check_args.model_dump(mode="json", exclude_defaults=True).items()},
             "convention_note": cite(c.convention_note), "remarks": cite(c.remarks),
             "verdict": _verdict(c, by_claim.get(c.id), pending),
-            "corrections": [record(r) for r in corrections.get(c.id, [])]}
+            "corrections": [record(r) for r in corrections.get(c.id, [])],
+            "symbols": symbol_refs(c.printed)}
 
 
 def runnable(spec: CaseSpec) -> dict:
@@ -267,7 +310,7 @@ def case_detail(case_id: str, by_claim: dict[str, dict], corrections: dict[str, 
                   {case_id} if checking else set()) for r in t.rows]
     claim_marks = vocab.counts(c["verdict"]["mark"] for c in claims)
     cell_marks = vocab.counts(c["verdict"]["mark"] for c in cells if c["verdict"])
-    return {**case_summary(case),
+    out = {**case_summary(case),
             "model": {**_cited_model(case),
                       "equation_numbers": [printed(x) or x for x in case.model.equations]},
             "remarks": [cite(r) for r in case.remarks],
@@ -279,6 +322,8 @@ def case_detail(case_id: str, by_claim: dict[str, dict], corrections: dict[str, 
             "summary": case_sentence(cell_marks, claim_marks),
             "since_2002": [note_json(n) for n in notes_for(case_id)],
             "verification": verification}
+    out["notation"] = page_notation(case)
+    return out
 
 
 def case_sentence(cell_marks: dict[str, int], claim_marks: dict[str, int]) -> str:

@@ -10,7 +10,7 @@ from fastapi import APIRouter, Query
 from fastapi.responses import HTMLResponse
 
 from app.api.deps import SettingsDep, VerdictsDep
-from app.services import howcheck, reader_pages
+from app.services import howcheck, notation_page, reader_pages
 from app.services import search as search_service
 from app.services.search import facets, search
 from catalogue.glossary import load_glossary
@@ -37,6 +37,14 @@ async def glossary_api() -> dict:
             "entries": [{**e.model_dump(), "meaning": cite(e.meaning),
                          "paper_numbers": [printed(x) for x in e.paper]}
                         for e in g.entries]}
+
+
+@router.get("/notation")
+async def notation_api() -> dict:
+    """Every symbol of the case pages' typeset formulas: its TeX forms, where the paper
+    defines it (labels, printed numbers, section: one item per meaning), its meaning in the
+    project's conventions, and the case pages that use it."""
+    return notation_page.notation_json()
 
 
 @router.get("/references")
@@ -105,6 +113,11 @@ async def how_we_check_page() -> str:
 @pages.get("/glossary", response_class=HTMLResponse)
 async def glossary_page() -> str:
     return reader_pages.glossary()
+
+
+@pages.get("/notation", response_class=HTMLResponse)
+async def notation_html() -> str:
+    return notation_page.page()
 
 
 @pages.get("/bibliography", response_class=HTMLResponse)

@@ -13,6 +13,7 @@ import { kernelSentence, runLabel } from "./kernels.js";
 import { Scene } from "./scene.js";
 import { glossary, tipHtml } from "./glossary.js";
 import { caseCiteHtml, checkedHtml, citeData, decorateClaims } from "./cite.js";
+import { symbolsHtml } from "./notation.js";
 
 const caseId = decodeURIComponent(location.pathname.replace(/^\/case\//, "").replace(/\/$/, ""));
 const $ = (id) => document.getElementById(id);
@@ -148,7 +149,7 @@ function showCells() {
       ? "partial fill: incomplete set of integrals" : "";
     const why = shade ? `<div class="claimrefs shade-note">shading: ${shade}${c.shade_note ? ` — ${escapeHtml(c.shade_note)}` : ""}</div>` : "";
     return `<tr id="row-${c.row}"><th scope="row">${escapeHtml(c.row_label)}</th>` +
-      `<td class="shade-${c.shade}">${textHtml(c.printed)}${sub}${att}${refs}${merged}${why}${prop}${mark}</td></tr>`;
+      `<td class="shade-${c.shade}">${textHtml(c.printed)}${sub}${symbolsHtml(c.symbols)}${att}${refs}${merged}${why}${prop}${mark}</td></tr>`;
   });
   $("cells").innerHTML = rows.length ? `<table class="cells"><tbody>${rows.join("")}</tbody></table>`
     : `<p class="status" data-testid="beyond-tables">No column of Tables 1 and 2 holds this body: it has no cells to show.</p>`;
@@ -234,13 +235,21 @@ function claimHtml(c) {
     c.convention_note ? `<p><strong>Convention:</strong> ${escapeHtml(c.convention_note)}</p>` : "",
     c.remarks ? `<p><strong>Remark:</strong> ${escapeHtml(c.remarks)}</p>` : "",
   ].join("");
-  const corr = c.corrections.map((r) => `<div class="correction"><strong>The project's corrected form</strong>` +
-    `${r.printed_tex ? `<div class="printed">${mathHtml(r.printed_tex, true)}</div>` : ""}` +
-    `${r.printed ? `<p class="plain">${r.printed_tex ? escapeHtml(r.printed) : printedHtml(r.printed)}</p>` : ""}${verdictLine(r)}</div>`).join("");
+  // a misprint: the formula that holds leads, typeset large; the printed form follows
+  const lead = v.mark === "after-correction"
+    ? c.corrections.find((r) => r.printed_tex && r.mark === "after-correction") : null;
+  const corr = c.corrections.map((r) => `<div class="correction"><strong>${r === lead ? "What the correction changes" : "The project's corrected form"}</strong>` +
+    `${r.printed_tex && r !== lead ? `<div class="printed">${mathHtml(r.printed_tex, true)}</div>${symbolsHtml(r.symbols)}` : ""}` +
+    `${r === lead && r.change ? `<p class="plain">${escapeHtml(r.change)}</p>` : ""}` +
+    `${r.printed && !(r === lead && r.change) ? `<p class="plain">${r.printed_tex ? escapeHtml(r.printed) : printedHtml(r.printed)}</p>` : ""}${verdictLine(r)}</div>`).join("");
+  const formulas = lead
+    ? `<div class="printed corrected-lead" data-testid="corrected-lead"><span class="formlabel">corrected form, which holds</span>${mathHtml(lead.printed_tex, true)}</div>` +
+      `${symbolsHtml(lead.symbols)}<div class="printed as-printed" data-testid="as-printed"><span class="formlabel">as printed</span>${printedHtml(c.printed)}</div>`
+    : `<div class="printed">${printedHtml(c.printed)}</div>`;
   return `<article class="claim ${v.verdict} ${escapeHtml(v.mark)}" id="${anchor(c.id)}">` +
     `<header><span class="kind">${escapeHtml(c.kind)}</span>${c.number ? `<span class="label">${escapeHtml(c.number)}</span>` : ""}` +
     `${badgeHtml(v.mark)}</header>` +
-    `<div class="printed">${printedHtml(c.printed)}</div>` +
+    formulas + symbolsHtml(c.symbols) +
     `<p class="plain">${escapeHtml(c.plain)}</p>${sentence(c)}<dl>${dl}</dl>${verdictLine(v)}${markNoteHtml(v)}` +
     `<details class="dev"><summary>Details</summary><dl>${dev}</dl>${notes}</details>${corr}</article>`;
 }

@@ -119,11 +119,18 @@ function textCommands(s) {
   return h;
 }
 
+// A printed statement without $...$ that is words, not a formula: three words in a row, or
+// one word of four letters outside braces and commands ("unknown", "S. A. Chaplygin (1897)").
+// The same rule as catalogue/symbols.py is_prose, which reads the symbols the page shows.
+export function isProse(src) {
+  const words = src.replace(/\\[A-Za-z]+/g, " ").replace(/\{[^{}]*\}/g, " ");
+  return /\b[a-z]{3,}\s+[a-z]{2,}\s+[a-z]{3,}\b/.test(words) || /(^|[^A-Za-z])[A-Za-z]{4,}/.test(words);
+}
+
 // A claim's `printed`: text with $...$, or a display formula.
 export function printedHtml(src) {
   if (src.includes("$")) return textHtml(src);
-  const words = src.replace(/\\[A-Za-z]+/g, " ").replace(/\{[^{}]*\}/g, " ");
-  if (/\b[a-z]{3,}\s+[a-z]{2,}\s+[a-z]{3,}\b/.test(words)) return textHtml(src);
+  if (isProse(src)) return textHtml(src);
   return mathHtml(src, true);
 }
 
