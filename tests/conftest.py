@@ -1,6 +1,8 @@
 import os
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
+import anyio
 import numpy as np
 import pytest
 
@@ -146,6 +148,14 @@ def catalogue_records(tmp_path_factory, worker_id):
             return records
         finally:
             fcntl.flock(fh, fcntl.LOCK_UN)
+
+
+def run_async(main):
+    """anyio.run(main) in a thread of its own: in one process with the browser tests,
+    Playwright's sync API leaves an asyncio loop running in the main thread, and anyio.run
+    refuses to nest."""
+    with ThreadPoolExecutor(1) as ex:
+        return ex.submit(anyio.run, main).result()
 
 
 def records_of(records, cases):

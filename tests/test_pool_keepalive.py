@@ -4,11 +4,11 @@ pool keeps its workers: after a long idle time the same processes answer."""
 
 import os
 import time
-from concurrent.futures import ThreadPoolExecutor
 
 import anyio
 import anyio.to_process
 import pytest
+from conftest import run_async
 
 from app.core.pool import WorkerPool
 
@@ -40,10 +40,7 @@ def test_idle_workers_are_kept(monkeypatch):
             tg.start_soon(one, later)
         assert later == first, "a worker was pruned and replaced by a cold one"
 
-    # in a thread of its own: in one process with the browser tests, Playwright's sync API
-    # leaves an asyncio loop running in the main thread, and anyio.run refuses to nest
-    with ThreadPoolExecutor(1) as ex:
-        ex.submit(anyio.run, main).result()
+    run_async(main)
 
 
 @pytest.fixture(autouse=True)

@@ -6,11 +6,11 @@ import logging
 import os
 import signal
 import time
-from concurrent.futures import ThreadPoolExecutor
 
 import anyio
 import anyio.to_process
 import pytest
+from conftest import run_async
 
 from app.core.pool import WorkerCrashed, WorkerPool
 
@@ -66,8 +66,7 @@ def test_a_dead_worker_is_logged_and_replaced_by_a_warm_one(caplog):
         return got, stats
 
     try:
-        with ThreadPoolExecutor(1) as ex:     # see tests/test_pool_keepalive.py
-            got, stats = ex.submit(anyio.run, main).result()
+        got, stats = run_async(main)
     finally:
         logger.removeHandler(caplog.handler)
     assert len({pid for pid, _ in got}) == 2

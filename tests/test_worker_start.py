@@ -8,6 +8,7 @@ import os
 
 import anyio
 import pytest
+from conftest import run_async
 from fastapi.testclient import TestClient
 
 from app.core import pool as pool_module
@@ -70,7 +71,7 @@ def test_the_pool_says_503_and_retries_with_backoff(starts, monkeypatch):
             await pool.close()
             tg.cancel_scope.cancel()
 
-    anyio.run(main)
+    run_async(main)
 
 
 def test_the_api_answers_503_with_retry_after_and_health_says_degraded(starts):
@@ -143,7 +144,7 @@ def test_a_job_stopped_by_the_servers_stop_says_so_not_a_crash():
         assert "the server is stopping" in str(caught[0]), caught
         assert "died" not in str(caught[0]) and pool.stats().crashed == 0
 
-    anyio.run(main)
+    run_async(main)
 
 
 def test_verifications_have_their_share_and_cannot_starve_the_runs():
@@ -178,7 +179,7 @@ def test_verifications_have_their_share_and_cannot_starve_the_runs():
         await pool.close()
         return outcome, runs_took
 
-    outcome, runs_took = anyio.run(main)
+    outcome, runs_took = run_async(main)
     assert outcome["run_busy"] == 0 and outcome["run_ok"] == 8, outcome
     assert outcome["verify_ok"] == 3 and outcome["verify_busy"] == 9, outcome
     # the runs never waited for a verification to end (each holds its worker 1.5 s)

@@ -26,6 +26,9 @@ from catalogue.load import load_catalogue
 from catalogue.numbering import printed_numbers
 
 NOT_PAGES = ("/api/", "/static/", "/vendor/", "/openapi.json", "/docs")
+# the downloads a page offers (the errata as CSV and BibTeX): files, not pages
+# (tests/test_errata_export.py checks them)
+DOWNLOADS = (".csv", ".bib")
 EXEMPT = ("/docs",)      # the vendored Swagger UI (issue 11: exempt)
 
 
@@ -47,7 +50,7 @@ def route_pages() -> list[str]:
     cases = [c.id for c in load_catalogue().cases()]
     out = []
     for path in _routes(create_app(settings_for_tests()).routes):
-        if path.startswith(NOT_PAGES):
+        if path.startswith(NOT_PAGES) or path.endswith(DOWNLOADS):
             continue
         params = re.findall(r"\{([^}:]+)(?::[^}]*)?\}", path)
         if params == ["case_id"]:
@@ -86,7 +89,8 @@ def nav_links(base: str, html: str) -> set[str]:
     out = set()
     for href in p.links:
         u = urlsplit(urljoin(base + "/", href))
-        if u.netloc == urlsplit(base).netloc and not u.path.startswith(NOT_PAGES):
+        if u.netloc == urlsplit(base).netloc and not u.path.startswith(NOT_PAGES) \
+                and not u.path.endswith(DOWNLOADS):
             out.add(u.path + (f"?{u.query}" if u.query else ""))
     return out
 

@@ -14,7 +14,8 @@ NAV_ROWS = """() => { const n = document.querySelector('header.site nav');
   const tops = new Set([...n.querySelectorAll('a')].filter((e) => e.offsetParent !== null)
     .map((e) => Math.round(e.getBoundingClientRect().top)));
   return { rows: tops.size, height: n.getBoundingClientRect().height,
-           line: Math.max(...[...n.querySelectorAll('a')].map((e) => e.getBoundingClientRect().height)) }; }"""
+           line: Math.max(...[...n.querySelectorAll('a')]
+             .map((e) => e.getBoundingClientRect().height)) }; }"""
 
 # what is drawn at the middle of each column heading's place at the top of the screen:
 # a heading cell (the original or its pinned copy) showing that column's title

@@ -1,8 +1,8 @@
 """Browser layout test (issue 20): in every Plotly plot of /scenes (every scene), /poincare,
 /work-precision and a case page (its run and its 3D view), no axis title, legend, plot
 title or toolbar (modebar) overlaps another, no legend covers an x axis' tick labels, and
-none is cut off by the plot's own box, at 1280 px and at 390 px (the scenes at 1280 px on their one opening in
-tests/e2e/test_scenes_browser.py, which uses `problems` from here)."""
+none is cut off by the plot's own box, at 1280 px and at 390 px (the scenes at 1280 px on
+their one opening in tests/e2e/test_scenes_browser.py, which uses `problems` from here)."""
 
 from functools import partial
 
