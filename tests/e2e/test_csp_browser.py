@@ -14,19 +14,6 @@ PAGES = [
 ]
 
 
-@pytest.fixture
-def strict(browser, server):
-    """A context without the suite's bypass_csp, collecting what the policy refuses."""
-    context = browser.new_context(viewport={"width": 1500, "height": 950})
-    page = context.new_page()
-    page.set_default_timeout(30_000)
-    refused: list[str] = []
-    page.on("console", lambda m: refused.append(m.text)
-            if "Content Security Policy" in m.text else None)
-    page.on("pageerror", lambda e: refused.append(str(e)))
-    yield page, refused
-    context.close()
-
 
 @pytest.mark.parametrize("path,ready", PAGES)
 def test_page_renders_under_the_csp(strict, server, path, ready):

@@ -28,19 +28,6 @@ def guide_server(tmp_path_factory):
         yield url
 
 
-@pytest.fixture
-def strict(browser):
-    """A context without the suite's bypass_csp, collecting what the policy refuses."""
-    context = browser.new_context(viewport={"width": 1400, "height": 900})
-    page = context.new_page()
-    page.set_default_timeout(30_000)
-    refused: list[str] = []
-    page.on("console", lambda m: refused.append(m.text)
-            if "Content Security Policy" in m.text else None)
-    page.on("pageerror", lambda e: refused.append(str(e)))
-    yield page, refused
-    context.close()
-
 
 def test_the_guide_renders_navigates_and_searches_under_the_csp(strict, guide_server):
     page, refused = strict
