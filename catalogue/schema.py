@@ -555,15 +555,23 @@ SourceKind = Literal["the paper's published reference list", "another paper's re
                      "a bibliographic database's record", "the article itself"]
 
 
+# the bibliographic fields of an entry, each of which a complete entry takes from a source
+BibField = Literal["authors", "title", "journal", "volume", "number", "pages", "year", "doi"]
+BIB_FIELDS: tuple[str, ...] = ("authors", "title", "journal", "volume", "number", "pages",
+                               "year", "doi")
+
+
 class CheckedIn(Strict):
     """Where an entry's bibliographic data was read: the page's address, what kind of source
-    it is, and how much of it could be read (full: the whole list or record; abstract: the
-    record's abstract page; snippet: only the part of a reference list that holds the entry)."""
+    it is, how much of it could be read (full: the whole list or record; abstract: the
+    record's abstract page; snippet: only the part of a reference list that holds the entry)
+    and which of the entry's fields it gives (`gives`)."""
 
     source: str  # what the page is, e.g. "the reference list of <paper>"
     kind: SourceKind
     url: str
     access: Literal["full", "abstract", "snippet"]
+    gives: list[BibField] = []  # the fields of the entry this source prints
 
     @field_validator("url")
     @classmethod
@@ -592,21 +600,48 @@ class Reference(Strict):
     doi: str | None = None
     translation: str | None = None  # a translation or reprint the source names beside it
     checked_in: list[CheckedIn] = []  # where the entry was read; none: nothing was checked
+    # fields read in the seed itself (the paper's own LaTeX), for the paper's own entry
+    seed_gives: list[BibField] = []
+    # article: a complete entry also needs volume and pages; a book or a preprint does not
+    form: Literal["article", "book", "preprint"] = "article"
     identity: str | None = None  # why the \cite key is this work (the seed's context)
     candidate: str | None = None  # unresolved: a work a source lists and why it is not taken
-    # complete: authors, title, journal and year are known and a checked source is named;
-    # unresolved otherwise, and `missing` says what is lacking
+    # complete: authors, title, journal and year (and an article's volume and pages) are
+    # known, each from a named source, and the key is tied to the work; unresolved
+    # otherwise, and `missing` says what is lacking
     status: Literal["complete", "unresolved"]
     cited_for: list[str]
     remarks: str | None = None
 
     @property
     def missing(self) -> list[str]:
-        """What a full bibliographic entry needs and no checked source gave."""
+        """What a full bibliographic entry needs and no checked source gave: authors, title,
+        journal (or book), year, and for an article its volume and pages; and a source."""
         have = {"authors": bool(self.authors), "title": bool(self.title),
-                "journal": bool(self.journal), "year": bool(self.year or self.years),
-                "checked source": bool(self.checked_in)}
+                "journal": bool(self.journal), "year": bool(self.year or self.years)}
+        if self.form == "article":
+            have |= {"volume": bool(self.volume), "pages": bool(self.pages)}
+        have["checked source"] = bool(self.checked_in)
         return [k for k, ok in have.items() if not ok]
+
+    def field_sources(self) -> dict[str, list[str]]:
+        """Each bibliographic field the entry has, with the sources that give it: the seed,
+        or the address of a checked source."""
+        out: dict[str, list[str]] = {}
+        for f in BIB_FIELDS:
+            value = getattr(self, f)
+            if not value:
+                continue
+            out[f] = (["seed"] if f in self.seed_gives else []) + [
+                c.url for c in self.checked_in if f in c.gives]
+        return out
+
+    @property
+    def unsourced(self) -> list[str]:
+        """The fields of a complete entry that no named source gives (must be empty)."""
+        if self.status != "complete":
+            return []
+        return [f for f, srcs in self.field_sources().items() if not srcs]
 
     @model_validator(mode="after")
     def _key(self) -> Reference:
@@ -622,6 +657,9 @@ class Reference(Strict):
                              "this work (identity)")
         if self.status == "complete" and self.candidate:
             raise ValueError(f"reference {self.id}: a complete entry has no candidate")
+        if self.unsourced:
+            raise ValueError(f"reference {self.id}: fields {self.unsourced} are given by no "
+                             "named source (checked_in[].gives or seed_gives)")
         return self
 
 

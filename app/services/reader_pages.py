@@ -253,13 +253,16 @@ def cite_box(url: str = "/") -> str:
 
 
 def _checked_html(c) -> str:
-    """One place an entry was read: its kind, what it is, how much was read, its address."""
+    """One place an entry was read: its kind, what it is, how much was read, its address and
+    the fields of the entry it gives."""
     access = {"full": "read in full", "abstract": "abstract page read",
               "snippet": "only a snippet of the list read"}[c.access]
     site = urlsplit(c.url).hostname or c.url
+    gives = (f' <span class="gives" data-gives="{escape(" ".join(c.gives))}">gives: '
+             f'{escape(", ".join(c.gives))}</span>' if c.gives else "")
     return (f'<li class="checked" data-kind="{escape(c.kind)}" data-access="{c.access}">'
             f"{escape(c.kind)}: {escape(c.source)} ({access}), at "
-            f'<a href="{escape(c.url)}" rel="nofollow noopener">{escape(site)}</a></li>')
+            f'<a href="{escape(c.url)}" rel="nofollow noopener">{escape(site)}</a>{gives}</li>')
 
 
 def _reference_html(r) -> str:
@@ -287,7 +290,10 @@ def _reference_html(r) -> str:
                         ("translation", "", r.translation),
                         ("identity", "Why this work: ", r.identity),
                         ("candidate", "Candidate: ", r.candidate)) if text)
-    checked = (f'<p>Checked in:</p><ul class="checkedin">'
+    seed = (f'<li class="checked" data-kind="seed">the seed (the paper\'s own LaTeX) '
+            f'<span class="gives" data-gives="{escape(" ".join(r.seed_gives))}">gives: '
+            f'{escape(", ".join(r.seed_gives))}</span></li>' if r.seed_gives else "")
+    checked = (f'<p>Checked in:</p><ul class="checkedin">{seed}'
                f'{"".join(_checked_html(c) for c in r.checked_in)}</ul>'
                if r.checked_in else '<p class="checkedin none">No source read gives it.</p>')
     used = "".join(f"<li>{escape(cite(x))}</li>" for x in r.cited_for)
@@ -338,11 +344,13 @@ def bibliography() -> str:
     refs = load_catalogue().references
     unresolved = sum(r.status == "unresolved" for r in refs)
     body = ("<p>Every reference the catalogue cites, resolved from its key. The paper's LaTeX "
-            "(the seed) has no reference list. An entry is <em>complete</em> when a source "
-            "that was read (another paper's reference list, or the publisher's record; named "
-            "under the entry with how much of it was read) gives its authors, title, journal "
-            "or book and year, and the seed's own context ties the key to that work; it is "
-            "<em>unresolved</em> otherwise, saying what is missing. Nothing is guessed. "
+            "(the seed) has no reference list. An entry is <em>complete</em> when sources "
+            "that were read (another paper's reference list, the publisher's record or a "
+            "bibliographic database's record; named under the entry with how much of each "
+            "was read and which fields it gives) give its authors, title, journal or book, "
+            "year and, for an article, volume and pages, and the seed's own context ties the "
+            "key to that work; it is <em>unresolved</em> otherwise, saying what is missing. "
+            "Nothing is guessed. "
             f'<span class="refcounts">{len(refs) - unresolved} complete, {unresolved} '
             "unresolved.</span></p>" + cite_box("/bibliography") +
             f'<h2 id="refs">References ({len(refs)})</h2><ol class="refs">'
