@@ -116,6 +116,15 @@ def test_the_page_counts_and_shows_each_entry_with_its_sources(client):
             assert f'data-gives="{" ".join(r.seed_gives)}"' in item, r.id
 
 
+def test_the_api_gives_each_field_with_its_sources(client):
+    refs = {r["id"]: r for r in client.get("/api/references").json()}
+    for r in load_catalogue().references:
+        got = refs[r.id]
+        assert got["field_sources"] == r.field_sources(), r.id
+        if r.status == "complete":
+            assert all(got["field_sources"].values()), r.id
+
+
 @pytest.mark.xfail(strict=True, reason="target of issue 38 item 4 not met: the stored "
                    "sources (reference lists read only in their first entries, database "
                    "records) resolve fewer keys; each unresolved entry says what is missing")

@@ -50,9 +50,12 @@ async def notation_api() -> dict:
 @router.get("/references")
 async def references_api() -> list[dict]:
     """The bibliography: every reference key of the catalogue with its entry; `status`
-    complete (authors, title, journal, year) or unresolved, `missing` says what is not in
-    the seed."""
-    return [{**r.model_dump(mode="json"), "missing": r.missing}
+    complete (authors, title, journal, year and an article's volume and pages, each from a
+    named source) or unresolved; `missing` says what no source read gives, and
+    `field_sources` names, for each field the entry has, the sources that give it ("seed"
+    or a checked source's address)."""
+    return [{**r.model_dump(mode="json"), "missing": r.missing,
+             "field_sources": r.field_sources()}
             for r in load_catalogue().references]
 
 
