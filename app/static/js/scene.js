@@ -87,16 +87,22 @@ export class Scene {
     if (this.seen) this.seen.observe(el);
     const V = this.mesh.vertices;
     this.size = Math.max(...V.map((v) => Math.hypot(v[0], v[1], v[2])));
-    // each body axis drawn a little beyond the body along it (a long stone's e1 longer
-    // than its e3; a thin coin's e3 still visible)
-    // (far enough out of a ball to be seen from the back of a room)
-    this.axisLen = [0, 1, 2].map((i) =>
-      1.35 * Math.max(0.5 * this.size, ...V.map((v) => Math.abs(v[i]))));
     // on the plane the body may roll far away: by default the view follows it (the floor's
     // checker pattern moves under it); on a sphere the whole support stays in view
     this.follow = !data.support_radius;
-    // the body's own reach (its mesh and its axes, turned as in the frames) sets the view:
-    // a flat body (the rattleback) is not framed as if it could stand on its tip
+    this.fit();
+  }
+
+  // Each body axis drawn a little beyond the body along it (a long stone's e1 longer than
+  // its e3; a thin coin's e3 still visible); in presentation far enough out of a ball to be
+  // seen from the back of a room. The body's own reach (its mesh and its axes, turned as in
+  // the frames) sets the view: a flat body (the rattleback) is not framed as if it could
+  // stand on its tip.
+  fit() {
+    const V = this.mesh.vertices;
+    const out = this.present ? 1.45 : 1.15;
+    this.axisLen = [0, 1, 2].map((i) =>
+      out * Math.max(0.5 * this.size, ...V.map((v) => Math.abs(v[i]))));
     const ext = this.extent();
     this.ext = ext;
     this.W = 1.1 * Math.max(ext.horizontal, 0.5 * this.size);
@@ -272,13 +278,12 @@ export class Scene {
       travelled: { width: p ? 12 : 7, color: "#d97706" }, axis: p ? 11 : 6 };
   }
 
+  // presentation on or off: longer, thicker axes and path, the view fitted again to them,
+  // drawn again at the same frame
   setPresent(on) {
     this.present = on;
-    const L = this.lines();
-    const Plotly = window.Plotly;
-    return Plotly.restyle(this.el, { line: [L.path, L.travelled] }, [1, 2])
-      .then(() => Plotly.restyle(this.el, { "line.width": L.axis }, [4, 5, 6]))
-      .then(() => Plotly.relayout(this.el, { "legend.font.size": on ? 18 : 13 }));
+    this.fit();
+    return this.render().then(() => this.show(this.frame));
   }
 
   show(f) {

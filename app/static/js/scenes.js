@@ -291,8 +291,9 @@ async function setPresent(on) {
     .filter((el) => el.data).map((el) => claimFonts(el, on));
   if (current) jobs.push(current.setPresent(on));
   await Promise.all(jobs);
-  // the layout changed size: the plots follow it, then the cursors
+  // the layout changed size: the plots follow it, then the cursors; the scene at the top
   window.dispatchEvent(new Event("resize"));
+  if (!$("player").hidden) $("player").scrollIntoView({ block: "start" });
   document.body.dataset.present = on ? "1" : "0";
 }
 
