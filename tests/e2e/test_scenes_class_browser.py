@@ -235,3 +235,15 @@ def test_presentation_from_the_address(page, server):
     page.wait_for_function("document.fullscreenElement && document.fullscreenElement.id === 'player'",
                            timeout=10_000)
     page.evaluate("document.exitFullscreen()")
+
+
+def test_a_scene_under_the_csp(strict, server):
+    """Cursors, sliders with typeset symbols, presentation: nothing the policy refuses."""
+    page, refused = strict
+    sid = "routh-ball-jellett-routh"
+    page.goto(f"{server}/scenes?present=1#{sid}")
+    page.locator(f"body[data-playing='{sid}']").wait_for(state="attached", timeout=120_000)
+    page.locator("#scene-sliders .katex").first.wait_for(state="attached")
+    page.locator("[data-testid=time-cursor]").first.wait_for(state="attached")
+    page.locator("#step").click()
+    assert not refused, refused

@@ -13,7 +13,12 @@ from pydantic import BaseModel, Field
 
 from app.api.deps import JSON_ONLY, PoolDep, SettingsDep
 from app.core.disconnect import cancel_on_disconnect
-from app.schemas.common import BUSY_RESPONSES, DEADLINE_RESPONSES
+from app.schemas.common import (
+    BUSY_RESPONSES,
+    DEADLINE_RESPONSES,
+    GUARD_RESPONSES,
+    PROBLEM_RESPONSES,
+)
 from app.services.reader_pages import static_page
 
 router = APIRouter(tags=["scenes"])
@@ -132,9 +137,8 @@ class RerunResponse(BaseModel):
 
 
 @router.post("/scenes/{scene_id}/run", dependencies=[JSON_ONLY], response_model=RerunResponse,
-             responses={404: {"description": "no such scene"},
-                        400: {"description": "unknown slider or value out of range"},
-                        **BUSY_RESPONSES, **DEADLINE_RESPONSES})
+             responses={404: {"description": "no such scene"}, **PROBLEM_RESPONSES,
+                        **GUARD_RESPONSES, **BUSY_RESPONSES, **DEADLINE_RESPONSES})
 async def scene_rerun(scene_id: str, req: RerunRequest, request: Request, pool: PoolDep,
                       settings: SettingsDep) -> Response:
     """The scene run again with its sliders moved, every check evaluated on the new run

@@ -26,11 +26,18 @@ const $ = (id) => document.getElementById(id);
 const GREEK = { delta: "\\delta", rho: "\\rho", omega: "\\omega" };
 const texName = (k) => GREEK[k] || k.replace(/^([A-Za-z]+)(\d+)$/, "$1_$2");
 
+// a place for TeX in markup; typeset() renders it once the markup is in the page (KaTeX's
+// render sets its styles through the DOM, which the strict CSP allows; style attributes in
+// markup it would block)
 function tex(src) {
-  const span = document.createElement("span");
-  if (window.katex) window.katex.render(src, span, { throwOnError: false });
-  else span.textContent = src;
-  return span.outerHTML;
+  return `<span class="tex" data-tex="${escapeHtml(src)}">${escapeHtml(src)}</span>`;
+}
+
+function typeset(root) {
+  if (!window.katex) return;
+  for (const el of root.querySelectorAll("span.tex[data-tex]")) {
+    window.katex.render(el.dataset.tex, el, { throwOnError: false });
+  }
 }
 
 function card(s) {
@@ -84,6 +91,7 @@ function renderSliders(s, values) {
         step="any" value="${v}" data-preset="${now}" data-step="${sl.step}">
       <output for="${id}" data-testid="slider-value">${fmt(v)} ${escapeHtml(sl.units)}</output></div>`;
   }).join("") + ((s.sliders || []).length ? `<button type="button" id="slider-reset">Back to the preset</button>` : "");
+  typeset(form);
   for (const el of form.querySelectorAll("input[type=range]")) {
     const sl = s.sliders.find((x) => x.name === el.name);
     // the browser's own steps would not reach the preset's value: snap while dragging
@@ -192,6 +200,7 @@ async function play(id, values = {}) {
   $("scene-text").innerHTML = `<p>${escapeHtml(s.explanation)}</p>
     <p class="status">Parameters: ${paramLine(sc)} · ${escapeHtml(sc.case)} · t = 0 … ${sc.t_end}
     · ${escapeHtml((s.paper_numbers || []).join(", "))}</p>`;
+  typeset($("scene-text"));
   performance.mark("scene:3d-request");
   const data = api("/api/scene", { method: "POST", body: {
     case: sc.case, params: sc.params, state: sc.state, t_end: sc.t_end, frames: sc.samples,
