@@ -247,3 +247,25 @@ def test_a_scene_under_the_csp(strict, server):
     page.locator("[data-testid=time-cursor]").first.wait_for(state="attached")
     page.locator("#step").click()
     assert not refused, refused
+
+
+def test_open_in_the_simulator_carries_the_moved_run(page, server):
+    """The case page opens from the scene's link with the slider's value, the other
+    parameters and the start of the scene, and runs it."""
+    page.set_viewport_size({"width": W, "height": H})
+    sid = "rattleback-spin-reversal"
+    s = SCENES[sid]
+    page.goto(f"{server}/scenes?v.delta=1.5#{sid}")
+    page.locator("body[data-rerun]").wait_for(state="attached", timeout=120_000)
+    page.locator("#open-sim").click()
+    page.wait_for_url(f"**/case/{s.scene.case}?*")
+    page.locator("body[data-run]").wait_for(state="attached", timeout=120_000)
+    value = lambda group, name: float(page.locator(  # noqa: E731
+        f'input[data-group="{group}"][data-name="{name}"]').input_value())
+    assert value("p", "delta") == pytest.approx(math.radians(1.5))
+    for k, v in s.scene.params.items():
+        if k != "delta":
+            assert value("p", k) == pytest.approx(v), k
+    state = [float(el.input_value()) for el in page.locator('input[data-group="s"]').all()]
+    assert state == pytest.approx(s.scene.state)
+    assert float(page.locator("#f-t_end").input_value()) == s.scene.t_end
