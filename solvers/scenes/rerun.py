@@ -57,6 +57,6 @@ def rerun_json(scene_id: str, values: dict[str, float]) -> dict:
     scene = moved(preset, values)
     results = run_checks(scene)
     checks = [{**r.to_json(), "caption": c.caption, "index": k, "count": len(scene.checks)}
-              for k, (r, c) in enumerate(zip(results, scene.checks))]
+              for k, (r, c) in enumerate(zip(results, scene.checks, strict=True))]
     return {"id": scene_id, "values": values, "scene": scene.scene.model_dump(mode="json"),
             "checks": checks}

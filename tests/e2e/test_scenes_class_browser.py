@@ -103,9 +103,10 @@ def cursors_follow_the_animation(page):
     a = cursor_state(page)
     page.wait_for_timeout(1200)
     b = cursor_state(page)
-    assert all(q["t"] > p["t"] for p, q in zip(a, b)), (a, b)            # time goes on
+    pairs = list(zip(a, b, strict=True))
+    assert all(q["t"] > p["t"] for p, q in pairs), (a, b)                  # time goes on
     # the time plots' line moves across (a map's return counter may sit still a while)
-    assert any(abs(q["x"] - p["x"]) + abs(q["y"] - p["y"]) > 0.5 for p, q in zip(a, b)), (a, b)
+    assert any(abs(q["x"] - p["x"]) + abs(q["y"] - p["y"]) > 0.5 for p, q in pairs), (a, b)
     page.locator("#play").click()
     expect(page.locator("#play")).to_have_text("Play")
     page.wait_for_timeout(200)
@@ -117,7 +118,7 @@ def cursors_follow_the_animation(page):
     assert all(abs(x["t"] - shown) <= 0.051 for x in d), (d, shown)   # at the view's time
     page.locator("#step").click()
     e = cursor_state(page)
-    assert all(q["t"] > p["t"] for p, q in zip(d, e)), (d, e)         # one frame on
+    assert all(q["t"] > p["t"] for p, q in zip(d, e, strict=True)), (d, e)         # one frame on
 
 
 def presentation(page, sid):
@@ -160,7 +161,8 @@ def slider_reruns(page, sid):
     sl = s.sliders[0]
     before = plotted(page)
     v = MOVE[sid]
-    page.evaluate("""([name, v]) => { const el = document.querySelector(`#scene-sliders input[name=${name}]`);
+    page.evaluate("""([name, v]) => {
+        const el = document.querySelector(`#scene-sliders input[name=${name}]`);
         el.value = String(v); el.dispatchEvent(new Event('input'));
         el.dispatchEvent(new Event('change')); }""", [sl.name, v])
     page.locator("body[data-rerun]").wait_for(state="attached", timeout=120_000)
@@ -213,7 +215,7 @@ def test_the_list_has_thumbnails_and_the_first_play_in_view(page, server):
     assert page.locator(".scene-card img").count() == 0
     in_view(page, page.locator(".scene-card a.play-link").first, "first Play")
     page.locator(".scene-card a.play-link").first.click()
-    first = list(SCENES)[0]
+    first = next(iter(SCENES))
     page.locator(f"body[data-claimed='{first}']").wait_for(state="attached", timeout=120_000)
     # the status says what runs, not how many frames
     page.locator(f"body[data-drawn='{first}']").wait_for(state="attached", timeout=120_000)
@@ -232,8 +234,9 @@ def test_presentation_from_the_address(page, server):
     assert size >= 18
     # full screen: the player itself (the Fullscreen API)
     page.locator("#fullscreen").click()
-    page.wait_for_function("document.fullscreenElement && document.fullscreenElement.id === 'player'",
-                           timeout=10_000)
+    page.wait_for_function(
+        "document.fullscreenElement && document.fullscreenElement.id === 'player'",
+        timeout=10_000)
     page.evaluate("document.exitFullscreen()")
 
 
