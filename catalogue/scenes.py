@@ -75,8 +75,44 @@ class MapCheck(_Check):
     factor: float = Field(100.0, gt=1)
 
 
-Check = Annotated[IntegralsCheck | StaysUpCheck | SpinReversalCheck | MapCheck,
-                  Field(discriminator="kind")]
+class ConservedCheck(_Check):
+    """The named integrals as values against time on linear axes (what a class reads: a
+    flat line), with the same verdict as `integrals`: max |F(t) - F(0)| / max(|F(0)|, 1)
+    <= tol, measured on the plotted values."""
+
+    kind: Literal["conserved"]
+    names: list[str] = Field(min_length=1)
+    tol: float = Field(1e-8, gt=0)
+
+
+Check = Annotated[IntegralsCheck | ConservedCheck | StaysUpCheck | SpinReversalCheck
+                  | MapCheck, Field(discriminator="kind")]
+
+
+class Slider(_Strict):
+    """One control of /scenes that changes the physics and runs the scene again: a
+    parameter of the case (`param`) or a component of the initial state (`state`, its
+    index). The slider moves in the units it shows; the run gets value * factor (degrees
+    shown, radians run)."""
+
+    name: str = Field(pattern=r"^[A-Za-z][A-Za-z0-9_]*$")
+    label: str = Field(min_length=3, description="plain words, shown beside the slider")
+    symbol: str = Field(description="the symbol as TeX (KaTeX typesets it)")
+    units: str = Field(description="the units of the value shown")
+    param: str | None = None
+    state: int | None = Field(None, ge=0, le=5)
+    min: float
+    max: float
+    step: float = Field(gt=0)
+    factor: float = Field(1.0, gt=0)
+
+    @model_validator(mode="after")
+    def _range(self):
+        if (self.param is None) == (self.state is None):
+            raise ValueError(f"slider {self.name}: give exactly one of param, state")
+        if not self.min < self.max:
+            raise ValueError(f"slider {self.name}: min must be below max")
+        return self
 
 
 class Scene(_Strict):
@@ -92,6 +128,10 @@ class Scene(_Strict):
     plot: Literal["vertical_spin", "tilt"] | None = Field(
         None, description="the quantity the text promises, plotted against time beside "
         "the animation (the scene response's `series`)")
+    sentence: str = Field("", description="the claim in one plain sentence, for the "
+                          "presentation mode of /scenes")
+    sliders: list[Slider] = Field(default_factory=list, max_length=2, description="what "
+                                  "a class may change and run again")
 
     @model_validator(mode="after")
     def _runnable(self):
@@ -112,8 +152,16 @@ class Scene(_Strict):
         if "animation" not in sc.shows:
             raise ValueError(f"scene {self.id}: a teaching scene plays: shows must "
                              "include animation")
+        for sl in self.sliders:
+            now = sc.params.get(sl.param) if sl.param else sc.state[sl.state]
+            if sl.param and sl.param not in sc.params:
+                raise ValueError(f"scene {self.id}: slider {sl.name} changes {sl.param!r}, "
+                                 "not a parameter of the scene")
+            if not sl.min <= now / sl.factor <= sl.max:
+                raise ValueError(f"scene {self.id}: slider {sl.name} starts outside its "
+                                 f"range [{sl.min}, {sl.max}]")
         for c in self.checks:
-            if isinstance(c, IntegralsCheck):
+            if isinstance(c, IntegralsCheck | ConservedCheck):
                 bad = [n for n in c.names if n not in NAMES]
                 if bad:
                     raise ValueError(f"scene {self.id}: unknown integrals {bad}")

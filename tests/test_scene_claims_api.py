@@ -44,6 +44,15 @@ def test_every_check_passes_and_its_plot_is_its_data(patient_client, sid, k):
         contrast = [tr for tr in p["traces"] if tr["role"] == "contrast"]
         # the quantity that does change is many orders of magnitude above the integrals
         assert all(np.nanmax(_values(tr)) > 1e4 * check.tol for tr in contrast)
+    elif check.kind == "conserved":
+        # the integrals themselves on linear axes; the verdict is read off these values
+        assert [tr["quantity"] for tr in claim] == list(check.names)
+        assert not p["log_y"]
+        worst = max(np.nanmax(np.abs(_values(tr)[1:] - _values(tr)[0]))
+                    / max(abs(_values(tr)[0]), 1.0) for tr in claim)
+        assert worst == d["value"] <= check.tol
+        contrast = [tr for tr in p["traces"] if tr["role"] == "contrast"]
+        assert all(np.ptp(_values(tr)) > 1e4 * check.tol for tr in contrast)
     elif check.kind == "stays_up":
         tilt = _values(claim[0])
         assert math.isclose(math.cos(math.radians(tilt.max())), d["value"], rel_tol=1e-12)
@@ -70,6 +79,14 @@ def test_every_check_passes_and_its_plot_is_its_data(patient_client, sid, k):
         assert correlation_dimension(P, 0.01, 0.1) == d["value"]
         assert abs(d["value"] - 1.0) <= check.dim_tol
         assert claim[0]["mode"] == "markers"
+    # every plot says where the animation's time cursor goes: on the time axis, or along
+    # data that carries its own times within the scene's run
+    cur = p["cursor"]
+    if cur["axis"] != "t":
+        ts = np.array(cur["t"], dtype=float)
+        assert len(ts) == len(cur["x"]) > 1 and np.all(np.diff(ts) > 0) and ts[0] >= 0
+    else:
+        assert p["x_title"] == "time t"
     # the second request is the same answer (kept per server process)
     assert patient_client.get(f"/api/scenes/{sid}/checks/{k}").content == r.content
 

@@ -79,11 +79,39 @@ def check_integrals(scene, check, res=None) -> CheckResult:
     traces.append({"name": f"bound of the check ({check.tol:g})", "x": [float(t[0]), float(t[-1])],
                    "y": [check.tol, check.tol], "role": "limit"})
     names = ", ".join(PRETTY.get(n, n) for n in check.names)
-    plot = {"title": f"Conserved: {names}", "x_title": "time t",
+    plot = {"title": f"Numerical drift of {names}", "x_title": "time t",
             "y_title": "relative change", "log_y": True, "traces": traces,
+            "cursor": {"axis": "t"},
             "headline": f"largest relative change {worst:.1e}"}
     return CheckResult("integrals", ok, worst, f"largest relative drift of "
                        f"{', '.join(check.names)} over t <= {res.t[-1]:g}: {worst:.2e}"
+                       + ("" if res.ok else f" (run stopped: {res.message})"), plot)
+
+
+def check_conserved(scene, check, res=None) -> CheckResult:
+    """The integrals themselves against time on linear axes: flat lines beside gamma3,
+    which moves; the verdict is that of check_integrals, taken from these values."""
+    res = res or _run(scene)
+    missing = [n for n in check.names if n not in res.invariants]
+    if missing:
+        return CheckResult("conserved", False, float("nan"),
+                           f"the case does not carry {missing} with these parameters")
+    values = {n: np.asarray(res.invariants[n], dtype=float) for n in check.names}
+    worst = max(float(_drift_series(v).max()) for v in values.values())
+    ok = res.ok and worst <= check.tol
+    t = res.t
+    traces = [{"name": PRETTY.get(n, n), "x": _list(t), "y": _list(v), "role": "claim",
+               "quantity": n} for n, v in values.items()]
+    if res.state.shape[1] == 6:
+        traces.append({"name": "γ₃ (not conserved)", "x": _list(t), "y": _list(res.state[:, 5]),
+                       "role": "contrast", "quantity": "g3"})
+    # the legend names the quantities; a short title reads on a projector
+    plot = {"title": "Constant while the body rolls", "x_title": "time t",
+            "y_title": "value", "log_y": False, "traces": traces, "cursor": {"axis": "t"},
+            "headline": "flat lines: constant" if ok else "not constant"}
+    return CheckResult("conserved", ok, worst, f"largest relative change of "
+                       f"{', '.join(check.names)} over t <= {res.t[-1]:g}: {worst:.2e} "
+                       f"(needs <= {check.tol:g})"
                        + ("" if res.ok else f" (run stopped: {res.message})"), plot)
 
 
@@ -99,7 +127,7 @@ def check_stays_up(scene, check, res=None) -> CheckResult:
     t = res.t
     plot = {"title": "Tilt of the disk from the vertical", "x_title": "time t",
             "y_title": "tilt (degrees)", "log_y": False,
-            "y_range": [0, 90],
+            "y_range": [0, 90], "cursor": {"axis": "t"},
             "traces": [{"name": "tilt", "x": _list(t), "y": _list(tilt), "role": "claim",
                         "quantity": "tilt"},
                        {"name": f"bound of the check ({limit:.1f}°)",
@@ -141,6 +169,7 @@ def check_spin_reversal(scene, check, res=None) -> CheckResult:
             "y_title": "spin −(ω, γ)", "log_y": False,
             "traces": traces,
             "vline": {"x": check.before, "name": f"check: before t = {check.before:g}"},
+            "cursor": {"axis": "t"},
             "headline": (f"reverses at t = {first:.1f}" if times else "no reversal")}
     return CheckResult("spin_reversal", ok, first, f"first reversal of the averaged "
                        f"vertical spin at t = {first:.4g} (needs <= {check.before:g}); "
@@ -172,6 +201,7 @@ def check_map(scene, check) -> CheckResult:
                             "y": _list(P[:, 0]),
                             "hg": _list(P[:, 1]), "role": "claim", "mode": "markers",
                             "quantity": "returns"}],
+                "cursor": _map_track(scene),
                 "headline": f"correlation dimension {d:.2f} (1 = a curve)"}
         return CheckResult("map", ok, d, f"correlation dimension of {len(P)} returns: "
                            f"{d:.3f} (a curve: 1 +- {check.dim_tol})", plot)
@@ -183,8 +213,11 @@ def check_map(scene, check) -> CheckResult:
     ratio = first / max(last, 1e-300)
     ok = ratio >= check.factor and tr.check.get("missed", 0) == 0
     n = np.arange(len(dist))
+    # linear axes: the distance falls to zero, which is what "settles" means; the cursor
+    # stands at the last return before the animation's time
     plot = {"title": f"Returns approach a {k}-cycle", "x_title": "return n",
-            "y_title": f"|x(n+{k}) − x(n)|", "log_y": True,
+            "y_title": f"|x(n+{k}) − x(n)|", "log_y": False,
+            "cursor": {"axis": "x", "t": _list(tr.t[:len(dist)]), "x": _list(n)},
             "traces": [{"name": f"|x(n+{k}) − x(n)|", "x": _list(n), "y": _list(
                 np.where(dist > 0, dist, np.nan)), "role": "claim", "mode": "markers",
                 "quantity": "cycle_distance"},
@@ -197,7 +230,21 @@ def check_map(scene, check) -> CheckResult:
                        plot)
 
 
-_RUN_BASED = {"integrals": check_integrals, "stays_up": check_stays_up,
+def _map_track(scene) -> dict:
+    """Where the body is now in the map's coordinates (l, L/G), along the scene's run at
+    its animation frames: on the page a marker that moves with the 3D view and sits on
+    the returns' curve each time the body crosses the section."""
+    from solvers.maps.andoyer import map_point
+
+    sc = scene.scene
+    res = simulate(sc.case, sc.params, sc.state, sc.t_end, samples=sc.samples,
+                   rtol=1e-10, atol=1e-12)
+    P = map_point(res.state)
+    return {"axis": "point", "t": _list(res.t), "x": _list(P[:, 2]), "y": _list(P[:, 0])}
+
+
+_RUN_BASED = {"integrals": check_integrals, "conserved": check_conserved,
+              "stays_up": check_stays_up,
               "spin_reversal": check_spin_reversal}
 
 

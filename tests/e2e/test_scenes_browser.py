@@ -62,7 +62,7 @@ BODY_BOX = """async (sel) => {
 
 def claimed_names(check) -> set[str]:
     """The legend entries of the quantity the check is about."""
-    if check.kind == "integrals":
+    if check.kind in ("integrals", "conserved"):
         return {PRETTY[n] for n in check.names}
     if check.kind == "stays_up":
         return {"tilt"}

@@ -11,9 +11,14 @@ from fastapi import APIRouter, HTTPException, Request
 from fastapi.responses import HTMLResponse, Response
 from pydantic import BaseModel, Field
 
-from app.api.deps import PoolDep, SettingsDep
+from app.api.deps import JSON_ONLY, PoolDep, SettingsDep
 from app.core.disconnect import cancel_on_disconnect
-from app.schemas.common import BUSY_RESPONSES, DEADLINE_RESPONSES
+from app.schemas.common import (
+    BUSY_RESPONSES,
+    DEADLINE_RESPONSES,
+    GUARD_RESPONSES,
+    PROBLEM_RESPONSES,
+)
 from app.services.reader_pages import static_page
 
 router = APIRouter(tags=["scenes"])
@@ -34,6 +39,11 @@ class ScenePreset(BaseModel):
     checks: list[dict[str, Any]]
     plot: str | None = Field(None, description="the series of POST /api/scene plotted "
                              "against time beside the animation")
+    sentence: str = Field("", description="the claim in one plain sentence (presentation)")
+    sliders: list[dict[str, Any]] = Field(default_factory=list, description="controls "
+                                          "that change the physics: name, label, symbol "
+                                          "(TeX), units, param or state, min, max, step, "
+                                          "factor (run value = shown value * factor)")
 
 
 def _public(s) -> dict:
@@ -111,6 +121,43 @@ async def scene_check(scene_id: str, k: int, request: Request, pool: PoolDep,
             check_json, scene_id, k, deadline=settings.deadline_s))
         body = _checks.setdefault((scene_id, k), dumps(d))
     return Response(body, media_type="application/json")
+
+
+class RerunRequest(BaseModel):
+    values: dict[str, float] = Field(description="slider name -> value in the slider's "
+                                     "units, within its range")
+
+
+class RerunResponse(BaseModel):
+    id: str
+    values: dict[str, float]
+    scene: dict[str, Any] = Field(description="the moved run: case, params, state, t_end, "
+                                  "samples (POST /api/scene draws it)")
+    checks: list[SceneCheck]
+
+
+@router.post("/scenes/{scene_id}/run", dependencies=[JSON_ONLY], response_model=RerunResponse,
+             responses={404: {"description": "no such scene"}, **PROBLEM_RESPONSES,
+                        **GUARD_RESPONSES, **BUSY_RESPONSES, **DEADLINE_RESPONSES})
+async def scene_rerun(scene_id: str, req: RerunRequest, request: Request, pool: PoolDep,
+                      settings: SettingsDep) -> Response:
+    """The scene run again with its sliders moved, every check evaluated on the new run
+    (solvers/scenes/rerun.py): what /scenes draws after a slider changes."""
+    from app.services import kernel_prepare
+    from app.services.jobs import dumps, prepare_scene_check
+    from catalogue.scenes import load_scenes
+    from solvers.scenes.rerun import moved, rerun_json
+
+    s = load_scenes().get(scene_id)
+    if s is None:
+        raise HTTPException(404, f"unknown scene {scene_id!r}; known scenes: "
+                            + ", ".join(load_scenes()))
+    moved(s, req.values)           # bad input answers here, before any work is queued
+    await kernel_prepare.prepare(pool, request.app.state.kernels, settings.kernels_warm,
+                                 [("scene-check", scene_id)], prepare_scene_check, scene_id)
+    d = await cancel_on_disconnect(request, lambda: pool.run(
+        rerun_json, scene_id, req.values, deadline=settings.deadline_s))
+    return Response(dumps(d), media_type="application/json")
 
 
 @pages.get("/scenes")

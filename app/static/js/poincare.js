@@ -24,6 +24,8 @@ const cite = (text) => Object.keys(NUMBERS).sort((a, b) => b.length - a.length)
   .reduce((t, lab) => t.split(`Fig ${lab}`).join(NUMBERS[lab]).split(`(${lab})`).join(NUMBERS[lab])
     .split(lab).join(NUMBERS[lab]), String(text));
 
+const INNER = { tickvals: [-0.5, 0, 0.5], ticktext: ["−0.5", "0", "0.5"] };
+
 function layout3d(title) {
   return {
     title: { text: title, font: { size: 14 }, x: 0.02 },
@@ -34,10 +36,12 @@ function layout3d(title) {
     legend: { font: { size: 11 }, itemsizing: "constant", ...LEGEND_BELOW },
     modebar: MODEBAR,
     scene: {
-      // five ticks an axis: the -1 of L/G and H/G do not run into each other at the corner
-      xaxis: { title: { text: "L/G" }, range: [-1, 1], nticks: 5 },
-      yaxis: { title: { text: "H/G" }, range: [-1, 1], nticks: 5 },
-      zaxis: { title: { text: "l" }, range: [0, 2 * Math.PI], nticks: 5 },
+      // ticks inside the ranges only: labels at the ends (the -1 of L/G and H/G, the 0 of
+      // l) meet at the box's corners, where they ran into each other
+      xaxis: { title: { text: "L/G" }, range: [-1, 1], ...INNER },
+      yaxis: { title: { text: "H/G" }, range: [-1, 1], ...INNER },
+      zaxis: { title: { text: "l" }, range: [0, 2 * Math.PI], tickvals: [Math.PI / 2, Math.PI, 1.5 * Math.PI],
+        ticktext: ["π/2", "π", "3π/2"] },
       aspectmode: "cube",
     },
   };

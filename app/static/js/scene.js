@@ -65,7 +65,7 @@ function ballMesh(R, nt = 18, nf = 36) {
 const FIT_FRAMES = 60;
 
 export class Scene {
-  constructor(el, data, { onFrame } = {}) {
+  constructor(el, data, { onFrame, present = false } = {}) {
     this.el = el;
     this.d = data;
     this.mesh = weld(data.mesh);
@@ -73,6 +73,11 @@ export class Scene {
     this.frame = 0;
     this.playing = false;
     this.timer = null;
+    // frames shown per tick of the clock (below 1: a frame every few ticks)
+    this.speed = 1;
+    this.acc = 0;
+    // presentation: a contact path and body axes thick enough for a projector
+    this.present = present;
     // a playing scene draws only while it can be seen: not in a hidden tab, nor scrolled
     // out of view (without a GPU each frame costs the browser much CPU:
     // docs/performance.md); it goes on from the same frame when seen again
@@ -82,15 +87,22 @@ export class Scene {
     if (this.seen) this.seen.observe(el);
     const V = this.mesh.vertices;
     this.size = Math.max(...V.map((v) => Math.hypot(v[0], v[1], v[2])));
-    // each body axis drawn a little beyond the body along it (a long stone's e1 longer
-    // than its e3; a thin coin's e3 still visible)
-    this.axisLen = [0, 1, 2].map((i) =>
-      1.15 * Math.max(0.5 * this.size, ...V.map((v) => Math.abs(v[i]))));
     // on the plane the body may roll far away: by default the view follows it (the floor's
     // checker pattern moves under it); on a sphere the whole support stays in view
     this.follow = !data.support_radius;
-    // the body's own reach (its mesh and its axes, turned as in the frames) sets the view:
-    // a flat body (the rattleback) is not framed as if it could stand on its tip
+    this.fit();
+  }
+
+  // Each body axis drawn a little beyond the body along it (a long stone's e1 longer than
+  // its e3; a thin coin's e3 still visible); in presentation far enough out of a ball to be
+  // seen from the back of a room. The body's own reach (its mesh and its axes, turned as in
+  // the frames) sets the view: a flat body (the rattleback) is not framed as if it could
+  // stand on its tip.
+  fit() {
+    const V = this.mesh.vertices;
+    const out = this.present ? 1.45 : 1.15;
+    this.axisLen = [0, 1, 2].map((i) =>
+      out * Math.max(0.5 * this.size, ...V.map((v) => Math.abs(v[i]))));
     const ext = this.extent();
     this.ext = ext;
     this.W = 1.1 * Math.max(ext.horizontal, 0.5 * this.size);
@@ -224,16 +236,17 @@ export class Scene {
     const traces = [
       this.supportTrace(),
       { type: "scatter3d", mode: "lines", x: full[0], y: full[1], z: full[2], name: "contact path",
-        line: { width: 3, color: "#8c959f" }, hoverinfo: "skip", connectgaps: false },
+        line: this.lines().path, hoverinfo: "skip", connectgaps: false },
       { type: "scatter3d", mode: "lines", x: [full[0][0]], y: [full[1][0]], z: [full[2][0]],
-        name: "travelled", line: { width: 6, color: "#d97706" }, hoverinfo: "skip" },
+        name: "travelled", line: this.lines().travelled, hoverinfo: "skip" },
       { type: "mesh3d", x: X, y: Y, z: Z, i: F.map((f) => f[0]), j: F.map((f) => f[1]),
         k: F.map((f) => f[2]), facecolor: this.mesh.pattern.map((p) => BODY_COLORS[p]),
         // smooth shading over the welded mesh: no facets, no seams
         flatshading: false, opacity: translucent ? 0.35 : 1, name: "body", hoverinfo: "skip",
         lighting: { ambient: 0.6, diffuse: 0.65, specular: 0.1, roughness: 0.6, fresnel: 0.1 } },
       ...this.axesXYZ(0).map((a, i) => ({ type: "scatter3d", mode: "lines", x: a[0], y: a[1], z: a[2],
-        name: ["e₁", "e₂", "e₃ (body axes)"][i], line: { width: 6, color: AXIS_COLORS[i] }, hoverinfo: "skip" })),
+        name: ["e₁", "e₂", "e₃ (body axes)"][i], line: { width: this.lines().axis, color: AXIS_COLORS[i] },
+        hoverinfo: "skip" })),
     ];
     const span = hi.map((h, i) => h - lo[i]);
     const m = Math.max(...span);
@@ -244,7 +257,8 @@ export class Scene {
     const eye = this.follow ? { x: 0.85, y: -1.0, z: 0.56 } : { x: 0.92, y: -1.06, z: 0.6 };
     const layout = {
       font: FONT, margin: { l: 0, r: 0, t: 0, b: 0 }, showlegend: true,
-      legend: { orientation: "h", y: 0.02 }, paper_bgcolor: "#fff",
+      legend: { orientation: "h", y: 0.02, font: { size: this.present ? 18 : 13 } },
+      paper_bgcolor: "#fff",
       scene: { xaxis: ax(0), yaxis: ax(1), zaxis: ax(2), aspectmode: "manual",
         aspectratio: { x: span[0] / m, y: span[1] / m, z: span[2] / m },
         // look a little below the middle of the box: the floor seen from above takes the
@@ -254,6 +268,22 @@ export class Scene {
     };
     // the traces above are frame 0 already: drawing it again would double the first draw
     return window.Plotly.react(this.el, traces, layout, CONFIG).then(() => this.onFrame(0, d.t[0]));
+  }
+
+  // the widths of the contact path, the travelled part and the body axes: dark and thick
+  // enough for a projector in presentation, still plain on a screen
+  lines() {
+    const p = this.present;
+    return { path: { width: p ? 7 : 4, color: p ? "#3d4550" : "#57606a" },
+      travelled: { width: p ? 12 : 7, color: "#d97706" }, axis: p ? 11 : 6 };
+  }
+
+  // presentation on or off: longer, thicker axes and path, the view fitted again to them,
+  // drawn again at the same frame
+  setPresent(on) {
+    this.present = on;
+    this.fit();
+    return this.render().then(() => this.show(this.frame));
   }
 
   show(f) {
@@ -289,12 +319,24 @@ export class Scene {
         this.timer = setTimeout(step, 250);
         return;
       }
-      const next = this.frame + 1 >= this.d.t.length ? 0 : this.frame + 1;
-      this.show(next);
+      this.acc += this.speed;
+      const k = Math.floor(this.acc);
+      if (k > 0) {
+        this.acc -= k;
+        const n = this.d.t.length;
+        this.show(this.frame + k >= n ? (this.frame + k) % n : this.frame + k);
+      }
       this.timer = setTimeout(() => requestAnimationFrame(step), 40);
     };
     // the next frame after the browser has shown this one, not in the same task
     this.timer = setTimeout(() => requestAnimationFrame(step), 40);
+  }
+
+  // one frame on (k = 1) or back (k = -1), paused
+  stepBy(k) {
+    this.pause();
+    const n = this.d.t.length;
+    this.show(Math.min(n - 1, Math.max(0, this.frame + k)));
   }
 
   pause() {
