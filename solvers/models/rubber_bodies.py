@@ -58,9 +58,9 @@ class RubberBody:
             raise InputError("B, c, d must be >= 0: they are semi-axes and radii")
         if not (any(self.B) or self.c or self.d):
             raise InputError("the body has no surface: give B, c or d")
-        if self.k != 0.0 and self.g != 0.0:
-            raise InputError("gravity on a sphere is not modelled for rubber bodies: "
-                             "set g = 0 when k != 0")
+        if self.k != 0.0 and (self.g != 0.0 or self.eps != 0.0):
+            raise InputError("a potential on a sphere is not modelled for rubber bodies: "
+                             "set g = 0 and eps = 0 when k != 0")
 
     # -- the paper's per-body formulas (used by the Newton-Euler derivation) ---------
     def r_paper(self, g):
