@@ -1,0 +1,130 @@
+"""Exact (sympy) checks of the rubber tensor invariants, in the chart (omega, gamma).
+
+On the rubber manifold N = {(omega, gamma) = 0, |gamma| = 1} the angular momentum about
+the contact point is M = I~ omega, I~ = I + m (r^2 E - r r^T) (1.6); this module writes the
+field in (omega, gamma):
+
+    domega/dt = I~^-1 (N - dI~/dt omega + lambda gamma),   N = M x omega
+                + m dr/dt x (omega x r) + gamma x m g r       (rubber_lagrange.py)
+    dgamma/dt = (gamma x omega) / (1 - k R)   (ball of radius R on a sphere, J = R(E - gg^T))
+    dgamma/dt = gamma x omega                 (plane)
+
+with lambda fixed by (domega/dt, gamma) = 0, so (omega, gamma) is a first integral of this
+field on all of R^6, and so is gamma^2. A density rho(omega, gamma) is then an invariant
+measure of the rubber flow on N (the volume rho d^3omega d^3gamma divided by
+d(gamma^2) ^ d(omega, gamma)) iff div(rho v) = 0 at the points of N; a function F is a
+first integral on N iff dF/dt = grad F . v = 0 there. Each residual below is reduced
+on N by eliminating omega3 = -(omega1 g1 + omega2 g2)/g3 and returned as a sympy
+expression; zero means proved for all parameter values (the symbols stay free).
+
+In the chart (M, gamma) of rubber_lagrange.py the same measure has the density
+rho / det I~ (dM = det I~ domega).
+"""
+
+from __future__ import annotations
+
+import sympy as sp
+
+w = sp.symbols("w1:4")
+g = sp.symbols("g1:4")
+W = sp.Matrix(w)
+G = sp.Matrix(g)
+X = list(w) + list(g)
+
+
+def _on_manifold(expr, unit=False):
+    """Numerator of expr with omega3 eliminated by (omega, gamma) = 0, expanded; with
+    unit=True also g3^2 = 1 - g1^2 - g2^2 (the residual then holds on |gamma| = 1 only)."""
+    num = sp.numer(sp.together(expr))
+    num = num.subs(w[2], -(w[0] * g[0] + w[1] * g[1]) / g[2])
+    num = sp.numer(sp.together(num))
+    if unit:
+        num = sp.expand(num).subs(g[2], sp.sqrt(1 - g[0] ** 2 - g[1] ** 2))
+    return sp.expand(num)
+
+
+def ball_field(kappa, J=None):
+    """Balanced ball (r = R gamma, any inertia) on a sphere with k R = kappa: on N,
+    I~ omega = (I + m R^2) omega = J omega and the field reduces to
+    J domega/dt = J omega x omega + lambda gamma (the dr/dt term vanishes for a ball)."""
+    J = J or sp.symbols("J1:4", positive=True)
+    Jm = sp.diag(*J)
+    Ji = sp.diag(*[1 / x for x in J])
+    JwXw = (Jm * W).cross(W)
+    Q = (G.T * Ji * G)[0]
+    lam = -(JwXw.dot(Ji * G)) / Q
+    wd = Ji * (JwXw + lam * G)
+    gd = G.cross(W) / (1 - kappa)
+    return list(wd) + list(gd), J, Q
+
+
+def ball_measure_residual(kappa=None):
+    """div(rho v)/rho on N for rho = (gamma, J^-1 gamma)^((1 - kappa)/2), kappa = k R
+    symbolic unless given; 0 means rho is an invariant density for every k, I, m, R."""
+    kappa = sp.Symbol("kappa") if kappa is None else kappa
+    v, _J, Q = ball_field(kappa)
+    p = (1 - kappa) / 2
+    expr = sum(sp.diff(v[i], X[i]) for i in range(6)) + p * sum(
+        sp.diff(Q, X[i]) * v[i] for i in range(6)) / Q
+    return sp.simplify(_on_manifold(expr))
+
+
+def ball_measure_residual_wrong_power(kappa, power):
+    """The same residual for another power: non-zero, so the power is not arbitrary."""
+    v, _J, Q = ball_field(kappa)
+    expr = sum(sp.diff(v[i], X[i]) for i in range(6)) + power * sum(
+        sp.diff(Q, X[i]) * v[i] for i in range(6)) / Q
+    return sp.simplify(_on_manifold(expr))
+
+
+def ball_integral_residual(kappa=0):
+    """dF/dt on N for F = |M x gamma|^2 = (M, M) - (M, gamma)^2, M = J omega."""
+    v, J, _Q = ball_field(kappa)
+    M = sp.diag(*J) * W
+    F = M.dot(M) - M.dot(G) ** 2
+    return _on_manifold(sum(sp.diff(F, X[i]) * v[i] for i in range(6)), unit=True)
+
+
+def routh_field():
+    """Routh ball on a plane: r = R gamma + a e3, I = diag(I1, I1, I3), gravity g."""
+    I1, I3, m, R, a, gr = sp.symbols("I1 I3 m R a g", positive=True)
+    r = R * G + a * sp.Matrix([0, 0, 1])
+    It = sp.diag(I1, I1, I3) + m * (r.dot(r) * sp.eye(3) - r * r.T)
+    gd = G.cross(W)
+    rd = R * gd
+    N = (It * W).cross(W) + m * rd.cross(W.cross(r)) + G.cross(m * gr * r)
+    Itd = m * (2 * r.dot(rd) * sp.eye(3) - rd * r.T - r * rd.T)
+    Iti = It.adjugate() / It.det()
+    base = Iti * (N - Itd * W)
+    Ag = Iti * G
+    lam = -base.dot(G) / Ag.dot(G)
+    wd = base + lam * Ag
+    return list(wd) + list(gd), dict(I1=I1, I3=I3, m=m, R=R, a=a, r=r)
+
+
+def routh_nose_squared(prm):
+    """N^2 = I1 g3^2 + I3 (g1^2 + g2^2) + m (r, gamma)^2 (Koiller's 'nose' function,
+    written in gamma; on |gamma| = 1 it is I1 cos^2 + I3 sin^2 + m z_G^2)."""
+    return (prm["I1"] * g[2] ** 2 + prm["I3"] * (g[0] ** 2 + g[1] ** 2)
+            + prm["m"] * prm["r"].dot(G) ** 2)
+
+
+def routh_integral_residual(v=None, prm=None):
+    """dF/dt on N for F = N omega3: its square F^2 = N^2 omega3^2 is checked, rational."""
+    if v is None:
+        v, prm = routh_field()
+    F2 = routh_nose_squared(prm) * w[2] ** 2
+    return _on_manifold(sum(sp.diff(F2, X[i]) * v[i] for i in range(6)))
+
+
+def routh_measure_residual(v=None, prm=None):
+    """div(rho v)/rho on N for rho = (I1 + m r^2) N (chart (omega, gamma))."""
+    if v is None:
+        v, prm = routh_field()
+    r = prm["r"]
+    logrho_grad = [sp.diff(prm["m"] * r.dot(r), x) / (prm["I1"] + prm["m"] * r.dot(r))
+                   + sp.diff(routh_nose_squared(prm), x) / (2 * routh_nose_squared(prm))
+                   for x in X]
+    expr = sum(sp.diff(v[i], X[i]) for i in range(6)) + sum(
+        logrho_grad[i] * v[i] for i in range(6))
+    return _on_manifold(expr)
