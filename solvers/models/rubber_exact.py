@@ -85,9 +85,13 @@ def ball_integral_residual(kappa=0):
     return _on_manifold(sum(sp.diff(F, X[i]) * v[i] for i in range(6)), unit=True)
 
 
-def routh_field():
-    """Routh ball on a plane: r = R gamma + a e3, I = diag(I1, I1, I3), gravity g."""
+def routh_field(values=None):
+    """Routh ball on a plane: r = R gamma + a e3, I = diag(I1, I1, I3), gravity g; the
+    parameters stay symbols unless `values` (name -> exact number) fixes some of them."""
     I1, I3, m, R, a, gr = sp.symbols("I1 I3 m R a g", positive=True)
+    if values:
+        fixed = {"I1": I1, "I3": I3, "m": m, "R": R, "a": a, "g": gr}
+        I1, I3, m, R, a, gr = (sp.nsimplify(values.get(k, s)) for k, s in fixed.items())
     r = R * G + a * sp.Matrix([0, 0, 1])
     It = sp.diag(I1, I1, I3) + m * (r.dot(r) * sp.eye(3) - r * r.T)
     gd = G.cross(W)
@@ -128,3 +132,20 @@ def routh_measure_residual(v=None, prm=None):
     expr = sum(sp.diff(v[i], X[i]) for i in range(6)) + sum(
         logrho_grad[i] * v[i] for i in range(6))
     return _on_manifold(expr)
+
+
+def main():
+    """Every exact check with all parameters symbolic (the Routh measure takes minutes)."""
+    checks = [
+        ("rubber ball on a sphere, rho = (gamma, J^-1 gamma)^((1 - kR)/2)",
+         ball_measure_residual),
+        ("rubber ball on the plane, F = |M x gamma|^2", lambda: ball_integral_residual(0)),
+        ("Routh ball on the plane, F = N omega3 (as F^2)", routh_integral_residual),
+        ("Routh ball on the plane, rho = (I1 + m r^2) N", routh_measure_residual),
+    ]
+    for name, check in checks:
+        print(f"{name}: residual on N = {check()}")
+
+
+if __name__ == "__main__":
+    main()
