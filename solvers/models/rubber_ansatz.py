@@ -43,9 +43,16 @@ def _eval(monos, w, g):
     return np.array([np.prod([w[i] for i in a]) * np.prod([g[k] for k in c]) for a, c in monos])
 
 
+def ball_Q(b: RubberBody, g):
+    """Q = (gamma, J^-1 gamma), J = I + m R^2: the ball's measure is a power of Q."""
+    return np.sum(g * g / (np.array(b.I) + b.m * b.c ** 2))
+
+
 def count_integrals(b: RubberBody, d_omega: int, d_gamma: int, n_points: int | None = None,
-                    seed: int = 0) -> tuple[int, int]:
-    """(independent non-constant polynomial integrals on N, size of the ansatz)."""
+                    seed: int = 0, q_power: float = 0.0) -> tuple[int, int]:
+    """(independent non-constant integrals on N, size of the ansatz). With q_power = s != 0
+    the ansatz is F = P * Q^s, P polynomial as above (balls only): dF/dt = 0 iff
+    Q dP/dt + s P dQ/dt = 0, again linear in P's coefficients."""
     monos = _monomials(d_omega, d_gamma)
     n_points = n_points or 3 * len(monos) + 20
     rng = np.random.default_rng(seed)
@@ -57,8 +64,15 @@ def count_integrals(b: RubberBody, d_omega: int, d_gamma: int, n_points: int | N
         y = rl.state_on_manifold(b, rng.normal(size=3), g)
         v = rl.field(b, y)
         yc = y + 1j * H * v
-        rates.append(_eval(monos, rl.omega(b, yc), yc[3:]).imag / H)
-        values.append(_eval(monos, rl.omega(b, y), y[3:]))
+        phi = _eval(monos, rl.omega(b, y), y[3:])
+        phi_dot = _eval(monos, rl.omega(b, yc), yc[3:]).imag / H
+        if q_power:
+            Q, Q_dot = ball_Q(b, y[3:]), ball_Q(b, yc[3:]).imag / H
+            rates.append(Q * phi_dot + q_power * phi * Q_dot)
+            values.append(phi * Q ** q_power)
+        else:
+            rates.append(phi_dot)
+            values.append(phi)
     A = np.array(rates)
     A /= np.linalg.norm(A, axis=0, keepdims=True) + 1e-300
     V = np.array(values)
@@ -82,6 +96,8 @@ SEARCHES = [
                  "rubber-sphere/shell-over-half-ball", "rubber-sphere/unbalanced-ball")
     for d_gamma in (2, 4)
 ]
+# P / Q with P of omega-degree 2 exactly (the ball's energy is one: H = H Q / Q)
+SEARCHES_OVER_Q = [("rubber-sphere/ball-over", k) for k in (0.0, -0.5, 0.4, 2.0, 3.0)]
 
 
 def main():
@@ -90,6 +106,10 @@ def main():
     for case, d_omega, d_gamma in SEARCHES:
         n, size = count_integrals(body(case), d_omega, d_gamma)
         print(f"{case:40s} omega-degree <= {d_omega}, gamma-degree <= {d_gamma}: "
+              f"{n} integral(s) among {size} monomials")
+    for case, k in SEARCHES_OVER_Q:
+        n, size = count_integrals(body(case, k=k), 2, 2, q_power=-1.0)
+        print(f"{case:40s} kR = {k:+.1f}, P/Q, omega-degree <= 2, gamma-degree <= 2: "
               f"{n} integral(s) among {size} monomials")
 
 
