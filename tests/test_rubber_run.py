@@ -2,8 +2,8 @@
 (omega, gamma) = 0, |gamma| = 1 and the energy hold to the integrator's tolerance.
 
 The runs are short (T = 40 time units, 15 for the disk, whose field is stiffer near the
-flat position): the plain-NumPy field costs about half a millisecond per evaluation, so
-runs of 10^4 time units wait for the compiled rubber fields."""
+flat position): the plain-NumPy field is too slow for runs of 10^4 time units within the
+test budget; those wait for the compiled rubber fields."""
 
 import numpy as np
 import pytest
