@@ -124,3 +124,13 @@ def test_revolution_integral_needs_axial_symmetry():
     v = rl.field(b, y)
     F = lambda z: np.sqrt(_nose2(b, z[3:])) * rl.omega(b, z)[2]  # noqa: E731
     assert abs(F(y.astype(complex) + 1j * H * v).imag / H) > 1e-3
+
+
+def test_ball_with_gyrostat_or_brun_field_exact():
+    """The rubber Chaplygin ball keeps its measure with a gyrostat (any curvature) and with a
+    Brun field (plane), and keeps a second integral on the plane: |(M + S) x gamma|^2, and
+    |M x gamma|^2 - eps det J (gamma, J^-1 gamma)."""
+    assert rx.ball_measure_residual(gyrostat=True) == 0
+    assert rx.ball_measure_residual(0, brun=True) == 0
+    assert rx.ball_gyrostat_integral_residual() == 0
+    assert rx.ball_brun_integral_residual() == 0

@@ -43,14 +43,22 @@ def _on_manifold(expr, unit=False):
     return sp.expand(num)
 
 
-def ball_field(kappa, J=None):
+def ball_field(kappa, J=None, gyrostat=False, brun=False):
     """Balanced ball (r = R gamma, any inertia) on a sphere with k R = kappa: on N,
     I~ omega = (I + m R^2) omega = J omega and the field reduces to
-    J domega/dt = J omega x omega + lambda gamma (the dr/dt term vanishes for a ball)."""
+    J domega/dt = (J omega + S) x omega + gamma x eps I gamma + lambda gamma (the dr/dt term
+    vanishes for a ball); S with gyrostat=True, the Brun field (I = J - m R^2, written
+    I = J - D) with brun=True (plane only)."""
     J = J or sp.symbols("J1:4", positive=True)
     Jm = sp.diag(*J)
     Ji = sp.diag(*[1 / x for x in J])
-    JwXw = (Jm * W).cross(W)
+    K = Jm * W
+    if gyrostat:
+        K = K + sp.Matrix(sp.symbols("S1:4"))
+    JwXw = K.cross(W)
+    if brun:
+        D, eps = sp.symbols("D epsilon", positive=True)
+        JwXw = JwXw + G.cross(eps * (Jm - D * sp.eye(3)) * G)
     Q = (G.T * Ji * G)[0]
     lam = -(JwXw.dot(Ji * G)) / Q
     wd = Ji * (JwXw + lam * G)
@@ -58,11 +66,11 @@ def ball_field(kappa, J=None):
     return list(wd) + list(gd), J, Q
 
 
-def ball_measure_residual(kappa=None):
+def ball_measure_residual(kappa=None, gyrostat=False, brun=False):
     """div(rho v)/rho on N for rho = (gamma, J^-1 gamma)^((1 - kappa)/2), kappa = k R
     symbolic unless given; 0 means rho is an invariant density for every k, I, m, R."""
     kappa = sp.Symbol("kappa") if kappa is None else kappa
-    v, _J, Q = ball_field(kappa)
+    v, _J, Q = ball_field(kappa, gyrostat=gyrostat, brun=brun)
     p = (1 - kappa) / 2
     expr = sum(sp.diff(v[i], X[i]) for i in range(6)) + p * sum(
         sp.diff(Q, X[i]) * v[i] for i in range(6)) / Q
@@ -82,6 +90,25 @@ def ball_integral_residual(kappa=0):
     v, J, _Q = ball_field(kappa)
     M = sp.diag(*J) * W
     F = M.dot(M) - M.dot(G) ** 2
+    return _on_manifold(sum(sp.diff(F, X[i]) * v[i] for i in range(6)), unit=True)
+
+
+def ball_gyrostat_integral_residual():
+    """Plane, gyrostat S: dF/dt on N for F = |(M + S) x gamma|^2."""
+    v, J, _Q = ball_field(0, gyrostat=True)
+    K = sp.diag(*J) * W + sp.Matrix(sp.symbols("S1:4"))
+    F = K.dot(K) - K.dot(G) ** 2
+    return _on_manifold(sum(sp.diff(F, X[i]) * v[i] for i in range(6)), unit=True)
+
+
+def ball_brun_integral_residual():
+    """Plane, Brun field eps: dF/dt on N for F = |M x gamma|^2 - eps det J (gamma, J^-1 gamma).
+    (The torque gamma x eps I gamma equals gamma x eps J gamma, and for diagonal J,
+    J (a x J a) = det J (J^-1 a x a).)"""
+    v, J, Q = ball_field(0, brun=True)
+    eps = sp.Symbol("epsilon", positive=True)
+    M = sp.diag(*J) * W
+    F = M.dot(M) - M.dot(G) ** 2 - eps * J[0] * J[1] * J[2] * Q
     return _on_manifold(sum(sp.diff(F, X[i]) * v[i] for i in range(6)), unit=True)
 
 
