@@ -134,3 +134,10 @@ def test_ball_with_gyrostat_or_brun_field_exact():
     assert rx.ball_measure_residual(0, brun=True) == 0
     assert rx.ball_gyrostat_integral_residual() == 0
     assert rx.ball_brun_integral_residual() == 0
+
+
+def test_shell_over_half_ball_second_integral_exact():
+    """At kR = 2 (a ball of twice the radius of a fixed internal ball) F = P / Q is a first
+    integral for every inertia; the same P fails at kR = 3."""
+    assert rx.shell_integral_residual(2) == 0
+    assert rx.shell_integral_residual(3) != 0

@@ -112,6 +112,27 @@ def ball_brun_integral_residual():
     return _on_manifold(sum(sp.diff(F, X[i]) * v[i] for i in range(6)), unit=True)
 
 
+def shell_integral_P(J):
+    """P of the second integral F = P / Q of the ball at kR = 2 (a shell of twice the radius
+    of a fixed internal ball): P = sum P_ik omega_i^2 g_k^2. Found here by solving the linear
+    equations for the nine coefficients exactly (the solutions form a plane spanned by this P
+    and H Q); any J."""
+    J1, J2, J3 = J
+    P = sp.Matrix([[J1 * J3 * (J1 - J3), J1 * J3 * (J1 - J3), J1 * J2 * (J1 - J3)],
+                   [J2 * J3 * (J2 - J3), J2 * J3 * (J2 - J3), J1 * J2 * (J2 - J3)],
+                   [0, 0, J3 * (J1 - J3) * (J2 - J3)]])
+    return sum(P[i, k] * w[i] ** 2 * g[k] ** 2 for i in range(3) for k in range(3))
+
+
+def shell_integral_residual(kappa=2):
+    """dF/dt on N (|gamma| = 1) for F = P / Q of shell_integral_P: Q dP/dt - P dQ/dt."""
+    v, J, Q = ball_field(kappa)
+    P = shell_integral_P(J)
+    expr = (Q * sum(sp.diff(P, X[i]) * v[i] for i in range(6))
+            - P * sum(sp.diff(Q, X[i]) * v[i] for i in range(6)))
+    return sp.simplify(_on_manifold(expr, unit=True))
+
+
 def routh_field(values=None):
     """Routh ball on a plane: r = R gamma + a e3, I = diag(I1, I1, I3), gravity g; the
     parameters stay symbols unless `values` (name -> exact number) fixes some of them."""
