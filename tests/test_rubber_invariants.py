@@ -16,7 +16,7 @@ import sympy as sp
 from solvers.models import rubber_bodies as rb
 from solvers.models import rubber_exact as rx
 from solvers.models import rubber_lagrange as rl
-from solvers.models.rubber_divergence import divergence
+from solvers.models.rubber_divergence import divergence, loop_integral
 
 H = 1e-30
 ROUND_OFF = 1e-12
@@ -141,3 +141,34 @@ def test_shell_over_half_ball_second_integral_exact():
     integral for every inertia; the same P fails at kR = 3."""
     assert rx.shell_integral_residual(2) == 0
     assert rx.shell_integral_residual(3) != 0
+
+
+def test_spherical_inertia_density():
+    """I = mu E, any convex surface and offset: density (mu + m r^2) (mu + m (r, gamma)^2)^(1/2),
+    the body-of-revolution formula with I1 = I3 = mu."""
+    b = rb.body("rubber-plane/spherical-inertia")
+    mu = b.I[0]
+
+    def logrho(y):
+        r, _ = b.support_grad_hess(y[3:])
+        return (np.log(mu + b.m * (r @ r)) + 0.5 * np.log(mu + b.m * (r @ y[3:]) ** 2)
+                - _log_det_It(b, y))
+
+    rng = np.random.default_rng(6)
+    assert max(_liouville(b, y, logrho) for y in _states(b, rng)) < ROUND_OFF
+
+
+@pytest.mark.parametrize("case_id, has_density", [
+    ("rubber-plane/chaplygin-ball", True), ("rubber-plane/spherical-inertia", True),
+    ("rubber-plane/body-of-revolution", True), ("rubber-sphere/ball-over", True),
+    ("rubber-plane/ellipsoid", False), ("rubber-plane/unbalanced-ball", False),
+    ("rubber-sphere/unbalanced-ball", False)])
+def test_density_of_gamma_alone_by_loop_integrals(case_id, has_density):
+    """A density f(gamma) exists iff the 1-form d/dt log f is exact on the sphere of gamma:
+    its loop integrals vanish where a density was found and do not where none exists."""
+    b = rb.body(case_id)
+    loops = [loop_integral(b, axis, 0.6, n=120) for axis in ([1, 1, 0.2], [0.3, -1, 0.5])]
+    if has_density:
+        assert max(abs(x) for x in loops) < 1e-12
+    else:
+        assert max(abs(x) for x in loops) > 1e-4

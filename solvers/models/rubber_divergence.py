@@ -40,3 +40,40 @@ def divergence_integral(b: RubberBody, y0, T: float, n_out: int = 9, tol: float 
     if sol.status != 0:
         raise RuntimeError(sol.message)
     return sol.t, sol.y[6], sol.y[:6, -1]
+
+
+def _log_det_It(b: RubberBody, y):
+    r, _ = b.support_grad_hess(y[3:])
+    return np.log(np.linalg.det(np.diag(b.I) + b.m * ((r @ r) * np.eye(3) - np.outer(r, r))))
+
+
+def log_density_rate(b: RubberBody, gamma, omega) -> float:
+    """d/dt log f along the field at (omega, gamma) on N that a density f(gamma) in the
+    chart (omega, gamma) would need: -div v + d/dt log det I~ (the chart (M, gamma) has
+    density f / det I~)."""
+    y = rl.state_on_manifold(b, omega, gamma)
+    v = rl.field(b, y)
+    return -divergence(b, y) + _log_det_It(b, y.astype(complex) + 1j * H * v).imag / H
+
+
+def loop_integral(b: RubberBody, axis, angle: float, n: int = 400) -> float:
+    """The loop integral, over the circle of gamma at `angle` from `axis`, of the 1-form
+    alpha(u) = log_density_rate(gamma, u x gamma) (omega = u x gamma is the tangent omega
+    with dgamma/dt = u on the plane). A density depending on gamma alone exists iff alpha
+    is exact on the sphere of gamma, so a non-zero loop integral excludes it. On a sphere
+    dgamma/dt = (gamma x omega)/(1 - k R) for a ball; the rate is rescaled accordingly
+    by using omega = (1 - k J) u x gamma only for balls (J = c E), which is what the rubber
+    cases on a sphere are. The trapezoid rule on a smooth periodic integrand converges
+    geometrically in n."""
+    axis = np.asarray(axis, dtype=float)
+    axis /= np.linalg.norm(axis)
+    e1 = np.cross(axis, [0.3, 0.5, 0.8])
+    e1 /= np.linalg.norm(e1)
+    e2 = np.cross(axis, e1)
+    scale = 1.0 - b.k * b.c
+    total = 0.0
+    for t in np.linspace(0.0, 2.0 * np.pi, n, endpoint=False):
+        g = np.cos(angle) * axis + np.sin(angle) * (np.cos(t) * e1 + np.sin(t) * e2)
+        u = np.sin(angle) * (-np.sin(t) * e1 + np.cos(t) * e2)
+        total += log_density_rate(b, g, scale * np.cross(u, g))
+    return total * 2.0 * np.pi / n
