@@ -61,9 +61,8 @@ def loop_integral(b: RubberBody, axis, angle: float, n: int = 400) -> float:
     alpha(u) = log_density_rate(gamma, u x gamma) (omega = u x gamma is the tangent omega
     with dgamma/dt = u on the plane). A density depending on gamma alone exists iff alpha
     is exact on the sphere of gamma, so a non-zero loop integral excludes it. On a sphere
-    dgamma/dt = (gamma x omega)/(1 - k R) for a ball; the rate is rescaled accordingly
-    by using omega = (1 - k J) u x gamma only for balls (J = c E), which is what the rubber
-    cases on a sphere are. The trapezoid rule on a smooth periodic integrand converges
+    the rubber cases are balls, for which dgamma/dt = (gamma x omega)/(1 - k c), so there
+    omega = (1 - k c) u x gamma. The trapezoid rule on a smooth periodic integrand converges
     geometrically in n."""
     axis = np.asarray(axis, dtype=float)
     axis /= np.linalg.norm(axis)

@@ -190,6 +190,14 @@ def main():
         ("rubber ball on the plane, F = |M x gamma|^2", lambda: ball_integral_residual(0)),
         ("Routh ball on the plane, F = N omega3 (as F^2)", routh_integral_residual),
         ("Routh ball on the plane, rho = (I1 + m r^2) N", routh_measure_residual),
+        ("ball with a gyrostat, any sphere, same rho",
+         lambda: ball_measure_residual(gyrostat=True)),
+        ("ball with a gyrostat on the plane, F = |(M + S) x gamma|^2",
+         ball_gyrostat_integral_residual),
+        ("ball in a Brun field on the plane, same rho", lambda: ball_measure_residual(0, brun=True)),
+        ("ball in a Brun field on the plane, F = |M x gamma|^2 - eps det J Q",
+         ball_brun_integral_residual),
+        ("ball at kR = 2, F = P / Q", shell_integral_residual),
     ]
     for name, check in checks:
         print(f"{name}: residual on N = {check()}")
