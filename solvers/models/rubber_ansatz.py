@@ -3,13 +3,15 @@
 Ansatz: F = sum of c_j * phi_j with phi_j = omega^alpha * gamma^beta, |alpha| <= d_omega,
 |beta| <= d_gamma (all mixed degrees, so that a potential term in gamma alone is included).
 Only bodies with a polynomial r(gamma) (balls: Chaplygin, unbalanced, Routh) have their
-energy inside such an ansatz; for the others a count of zero says little. F is an integral on N = {(omega, gamma) = 0, |gamma| = 1}
-iff dF/dt = sum c_j dphi_j/dt vanishes on N. The derivatives dphi_j/dt (complex step along
-the field) at n random points of N give a matrix; its numerical null space (singular values
-below 1e-9 of the largest) holds the candidate integrals. Combinations that are constant on
-N (multiples of (omega, gamma) and of |gamma|^2 - 1, the energy times |gamma|^2, ...) are
-removed by asking that their values at the same points vary; the count returned is the
-number of independent non-constant integrals of the ansatz, counted modulo constants on N.
+energy inside such an ansatz; for the others a count of zero says little.
+
+F is an integral on N = {(omega, gamma) = 0, |gamma| = 1} iff dF/dt = sum c_j dphi_j/dt
+vanishes on N. The derivatives dphi_j/dt (complex step along the field) at n random points
+of N give a matrix; its numerical null space (singular values below 1e-9 of the largest)
+holds the candidate integrals. Combinations that are constant on N (multiples of
+(omega, gamma) and of |gamma|^2 - 1, the energy times |gamma|^2, ...) are removed by asking
+that their values at the same points vary; the count returned is the number of independent
+non-constant integrals of the ansatz, counted modulo constants on N.
 
 This is a numerical search (double precision, random points), not an exact proof: a count
 says what the ansatz holds up to round-off; exact proofs of what it finds live in

@@ -47,7 +47,7 @@ def _parts(b: RubberBody, y):
 def field_and_multiplier(b: RubberBody, y):
     """(d(M, gamma)/dt, lambda) at y = (M, gamma); complex-safe for complex-step checks."""
     y = np.asarray(y)
-    M, g, r, J, It, w, gd, rd = _parts(b, y)
+    M, g, r, _J, It, w, gd, rd = _parts(b, y)
     S = np.array(b.S)
     MQ = np.cross(g, b.m * b.g * r + b.eps * np.array(b.I) * g)
     N = np.cross(M + S, w) + b.m * np.cross(rd, np.cross(w, r)) + MQ
