@@ -54,7 +54,7 @@ def test_second_integrals_hold_along_runs():
     for case_id, F in cases.items():
         b = rb.body(case_id)
         y0 = rl.state_on_manifold(b, [0.3, -0.5, 0.7], [0.2, 0.3, 0.9])
-        sol = solve_ivp(lambda t, y: rl.field(b, y), (0.0, 40.0), y0, method="DOP853",
+        sol = solve_ivp(lambda t, y, b=b: rl.field(b, y), (0.0, 40.0), y0, method="DOP853",
                         rtol=TOL, atol=TOL)
         F0 = F(b, y0)
         drift = max(abs(F(b, y) - F0) for y in sol.y.T) / abs(F0)
