@@ -130,7 +130,7 @@ def prepare_scene(req: dict) -> int:
 def prepare_scene_check(scene_id: str) -> int:
     """A teaching scene's checks run its scene and plain runs of its case: their
     kernels, on tiny runs of the scene's own declaration (catalogue/scenes.yaml)."""
-    from catalogue.scenes import load_scenes
+    from solvers.scenes.teaching import load_scenes
     from solvers.models.cases import registry
 
     run = load_scenes()[scene_id].scene

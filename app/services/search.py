@@ -31,7 +31,7 @@ from app.services import views
 from catalogue.glossary import load_glossary
 from catalogue.load import load_catalogue
 from catalogue.numbering import cite, printed
-from catalogue.scenes import load_scenes
+from solvers.scenes.teaching import load_scenes
 from catalogue.schema import ClaimKind
 from solvers.models.cases import CaseSpec, beyond_table_ids, registry
 from solvers.verify import marks as vocab
