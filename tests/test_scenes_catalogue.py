@@ -8,11 +8,11 @@ import pytest
 import yaml
 from pydantic import ValidationError
 
-from solvers.scenes.teaching import PATH, load_scenes, parse
 from solvers.kernels import layout as L
 from solvers.models.bodies import rattleback_B
 from solvers.models.cases import build, registry, table_case_ids
 from solvers.scenes.scene_checks import run_checks
+from solvers.scenes.teaching import PATH, load_scenes, parse
 
 SCENES = load_scenes()
 REQUIRED_CASES = {"plane/chaplygin-ball", "plane/round-disk", "plane/routh-ball",

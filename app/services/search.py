@@ -31,9 +31,9 @@ from app.services import views
 from catalogue.glossary import load_glossary
 from catalogue.load import load_catalogue
 from catalogue.numbering import cite, printed
-from solvers.scenes.teaching import load_scenes
 from catalogue.schema import ClaimKind
 from solvers.models.cases import CaseSpec, beyond_table_ids, registry
+from solvers.scenes.teaching import load_scenes
 from solvers.verify import marks as vocab
 
 log = logging.getLogger(__name__)

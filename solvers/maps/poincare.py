@@ -146,7 +146,7 @@ class MapTrajectory:
                 "steps": self.steps, "rhs_calls": self.rhs_calls}
 
 
-def _omega_norm(model: Model, y) -> float:
+def omega_norm(model: Model, y) -> float:
     from solvers.kernels.fields import contact_inertia
     from solvers.kernels.support import support
 
@@ -197,7 +197,7 @@ class _Tracer:
     def __init__(self, model: Model, y0, spec: MapSpec, h_max: float = math.inf):
         self.spec, self.h_max = spec, h_max
         y0 = np.array(y0, dtype=float)
-        self.tau = TWO_PI / max(_omega_norm(model, y0), 1e-300)
+        self.tau = TWO_PI / max(omega_norm(model, y0), 1e-300)
         self.traj = MapTrajectory(tuple(float(v) for v in map_point(y0)), y0, np.empty(0),
                                   np.empty((0, 6)))
         # the start lies on the section: a crossing at t ~ 0 is the start itself

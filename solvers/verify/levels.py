@@ -277,7 +277,7 @@ def _claim_mark(r: dict, basis: str | None, on: list[str], by_claim: dict):
     return r["mark"], r.get("mark_note"), list(r.get("errata") or [])
 
 
-def _aggregate(judged: list[tuple[str, dict]]) -> str:
+def aggregate(judged: list[tuple[str, dict]]) -> str:
     verdicts = [v for v, _ in judged]
     if "fails" in verdicts:
         return "fails"
@@ -322,7 +322,7 @@ def cell_records(records: list[dict], cat: Catalogue, case_ids=None) -> list[dic
                         notes.append(CELL_NOTE[basis])
                     marked.append(_claim_mark(by_claim[c], basis, on, by_claim))
                 rests.sort(key=lambda x: _rank(x, by_claim))
-                verdict = _aggregate(judged)
+                verdict = aggregate(judged)
                 # a formula-free test of another claim of this cell is support for that
                 # claim's property (already in its judgement), not one more condition: it
                 # counts here only when it goes against (fails, evidence against, undecided)

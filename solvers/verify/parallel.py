@@ -7,11 +7,11 @@ from concurrent.futures import ProcessPoolExecutor
 
 def _one(claim_id):
     from catalogue.load import load_catalogue
-    from solvers.verify.run import _run_claim
+    from solvers.verify.run import run_claim
 
     cat = load_catalogue()
     case, claim = cat.find(claim_id)
-    return [r.to_json() for r in _run_claim(cat, case, claim)]
+    return [r.to_json() for r in run_claim(cat, case, claim)]
 
 
 def verify_parallel(case=None, claim=None, workers=0) -> list[dict]:

@@ -10,7 +10,7 @@ from solvers.verify import (
     checks,  # noqa: F401  (registers the checks)
     formulas,  # noqa: F401  (registers the formulas)
 )
-from solvers.verify.exact import exact_for
+from solvers.verify.exact.certifiers import exact_for
 from solvers.verify.registry import CHECKS, CORRECTED, CORRECTION_NOTES, Outcome
 
 VERDICTS = ("verified", "fails", "evidence", "unchecked")
@@ -41,7 +41,7 @@ class Record:
         return d
 
 
-def _run_claim(catalogue, case, claim) -> list[Record]:
+def run_claim(catalogue, case, claim) -> list[Record]:
     t0 = time.perf_counter()
     fn = CHECKS.get(claim.check.value)
     try:
@@ -122,7 +122,7 @@ def verify(case: str | None = None, claim: str | None = None) -> list[dict]:
     cat = load_catalogue()
     ids, keep, cell_cases = resolve(cat, case, claim)
     owner = {cl.id: c for c in cat.cases() for cl in c.claims}
-    raw = [r.to_json() for cid in ids for r in _run_claim(cat, owner[cid], owner[cid].claim(cid))]
+    raw = [r.to_json() for cid in ids for r in run_claim(cat, owner[cid], owner[cid].claim(cid))]
     return levels.finish(raw, cat, keep, cell_cases)
 
 

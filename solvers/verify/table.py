@@ -26,10 +26,10 @@ def cell_notes(table, records: list[dict]) -> dict[str, dict[str, list[str]]]:
 
 
 def cell_verdict(cell_claims: list[str], by_claim: dict[str, dict]) -> str:
-    """The aggregation rule of a cell over verdicts as given (levels._aggregate): fails if
+    """The aggregation rule of a cell over verdicts as given (levels.aggregate): fails if
     any fails, verified if all checkable ones are (open problems and statements without a
     formula are neutral), evidence if all are evidence or verified, else unchecked."""
-    from solvers.verify.levels import _aggregate
+    from solvers.verify.levels import aggregate
 
     recs = [by_claim[c] for c in cell_claims if c in by_claim]
-    return _aggregate([(r["verdict"], r) for r in recs]) if recs else ""
+    return aggregate([(r["verdict"], r) for r in recs]) if recs else ""

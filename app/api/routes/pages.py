@@ -59,13 +59,13 @@ async def case_page(case_id: str, settings: SettingsDep, verdicts: VerdictsDep,
 
 
 def _errata_rows(verdicts, settings) -> tuple[list[dict], list[dict], list[dict]]:
-    from app.api.routes.errata import _figure_findings, _records
+    from app.api.routes.errata import figure_findings_of, store_records
     from catalogue.load import load_catalogue
     from solvers.verify import errata
 
-    records, cat = _records(verdicts), load_catalogue()
+    records, cat = store_records(verdicts), load_catalogue()
     return (errata.errata(records, cat), errata.conventions(records, cat),
-            errata.findings(records, cat) + _figure_findings(
+            errata.findings(records, cat) + figure_findings_of(
                 settings.static_dir / "data" / "paper_figures.json"))
 
 

@@ -92,8 +92,8 @@ async def scene_check(scene_id: str, k: int, request: Request, pool: PoolDep,
     plot of exactly the data its verdict was taken from: what /scenes draws."""
     from app.services import kernel_prepare
     from app.services.jobs import dumps, prepare_scene_check
-    from solvers.scenes.teaching import load_scenes
     from solvers.scenes.scene_checks import check_json
+    from solvers.scenes.teaching import load_scenes
 
     s = load_scenes().get(scene_id)
     if s is None:

@@ -40,9 +40,11 @@ few nutation periods; their measured floor is <= 5e-12 (runs of verify), so TOL 
 import numpy as np
 from scipy.integrate import solve_ivp
 
+from solvers.integrate.integrator import integrate
 from solvers.kernels import layout as L
 from solvers.kernels.fields import rhs
-from solvers.models import reduced as rd
+from solvers.kernels.integrals import ENERGY, integral
+from solvers.models import reduced_systems as rd
 from solvers.verify.checks import pointwise
 from solvers.verify.checks.common import N_POINTS, N_SETTINGS, TOL, full_field, implementation
 from solvers.verify.params import draw, random_states
@@ -206,7 +208,6 @@ def check_solves_ode(catalogue, case, claim):
 def _good_run(P, y0, V):
     """A full run from y0 (compiled DOP853) sampled at N_SAMPLES times, or None if it
     meets a singularity or comes close to gamma3 = +-1 (reduced variables undefined)."""
-    from solvers.integrate.integrator import integrate
 
     t = np.linspace(0.0, T_RUN, N_SAMPLES)
     # generated=False: the general field, compiled once for every case, as the section runs
@@ -328,7 +329,6 @@ def rate_identity_residual(catalogue, case, claim, use_corrected=False, seed=2):
         except (IndexError, ValueError, np.linalg.LinAlgError) as e:
             if other != "energy":
                 raise
-            from solvers.kernels.integrals import ENERGY, integral
             ref = integral(ENERGY, P.model.model, y, P.p)
             note = (f"formula {other!r} cannot evaluate this model's state ({e}); "
                     "compared with the model's compiled energy (eq1.7) instead")
@@ -349,7 +349,7 @@ def _extend(name, applies, handler):
     CHECKS[name] = dispatch
 
 
-def _is_jet(catalogue, claim):
+def is_jet_claim(catalogue, claim):
     fid = claim.check_args.formula
     return fid is not None and _variables(catalogue, fid) in JET_VARIABLES
 
@@ -376,6 +376,6 @@ def _rate_check(catalogue, case, claim):
     return out
 
 
-_extend("reduced_agrees", _is_jet, _jet_check)
+_extend("reduced_agrees", is_jet_claim, _jet_check)
 _extend("identity", lambda cat, claim: claim.check_args.formula in RATE_FORMULAS, _rate_check)
 

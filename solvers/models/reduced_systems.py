@@ -62,7 +62,8 @@ class RevBody:
                    float(p[L.S3]), prof)
 
 
-def _body(b):
+def rev_body(b):
+    """A RevBody, from one or from the parameter vector."""
     return b if isinstance(b, RevBody) else RevBody.from_params(b)
 
 
@@ -89,7 +90,7 @@ def kappa(b, u):
 # --- maps ------------------------------------------------------------------------------
 def to_reduced(p, y):
     """(M, gamma) -> (gamma3, K1, K2, K3), (2.5) (k = 0) / (3.3) (k != 0)."""
-    b = _body(p)
+    b = rev_body(p)
     pv = np.asarray(p, dtype=float)
     M, g = y[:3], y[3:6]
     u = g[2]
@@ -108,7 +109,7 @@ def to_reduced(p, y):
 
 def from_reduced(p, x):
     """(gamma3, K1, K2, K3) -> (M, gamma) with gamma = (sqrt(1-gamma3^2), 0, gamma3)."""
-    b = _body(p)
+    b = rev_body(p)
     u, K1, K2, K3 = x
     sig = np.sqrt(1 - u * u)
     f1, f2 = profile(b.prof, u)[:2]
@@ -369,7 +370,7 @@ def routh_integrals(p, y):
     """(omega3/rho, (M, r)/R) of the Routh ball: (2.20) with its K1, K2 labels (exchanged
     with respect to (2.5)). omega3/rho = rho (m R^2 g3 (M,g) + I1 M3 + m a R ((M,g) + M3 g3)
     + m a^2 M3): the printed prefactor rho^-1 is a misprint (see routh_integrals_printed)."""
-    b = _body(p)
+    b = rev_body(p)
     R, a = b.prof.c, b.prof.a
     M, g = y[:3], y[3:6]
     Mg = M @ g
@@ -381,7 +382,7 @@ def routh_integrals(p, y):
 
 def routh_integrals_printed(p, y):
     """(2.20) as printed: K1 = rho^-1 (...), which is omega3/rho^3, not an integral."""
-    b = _body(p)
+    b = rev_body(p)
     I = routh_integrals(p, y)
     rho = rho0(b, y[5])
     return np.array([I[0] / rho**2, I[1]])
