@@ -97,6 +97,32 @@ def imports_of(path: Path, modules: set[str]) -> list[Import]:
     return found
 
 
+def private_attributes(path: Path, modules: set[str]) -> list[tuple[str, str, str]]:
+    """(module, imported module, name) for each `alias._name` read in a file, where alias
+    names a project module it imports (`import a.b as m`, `from a import b`)."""
+    module = module_name(path)
+    is_package = path.name == "__init__.py"
+    tree = ast.parse(path.read_text(encoding="utf-8"), filename=str(path))
+    aliases: dict[str, str] = {}
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            for a in node.names:
+                if a.name in modules and a.asname:
+                    aliases[a.asname] = a.name
+        elif isinstance(node, ast.ImportFrom):
+            target = _resolve(module, is_package, node)
+            for a in node.names:
+                if f"{target}.{a.name}" in modules:
+                    aliases[a.asname or a.name] = f"{target}.{a.name}"
+    out = []
+    for node in ast.walk(tree):
+        if (isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name)
+                and node.value.id in aliases and node.attr.startswith("_")
+                and not node.attr.startswith("__") and aliases[node.value.id] != module):
+            out.append((module, aliases[node.value.id], node.attr))
+    return out
+
+
 def all_imports() -> list[Import]:
     files = list(project_files())
     modules = {module_name(p) for p in files}
@@ -161,9 +187,16 @@ def circles(edges: dict[str, set[str]]) -> list[list[str]]:
     return sorted(result)
 
 
-def underscore_imports(imports: list[Import]) -> list[tuple[str, str, str]]:
-    """(importer, module, name) for each private name taken from another module."""
+def underscore_imports(imports: list[Import],
+                       attributes: bool = True) -> list[tuple[str, str, str]]:
+    """(importer, module, name) for each private name taken from another module, imported
+    by name or read as an attribute of the imported module."""
     out = []
+    if attributes:
+        files = list(project_files())
+        modules = {module_name(p) for p in files}
+        for path in files:
+            out.extend(private_attributes(path, modules))
     for imp in imports:
         for name in imp.names:
             if name.startswith("_") and not name.startswith("__"):

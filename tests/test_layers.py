@@ -53,7 +53,7 @@ def test_no_underscore_name_is_imported_across_modules():
 
 def test_the_underscore_finder_finds_one():
     imp = report.Import("a.b", "a.c", ("public", "_private", "__version__"), False, 1)
-    assert report.underscore_imports([imp]) == [("a.b", "a.c", "_private")]
+    assert report.underscore_imports([imp], attributes=False) == [("a.b", "a.c", "_private")]
 
 
 def test_the_catalogue_imports_no_solver_even_inside_a_function():

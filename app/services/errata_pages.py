@@ -24,6 +24,7 @@ from pathlib import Path
 
 from app import __version__
 from app.services import reader_pages
+from app.services.anchors import claim_anchor
 
 SECTION_TITLES = {"1": "Equations of motion", "2": "Body on a plane", "3": "Body on a sphere"}
 
@@ -129,8 +130,7 @@ def _res(x) -> str:
 
 
 def _claim_href(e: dict) -> str:
-    return e.get("href") or f"/case/{e['case']}#claim-" + re.sub(r"[^A-Za-z0-9_-]+", "_",
-                                                                 e["claim"])
+    return e.get("href") or f"/case/{e['case']}#{claim_anchor(e['claim'])}"
 
 
 def _claim_link(e: dict) -> str:

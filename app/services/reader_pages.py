@@ -12,6 +12,7 @@ from urllib.parse import urlsplit
 
 from app import __version__
 from app.services import howcheck, site_shell, ssr
+from app.services.anchors import claim_anchor
 from catalogue.glossary import load_glossary
 from catalogue.load import load_catalogue
 from catalogue.numbering import cite, printed
@@ -323,7 +324,7 @@ def _since_2002_html() -> str:
     notes = "".join(
         f'<li class="since-note" data-record="{escape(n.record)}">'
         f'<a href="/case/{escape("/".join(n.record.split("/")[:2]))}#'
-        f'{escape(ssr._anchor(n.record))}">{escape(_record_words(n.record))}</a>'
+        f'{escape(claim_anchor(n.record))}">{escape(_record_words(n.record))}</a>'
         f"{ssr.since_html(note_json(n))}</li>" for n in data.notes)
     return ('<h2 id="since-2002">Since 2002</h2><p>What later work says about every open '
             "cell, open claim, refuted conjecture and non-existence result, with how much of "

@@ -28,6 +28,7 @@ from functools import cache
 from typing import get_args
 
 from app.services import views
+from app.services.anchors import claim_anchor
 from catalogue.glossary import load_glossary
 from catalogue.load import load_catalogue
 from catalogue.numbering import cite, printed
@@ -79,11 +80,6 @@ MAX_TERMS = 24        # a query's words beyond these are ignored (q is at most 2
 # a word: letters and digits, joined by hyphens or apostrophes, or a printed number (2.24)
 _WORD = re.compile(r"\w+(?:(?:[-'’]|(?<=\d)\.(?=\d))\w+)*")
 _DYNAMIC = 1_000_000  # rowids of the rows from verdicts start here
-
-
-def claim_anchor(claim_id: str) -> str:
-    """The claim's anchor on its case page (case.js anchor(), ssr._anchor)."""
-    return "claim-" + re.sub(r"[^A-Za-z0-9_-]+", "_", claim_id)
 
 
 def _fold(s: str) -> str:

@@ -8,15 +8,10 @@ words with its verdict; the paper's internal LaTeX labels are not shown.
 
 from __future__ import annotations
 
-import re
 from html import escape
 
+from app.services.anchors import claim_anchor
 from solvers.verify import marks as vocab
-
-
-def _anchor(claim_id: str) -> str:
-    # the same anchors as the page's script (case.js anchor())
-    return "claim-" + re.sub(r"[^A-Za-z0-9_-]+", "_", claim_id)
 
 
 def _info(mark: str):
@@ -41,7 +36,7 @@ def claim_label(c: dict) -> str:
 def permalink_html(c: dict) -> str:
     """The claim's visible permalink, the same as the script draws (cite.js permalinkHtml):
     with scripts off a reader can still link to one claim."""
-    a = _anchor(c["id"])
+    a = claim_anchor(c["id"])
     return (f'<a class="permalink" href="#{a}" title="Permalink to this claim" '
             f'aria-label="Permalink to the claim {escape(claim_label(c))}">¶</a>')
 
@@ -57,7 +52,7 @@ def claim_html(c: dict) -> str:
             f'{f" ({links})" if links else ""}.</p>') if v.get("mark_note") else ""
     msg = (f"<details><summary>How it was checked</summary><p>{escape(v['message'])}</p>"
            f"</details>") if v.get("message") else ""
-    return (f'<article class="claim ssr" id="{_anchor(c["id"])}">'
+    return (f'<article class="claim ssr" id="{claim_anchor(c["id"])}">'
             f'<h3>{permalink_html(c)} {escape(claim_label(c))}: {escape(c["plain"])}</h3>'
             f'<p>Mark: {badge_html(v.get("mark") or "not-checkable")}'
             f'{escape(residual)}.</p>{note}{where}{msg}</article>')
@@ -117,7 +112,7 @@ def case_page(template: str, detail: dict) -> str:
     if cells:
         claims += ('<section class="since-cells ssr" id="since-2002"><h3>Since 2002: the '
                    'table\'s open cells</h3>' +
-                   "".join(f'<div id="{_anchor(n["record"])}"><p>Cell '
+                   "".join(f'<div id="{claim_anchor(n["record"])}"><p>Cell '
                            f'{escape(n["record"].split("/cell/")[1].replace("_", " "))}:</p>'
                            f'{since_html(n)}</div>' for n in cells) + "</section>")
     summary = escape(detail.get("summary") or "")

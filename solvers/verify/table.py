@@ -8,9 +8,6 @@ verified, with a note; the ✗ stays on the formula record.
 
 from solvers.verify.levels import NEUTRAL_CHECKS, cell_id  # noqa: F401  (re-exported)
 
-MARKS = {"verified": "✓", "fails": "✗", "evidence": "~", "unchecked": "?", "": ""}
-
-
 def table_marks(table, records: list[dict]) -> dict[str, dict[str, str]]:
     """{case id: {row key: verdict}} for one catalogue table, from the cell records."""
     by_claim = {r["claim"]: r for r in records}

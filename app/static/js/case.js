@@ -2,6 +2,7 @@
 // printed formula, source and verdict, and a simulate panel with plots and a 3D scene.
 "use strict";
 
+import { claimAnchor as anchor } from "./anchor.js";
 import { api, ApiError, download, escapeHtml, fmt } from "./api.js";
 import { mathHtml, printedHtml, textHtml } from "./latex.js";
 import { badgeHtml, erratumLinks, markHtml, markInfo, markNoteHtml, tallyHtml } from "./marks.js";
@@ -17,7 +18,6 @@ import { symbolsHtml } from "./notation.js";
 
 const caseId = decodeURIComponent(location.pathname.replace(/^\/case\//, "").replace(/\/$/, ""));
 const $ = (id) => document.getElementById(id);
-const anchor = (claimId) => "claim-" + claimId.replace(/[^A-Za-z0-9_-]+/g, "_");
 const PRETTY = { g1: "γ₁", g2: "γ₂", g3: "γ₃", M1: "M₁", M2: "M₂", M3: "M₃", r1: "r₁", r2: "r₂",
   mu: "μ", lambda: "λ", eps: "ε" };
 const RUN_DEFAULTS = { t_end: "100", samples: "801", rtol: "1e-10", atol: "1e-12", step: "0.1" };

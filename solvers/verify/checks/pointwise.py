@@ -208,7 +208,7 @@ def check_measure_fails(catalogue, case, claim):
 
 # --- identities and printed systems --------------------------------------------------------
 
-def _rel(a, b):
+def relative_difference(a, b):
     a, b = np.atleast_1d(np.asarray(a, dtype=complex)), np.atleast_1d(np.asarray(b, dtype=complex))
     return float(np.max(np.abs(a - b)) / max(np.max(np.abs(a)), np.max(np.abs(b)), 1e-300))
 
@@ -219,19 +219,19 @@ def identity_residual(catalogue, case, claim, use_corrected=False, seed=2):
     pair = COMPARISONS.get((fid, other))
     if pair is not None:       # registered comparison (registry.compares)
         def residual(P, y):
-            return _rel(*pair(P, to_vars(V, P, y), corrected=use_corrected))
+            return relative_difference(*pair(P, to_vars(V, P, y), corrected=use_corrected))
         return max_residual(sample_points(case, claim, seed), residual)[0]
     f = implementation(fid, use_corrected)
     if other is None:          # the formula returns (lhs, rhs): its own two printed forms
         def residual(P, y):
             lhs, rhs = f(P, to_vars(V, P, y))
-            return _rel(lhs, rhs)
+            return relative_difference(lhs, rhs)
     else:
         g = implementation(other)
         W = _formula_vars(catalogue, other)
 
         def residual(P, y):
-            return _rel(f(P, to_vars(V, P, y)), g(P, to_vars(W, P, y)))
+            return relative_difference(f(P, to_vars(V, P, y)), g(P, to_vars(W, P, y)))
     return max_residual(sample_points(case, claim, seed), residual)[0]
 
 
@@ -263,7 +263,7 @@ def reduced_residual(catalogue, case, claim, use_corrected=False, seed=3):
         x = np.asarray(to_vars(V, P, y), dtype=float)
         printed = np.asarray(f(P, x), dtype=float)
         want = xdot[1:] / xdot[0] if V in PARAMETRISED else xdot
-        return _rel(printed, want)
+        return relative_difference(printed, want)
 
     return max_residual(sample_points(case, claim, seed), residual)[0]
 

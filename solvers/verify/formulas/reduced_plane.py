@@ -208,7 +208,7 @@ def routh_gyro_linear(P, x):
 def quadratic_condition(P, x):
     """(2.21): lambda(gamma3) = I3 (1 - (f2/f1)') / (m f1 (f1 - f2')); x = (gamma3,)."""
     b = body(P)
-    c1, c2 = rd._coeffs(b, x[0])
+    c1, c2 = rd.linear_coeffs(b, x[0])
     return c1 / c2
 
 
