@@ -19,7 +19,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[2]
 FORMULA_DIR = ROOT / "solvers" / "verify" / "formulas"
 # sources outside solvers/ that change what a check computes
-SHARED_EXTRA = ("catalogue/schema.py", "catalogue/load.py", "app/services/jobs.py")
+SHARED_EXTRA = ("catalogue/schema.py", "catalogue/kinds.py", "catalogue/claims.py",
+                "catalogue/load.py", "app/services/jobs.py", "app/services/worker_run.py")
 
 
 def _digest(*parts: bytes) -> str:
