@@ -10,8 +10,10 @@ from html import escape
 from pathlib import Path
 from urllib.parse import urlsplit
 
+from markupsafe import Markup
+
 from app import __version__
-from app.services import howcheck, site_shell, ssr
+from app.services import howcheck, ssr, templates
 from app.services.anchors import claim_anchor
 from catalogue.glossary import load_glossary
 from catalogue.load import load_catalogue
@@ -20,17 +22,9 @@ from catalogue.since_2002 import load_since_2002, note_json
 
 PAPER_DOI = "10.1070/RD2002v007n02ABEH000204"   # the seed's \doi{...}
 
-_PLACEHOLDER = re.compile(r"\{\{(printed|fig):([^}]+)\}\}")
 # the address of each static page, for the navigation's aria-current
 _PAGE_PATHS = {"errata.html": "/errata", "poincare.html": "/poincare",
                "scenes.html": "/scenes", "work-precision.html": "/work-precision"}
-
-
-def _number(kind: str, label: str) -> str:
-    num = printed(label)
-    if num is None:
-        raise KeyError(f"no printed number for {label!r}")
-    return num.removeprefix("Fig. ") if kind == "fig" else num
 
 
 def static_page(path: Path) -> str:
@@ -39,31 +33,18 @@ def static_page(path: Path) -> str:
     return render_page(path.read_text(encoding="utf-8"), path.name)
 
 
-def render_page(text: str, name: str) -> str:
-    """`static_page` for a page's text already in hand (`name`: its file name)."""
-    html = _PLACEHOLDER.sub(lambda m: _number(m[1], m[2]), text)
-    html = site_shell.fill(html, _PAGE_PATHS.get(name))
-    if name == "index.html":
-        html = html.replace("</main>", cite_box() + "</main>", 1)
-    return html
+def render_page(text: str, name: str, **context) -> str:
+    """`static_page` for a page's text already in hand (`name`: its file name), with the
+    values of the template's own variables in `context` (ssr.py: the server-drawn parts)."""
+    if name == "index.html":      # the home page's Cite box, at the end of its <main>
+        context["cite_box"] = Markup(cite_box())
+    return templates.render(text, _PAGE_PATHS.get(name), **context)
 
 
 def layout(title: str, body: str, current: str | None = None) -> str:
-    return f"""<!doctype html>
-<html lang="en">
-<head>
-{site_shell.HEAD}
-<title>{escape(title)} — Rolling hierarchy</title>
-</head>
-<body>
-{site_shell.header("Skip to the content", current)}
-<main id="main" class="reader">
-<h1>{escape(title)}</h1>
-{body}
-</main>
-{site_shell.FOOTER}
-</body>
-</html>"""
+    """A page built here: its title and body in the reader's page (templates/reader.html)."""
+    return templates.render_file("reader.html", current, title=Markup(escape(title)),
+                                 body=Markup(body))
 
 
 def tex(s: str) -> str:

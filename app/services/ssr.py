@@ -10,6 +10,8 @@ from __future__ import annotations
 
 from html import escape
 
+from markupsafe import Markup
+
 from app.services.anchors import claim_anchor
 from solvers.verify import marks as vocab
 
@@ -102,10 +104,10 @@ def notation_html(refs: list[dict]) -> str:
         for s in refs) + "</ul>")
 
 
-def case_page(template: str, detail: dict) -> str:
-    """case.html with the case's title, its counts by mark and its claims filled in; each
-    claim and open cell with its 'since 2002' note, if it has one."""
-    title = escape(detail["title"])
+def case_context(detail: dict) -> dict:
+    """The server-drawn parts of case.html: the case's title, its counts by mark, its
+    claims (each claim and open cell with its 'since 2002' note, if it has one) and the
+    symbols of its formulas."""
     notes = {n["record"]: n for n in detail.get("since_2002") or []}
     claims = "".join(_with_since(claim_html(c), c, notes) for c in detail["claims"])
     cells = [n for n in notes.values() if "/cell/" in n["record"]]
@@ -115,20 +117,10 @@ def case_page(template: str, detail: dict) -> str:
                    "".join(f'<div id="{claim_anchor(n["record"])}"><p>Cell '
                            f'{escape(n["record"].split("/cell/")[1].replace("_", " "))}:</p>'
                            f'{since_html(n)}</div>' for n in cells) + "</section>")
-    summary = escape(detail.get("summary") or "")
-    return (template
-            .replace("<title>Case — Rolling hierarchy</title>",
-                     f"<title>{title} — Rolling hierarchy</title>", 1)
-            .replace('<h1 id="case-title">Loading…</h1>', f'<h1 id="case-title">{title}</h1>', 1)
-            .replace('<div class="tally" id="tally" aria-live="polite"></div>',
-                     '<div class="tally" id="tally" aria-live="polite"><p class="mark-summary" '
-                     f'id="mark-summary">{summary}</p></div>', 1)
-            .replace('<div id="claimlist"></div>',
-                     f'<div id="claimlist"><p class="status ssr">{summary}</p>{claims}</div>',
-                     1)
-            .replace('<div id="symbollist"></div>',
-                     f'<div id="symbollist">{notation_html(detail.get("notation") or [])}'
-                     "</div>", 1))
+    return {"title": Markup(escape(detail["title"])),
+            "summary": Markup(escape(detail.get("summary") or "")),
+            "claims": Markup(claims),
+            "notation": Markup(notation_html(detail.get("notation") or []))}
 
 
 def shade_why(c: dict) -> str:
@@ -221,14 +213,8 @@ def table_html(t: dict) -> str:
             f'<tbody>{"".join(rows)}</tbody></table>')
 
 
-def home_page(template: str, tables: dict[str, dict], summary: str = "") -> str:
-    """index.html with Tables 1 and 2, the key to the marks and the counts by mark in the
-    HTML itself."""
-    template = template.replace("<!--marks-legend-->", legend_html(), 1)
-    template = template.replace("<!--marks-summary-->", escape(summary), 1)
-    for n, t in enumerate(tables.values(), start=1):
-        loading = (f'<div class="table-wrap" tabindex="0"><p class="loading">'
-                   f'Loading Table {n}…</p></div>')
-        template = template.replace(
-            loading, f'<div class="table-wrap" tabindex="0">{table_html(t)}</div>', 1)
-    return template
+def home_context(tables: dict[str, dict], summary: str = "") -> dict:
+    """The server-drawn parts of index.html: Tables 1 and 2, the key to the marks and the
+    counts by mark."""
+    return {"legend": Markup(legend_html()), "summary": Markup(escape(summary)),
+            "tables": [Markup(table_html(t)) for t in tables.values()]}

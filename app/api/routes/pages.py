@@ -34,7 +34,7 @@ async def home(settings: SettingsDep, verdicts: VerdictsDep, pages: PagesDep) ->
         by_claim, pending = verdicts.by_claim(), verdicts.pending()
         tables = {tid: views.table(tid, by_claim, pending) for tid in ("plane", "sphere")}
         summary = views.cells_sentence(views.tables_cell_marks(tables.values()))
-        return render_page(ssr.home_page(path.read_text(), tables, summary), "index.html")
+        return render_page(path.read_text(), "index.html", **ssr.home_context(tables, summary))
 
     return HTMLResponse(pages.get("/", pages.stamp(verdicts, path), build))
 
@@ -53,7 +53,7 @@ async def case_page(case_id: str, settings: SettingsDep, verdicts: VerdictsDep,
         # the claims and their verdicts in the HTML itself (readable with scripts off)
         detail = views.case_detail(case_id, verdicts.by_claim(), verdicts.corrections(),
                                    verdicts.case_state(case_id))
-        return render_page(ssr.case_page(path.read_text(), detail), "case.html")
+        return render_page(path.read_text(), "case.html", **ssr.case_context(detail))
 
     return HTMLResponse(pages.get(f"/case/{case_id}", pages.stamp(verdicts, path), build))
 
