@@ -13,6 +13,7 @@ from urllib.parse import urlsplit
 from markupsafe import Markup
 
 from app import __version__
+from app.core.config import get_settings
 from app.services import howcheck, ssr, templates
 from app.services.anchors import claim_anchor
 from catalogue.glossary import load_glossary
@@ -154,7 +155,6 @@ def cite_key(what: str = "") -> str:
 
 
 def public_url() -> str | None:
-    from app.core.config import get_settings
 
     return get_settings().public_url
 

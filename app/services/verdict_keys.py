@@ -16,6 +16,8 @@ import json
 from functools import cache
 from pathlib import Path
 
+from catalogue.load import load_catalogue
+
 ROOT = Path(__file__).resolve().parents[2]
 FORMULA_DIR = ROOT / "solvers" / "verify" / "formulas"
 # sources outside solvers/ that change what a check computes
@@ -73,7 +75,6 @@ def _implementing_modules(fid: str) -> list[str]:
 
 def case_keys(case_ids: list[str]) -> dict[str, str]:
     """case id -> hash of everything its verdicts depend on."""
-    from catalogue.load import load_catalogue
 
     cat = load_catalogue()
     formulas = {f.id: f for f in cat.formulas}

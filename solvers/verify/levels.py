@@ -53,7 +53,7 @@ its JSON and the API.
 
 from __future__ import annotations
 
-from catalogue.schema import Case, Catalogue
+from catalogue.schema import Case, Catalogue, RowKey
 from solvers.verify import plain_notes
 
 NEUTRAL_CHECKS = frozenset({"open_problem", "formula_not_printed", "not_checkable"})
@@ -368,7 +368,6 @@ def plan(cat: Catalogue, case: str | None, claim: str | None):
     """(claim ids to run, keep(record) -> bool, case ids of the cell records) for
     `verify(case, claim)`; claim may be any record id: a claim, `<claim>/corrected` or a
     cell `<case>/cell/<row>`. Raises KeyError for an unknown id."""
-    from catalogue.schema import RowKey
 
     cases = [c for c in cat.cases() if case in (None, c.id)]
     if claim is None:

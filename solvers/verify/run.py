@@ -6,10 +6,13 @@ from dataclasses import asdict, dataclass
 import numpy as np
 
 from catalogue.load import load_catalogue
+from solvers.errors import InputError
 from solvers.verify import (
     checks,  # noqa: F401  (registers the checks)
     formulas,  # noqa: F401  (registers the formulas)
+    levels,
 )
+from solvers.verify.checks.common import TOL
 from solvers.verify.exact.certifiers import exact_for
 from solvers.verify.registry import CHECKS, CORRECTED, CORRECTION_NOTES, Outcome
 
@@ -58,7 +61,6 @@ def run_claim(catalogue, case, claim) -> list[Record]:
     args = claim.check_args          # the corrected object: the first with a correction
     fid = next((f for f in (args.formula, args.system, args.bracket) if f in CORRECTED), None)
     if out.verdict == "fails" and out.corrected_residual is not None and fid in CORRECTED:
-        from solvers.verify.checks.common import TOL
         ok = out.corrected_residual <= TOL
         records.append(Record(
             case.id, f"{claim.id}/corrected", claim.kind.value,
@@ -117,7 +119,6 @@ def verify(case: str | None = None, claim: str | None = None) -> list[dict]:
     >>> reduction["label"], reduction["verdict"], reduction["qualifier"]
     ('eq3.13', 'fails', 'refuted')
     """
-    from solvers.verify import levels
 
     cat = load_catalogue()
     ids, keep, cell_cases = resolve(cat, case, claim)
@@ -128,8 +129,6 @@ def verify(case: str | None = None, claim: str | None = None) -> list[dict]:
 
 def resolve(cat, case: str | None, claim: str | None):
     """levels.plan with clear errors for an unknown case or record id."""
-    from solvers.errors import InputError
-    from solvers.verify import levels
 
     known = [c.id for c in cat.cases()]
     if case is not None and case not in known:

@@ -9,9 +9,11 @@ from fastapi import APIRouter, HTTPException, Request
 from fastapi.responses import FileResponse, HTMLResponse, RedirectResponse, Response
 
 from app.api.deps import PagesDep, SettingsDep, VerdictsDep
+from app.api.routes.errata import figure_findings_of, store_records
 from app.core.errors import not_found_page
 from app.services import errata_pages, ssr, views
 from app.services.reader_pages import render_page
+from catalogue.load import load_catalogue
 
 router = APIRouter(include_in_schema=False)
 _ONE_DAY = {"Cache-Control": "public, max-age=86400"}
@@ -59,8 +61,6 @@ async def case_page(case_id: str, settings: SettingsDep, verdicts: VerdictsDep,
 
 
 def _errata_rows(verdicts, settings) -> tuple[list[dict], list[dict], list[dict]]:
-    from app.api.routes.errata import figure_findings_of, store_records
-    from catalogue.load import load_catalogue
     from solvers.verify import errata
 
     records, cat = store_records(verdicts), load_catalogue()
