@@ -41,6 +41,9 @@ import numpy as np
 from app.services.kernel_warmup import KernelWarmup
 from app.services.worker_run import lower_priority, run_request
 
+# The solvers are imported inside the functions below: they load numba (and heyoka for the
+# Taylor rungs), which the server's process must not wait for at start-up.
+
 _PREPARED: set = set()     # keys prepared by this server process (their kernels are cached)
 _WARMED: set = set()
 _INFLIGHT: dict = {}       # key -> Event: a second request of a key waits for the first

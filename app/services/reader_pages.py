@@ -20,6 +20,7 @@ from catalogue.glossary import load_glossary
 from catalogue.load import load_catalogue
 from catalogue.numbering import cite, printed
 from catalogue.since_2002 import load_since_2002, note_json
+from solvers.verify import marks as vocab
 
 PAPER_DOI = "10.1070/RD2002v007n02ABEH000204"   # the seed's \doi{...}
 
@@ -166,7 +167,6 @@ def cite_data(base_url: str | None = None) -> dict:
     `base_url` (returned as `public_url`): the configured public address
     (ROLLING_PUBLIC_URL), else None and the page's own address is used; `marks`: each
     mark's shape and name, for a claim's box."""
-    from solvers.verify import marks as vocab
 
     r = load_catalogue().reference(PAPER_ID)
     paper = {"author": " and ".join(_bib_name(a) for a in r.authors), "title": r.title,

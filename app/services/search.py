@@ -35,6 +35,7 @@ from catalogue.numbering import cite, printed
 from catalogue.schema import ClaimKind
 from solvers.models.cases import CaseSpec, beyond_table_ids, registry
 from solvers.scenes.teaching import load_scenes
+from solvers.verify import errata as er
 from solvers.verify import marks as vocab
 
 log = logging.getLogger(__name__)
@@ -189,7 +190,6 @@ def _glossary_docs() -> list[dict]:
 def _verdict_docs(records: list[dict]) -> list[dict]:
     """The rows GET /api/errata, /api/conventions and /api/findings list, from the
     verdicts computed so far."""
-    from solvers.verify import errata as er
 
     cat = load_catalogue()
     docs = []

@@ -55,7 +55,7 @@ def _module_sources() -> dict[str, bytes]:
 def _implementing_modules(fid: str) -> list[str]:
     """The formula modules holding the implementation, correction or comparison of `fid`
     (their short names); every module when the registry cannot be imported."""
-    try:
+    try:   # imported here: the formulas load sympy and the kernels, only for a re-check
         import solvers.verify.formulas  # noqa: F401  (registers on import)
         from solvers.verify import registry as reg
     except Exception:  # the check itself will say so; hash conservatively

@@ -23,6 +23,7 @@ from app.services.verdict_db import VerdictDB
 from app.services.verdict_keys import case_keys
 from catalogue.load import load_catalogue
 from catalogue.numbering import cite
+from solvers.verify import marks as vocab
 from solvers.verify.levels import DECIDING, combine, formula_mark
 
 log = logging.getLogger("rolling.verdicts")
@@ -215,7 +216,6 @@ def summary(claim_ids: list[str], by_claim: dict[str, dict], row: str,
     check failed) is not checkable."""
     if not claim_ids:
         return None
-    from solvers.verify import marks as vocab
 
     cat = load_catalogue()
     marks, notes = [], []

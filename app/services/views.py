@@ -18,7 +18,7 @@ from catalogue.since_2002 import note_json, notes_for
 from catalogue.symbols import plain as plain_symbol
 from catalogue.symbols import symbols as symbol_tokens
 from solvers.models.bodies import STATE_LABELS
-from solvers.models.cases import CaseSpec, beyond_table_ids, registry
+from solvers.models.cases import CaseSpec, beyond_table_ids, build, registry
 from solvers.verify import marks as vocab
 from solvers.verify.levels import formula_mark
 
@@ -220,7 +220,6 @@ def claim(c: Claim, by_claim: dict[str, dict], corrections: dict[str, list[dict]
 
 
 def runnable(spec: CaseSpec) -> dict:
-    from solvers.models.cases import build
 
     model = build(spec.id, spec.example)
     params = [{"name": n, "required": True, "default": None,

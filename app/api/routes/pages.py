@@ -14,6 +14,7 @@ from app.core.errors import not_found_page
 from app.services import errata_pages, ssr, views
 from app.services.reader_pages import render_page
 from catalogue.load import load_catalogue
+from solvers.verify import errata
 
 router = APIRouter(include_in_schema=False)
 _ONE_DAY = {"Cache-Control": "public, max-age=86400"}
@@ -61,7 +62,6 @@ async def case_page(case_id: str, settings: SettingsDep, verdicts: VerdictsDep,
 
 
 def _errata_rows(verdicts, settings) -> tuple[list[dict], list[dict], list[dict]]:
-    from solvers.verify import errata
 
     records, cat = store_records(verdicts), load_catalogue()
     return (errata.errata(records, cat), errata.conventions(records, cat),
