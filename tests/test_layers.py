@@ -25,6 +25,17 @@ KERNEL_REDESIGN = {
 }
 
 
+# Files still over the limit, each being split apart from this check (the kernels, the
+# integrator, the command line); any other file over it fails.
+LONG_ELSEWHERE = {"solvers/integrate/integrator.py", "solvers/kernels/generate.py",
+                  "solvers/kernels/rk.py", "app/cli.py"}
+
+
+def test_no_file_is_over_the_line_limit():
+    long = {path for path, _ in report.long_files()}
+    assert long - LONG_ELSEWHERE == set(), report.long_files()
+
+
 def test_the_import_linter_contracts_are_kept():
     exe = shutil.which("lint-imports", path=str(Path(sys.executable).parent))
     if exe is None:

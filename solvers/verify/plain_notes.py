@@ -10,11 +10,10 @@ know gets a sentence that says only that, and points to the details."""
 
 from __future__ import annotations
 
-from solvers.verify.checks.common import TOL
-
 
 def _tol() -> float:
     # the checks' tolerance; imported late: solvers.verify.checks loads every check (seconds)
+    from solvers.verify.checks.common import TOL
 
     return TOL
 
