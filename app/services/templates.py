@@ -57,7 +57,9 @@ def environment() -> Environment:
                       keep_trailing_newline=True, extensions=[ShortForms],
                       undefined=StrictUndefined)
     env.globals.update(head=Markup(site_shell.HEAD), site_footer=Markup(site_shell.FOOTER),
-                       printed=paper_number, fig=figure_number)
+                       printed=paper_number, fig=figure_number,
+                       # what a part drawn by the page's script shows until it is drawn
+                       loading=Markup('<p class="loading">Loading…</p>'))
     return env
 
 

@@ -83,9 +83,8 @@ async def errata_page(settings: SettingsDep, verdicts: VerdictsDep,
 
     def build() -> str:
         ers, cvs, fds = _errata_rows(verdicts, settings)
-        html = errata_pages.errata_page(path.read_text(), ers, cvs, fds, verdicts.state,
-                                        len(verdicts.records), len(verdicts.case_ids))
-        return render_page(html, "errata.html")
+        return render_page(path.read_text(), "errata.html", **errata_pages.errata_context(
+            ers, cvs, fds, verdicts.state, len(verdicts.records), len(verdicts.case_ids)))
 
     # the figure findings come from a file of their own: its change is a new page too
     figures = settings.static_dir / "data" / "paper_figures.json"
