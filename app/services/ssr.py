@@ -43,7 +43,8 @@ def permalink_html(c: dict) -> str:
             f'aria-label="Permalink to the claim {escape(claim_label(c))}">¶</a>')
 
 
-def claim_html(c: dict) -> str:
+def claim_html(c: dict, since: str = "") -> str:
+    """A claim as an article, with its 'since 2002' note (`since`, since_html) last."""
     v = c["verdict"]
     residual = (f"; largest normalised residual {v['residual']:.1e}"
                 if isinstance(v.get("residual"), float) else "")
@@ -57,7 +58,7 @@ def claim_html(c: dict) -> str:
     return (f'<article class="claim ssr" id="{claim_anchor(c["id"])}">'
             f'<h3>{permalink_html(c)} {escape(claim_label(c))}: {escape(c["plain"])}</h3>'
             f'<p>Mark: {badge_html(v.get("mark") or "not-checkable")}'
-            f'{escape(residual)}.</p>{note}{where}{msg}</article>')
+            f'{escape(residual)}.</p>{note}{where}{msg}{since}</article>')
 
 
 ACCESS_WORDS = {"full": "read in full", "abstract": "only abstracts or records read",
@@ -77,12 +78,6 @@ def since_html(n: dict) -> str:
             f'data-kind="{escape(n["kind"])}" data-access="{escape(n["access"])}">'
             f'<p><strong>Since 2002</strong> ({escape(n["kind"])}; '
             f'{ACCESS_WORDS[n["access"]]}): {escape(n["note"])}</p>{refs}{project}</aside>')
-
-
-def _with_since(claim_html_text: str, c: dict, notes: dict) -> str:
-    n = notes.get(c["id"])
-    return claim_html_text.replace("</article>", since_html(n) + "</article>", 1) \
-        if n else claim_html_text
 
 
 def symbol_link(s: dict) -> str:
@@ -109,7 +104,8 @@ def case_context(detail: dict) -> dict:
     claims (each claim and open cell with its 'since 2002' note, if it has one) and the
     symbols of its formulas."""
     notes = {n["record"]: n for n in detail.get("since_2002") or []}
-    claims = "".join(_with_since(claim_html(c), c, notes) for c in detail["claims"])
+    claims = "".join(claim_html(c, since_html(notes[c["id"]]) if c["id"] in notes else "")
+                     for c in detail["claims"])
     cells = [n for n in notes.values() if "/cell/" in n["record"]]
     if cells:
         claims += ('<section class="since-cells ssr" id="since-2002"><h3>Since 2002: the '
