@@ -30,7 +30,7 @@ BALL = {"case": "plane/chaplygin-ball", "params": {"I1": 1, "I2": 2, "I3": 3, "m
 
 
 def json_before(res, max_steps):
-    from app.services.jobs import _finite
+    from app.services.payloads import finite as _finite
 
     out = res.to_json()
     out["stats"]["max_steps"] = max_steps

@@ -84,7 +84,7 @@ def best(scene, the_plan):
 def scenes() -> dict[str, Scene]:
     out = dict(SCENES)
     try:
-        from catalogue.scenes import load_scenes
+        from solvers.scenes.teaching import load_scenes
 
         out.update({f"preset:{k}": v.scene for k, v in load_scenes().items()})
     except Exception as exc:  # the presets are a colleague's; the bench runs without them

@@ -26,7 +26,7 @@ FILES = {
 }
 
 
-class _UniqueKeyLoader(yaml.SafeLoader):
+class UniqueKeyLoader(yaml.SafeLoader):
     """SafeLoader that refuses duplicate mapping keys (PyYAML silently keeps the last)."""
 
 
@@ -42,7 +42,7 @@ def _mapping_no_duplicates(loader: yaml.SafeLoader, node: yaml.MappingNode) -> d
     return loader.construct_mapping(node)
 
 
-_UniqueKeyLoader.add_constructor(
+UniqueKeyLoader.add_constructor(
     yaml.resolver.BaseResolver.DEFAULT_MAPPING_TAG, _mapping_no_duplicates
 )
 
@@ -52,7 +52,7 @@ def read_raw(directory: Path = DATA_DIR) -> dict[str, Any]:
     raw: dict[str, Any] = {}
     for field, name in FILES.items():
         with open(directory / name, encoding="utf-8") as fh:
-            raw[field] = yaml.load(fh, Loader=_UniqueKeyLoader)  # a SafeLoader subclass
+            raw[field] = yaml.load(fh, Loader=UniqueKeyLoader)  # a SafeLoader subclass
     return raw
 
 
@@ -72,7 +72,7 @@ def load_corrected_forms(directory: Path = DATA_DIR) -> dict[str, CorrectedForm]
     """corrected_forms.yaml validated: formula id -> its corrected form (latex, change and
     the formula whose display is corrected); every `display` names a formula."""
     with open(directory / "corrected_forms.yaml", encoding="utf-8") as fh:
-        raw = yaml.load(fh, Loader=_UniqueKeyLoader)
+        raw = yaml.load(fh, Loader=UniqueKeyLoader)
     forms = CorrectedForms.model_validate(raw).root
     known = {f.id for f in load_catalogue().formulas} if directory == DATA_DIR else None
     for fid, cf in forms.items():

@@ -13,6 +13,7 @@ import yaml
 from pydantic import BaseModel, ConfigDict, field_validator, model_validator
 
 from catalogue.glossary import load_glossary
+from catalogue.numbering import printed
 from catalogue.schema import LABEL_RE
 from catalogue.symbols import symbols_of_math
 
@@ -28,7 +29,6 @@ class Definition(BaseModel):
     @field_validator("labels")
     @classmethod
     def _labels(cls, v: list[str]) -> list[str]:
-        from catalogue.numbering import printed
 
         for lab in v:
             if not LABEL_RE.match(lab) or printed(lab) is None:

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import re
 
+from catalogue.load import load_catalogue
 from catalogue.numbering import cite
 
 # the symbol each condition key stands for on the page
@@ -90,7 +91,6 @@ def cite_names(tex: str | None) -> str | None:
     number the references by. A key whose authors the paper does not name stays a key."""
     if not tex or "\\cite" not in tex:
         return tex
-    from catalogue.load import load_catalogue
 
     refs = {r.id: r for r in load_catalogue().references}
 

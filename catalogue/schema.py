@@ -12,7 +12,9 @@ models are its contract.
       references: Reference         (references.yaml: \\cite keys and uncited names)
       formulas: Formula             (formulas.yaml: one entry per formula the solver implements)
 
-Every model forbids unknown keys. Cross-references (case ids of merged cells, claim ids of
+The vocabularies (enumerations) and the Strict base are in catalogue/kinds.py, cells and
+claims in catalogue/claims.py; every name is importable from here. Every model forbids
+unknown keys. Cross-references (case ids of merged cells, claim ids of
 cells, reference keys of attributions, formula ids of check arguments) are checked when a
 Catalogue is built, so a dangling key fails at load time, not in the solver.
 """
@@ -20,396 +22,55 @@ Catalogue is built, so a dangling key fails at load time, not in the solver.
 from __future__ import annotations
 
 import re
-from enum import StrEnum
 from typing import Literal
 
-from pydantic import BaseModel, ConfigDict, Field, RootModel, field_validator, model_validator
+from pydantic import Field, RootModel, field_validator, model_validator
 
-
-class Strict(BaseModel):
-    """Base of every catalogue model: unknown keys are errors, loaded data is read-only."""
-
-    model_config = ConfigDict(extra="forbid", frozen=True, populate_by_name=True)
-
-
-# --- enumerations ---------------------------------------------------------------------
-
-
-class Support(StrEnum):
-    PLANE = "plane"
-    SPHERE = "sphere"
-
-
-class Body(StrEnum):
-    BALL = "ball"
-    ELLIPSOID = "ellipsoid"
-    BODY_OF_REVOLUTION = "body-of-revolution"
-    ROUND_DISK = "round-disk"
-    FLAT_BASE = "flat-base"
-    ARBITRARY = "arbitrary"
-
-
-class RowKey(StrEnum):
-    """Rows of Tables 1 and 2 (Table 2 has no `authors` row)."""
-
-    TENSOR_OF_INERTIA = "tensor_of_inertia"
-    SURFACE = "surface"
-    RESTRICTIONS = "restrictions"
-    MEASURE = "measure"
-    INTEGRALS = "integrals"
-    GYROSTAT = "gyrostat"
-    HAMILTONIAN_FORM = "hamiltonian_form"
-    AUTHORS = "authors"
-    GENERALIZATIONS = "generalizations"
-
-
-# Rows that describe the case rather than an invariant: the paper's gray never applies.
-DESCRIPTIVE_ROWS = frozenset(
-    {RowKey.TENSOR_OF_INERTIA, RowKey.SURFACE, RowKey.RESTRICTIONS, RowKey.AUTHORS}
+from catalogue.claims import (
+    CASE_ID_RE,
+    CLAIM_ID_RE,
+    FORMULA_ID_RE,
+    LABEL_RE,
+    REF_ID_RE,
+    Attribution,
+    Cell,
+    CheckArgs,
+    Claim,
+    Conditions,
+    SubRow,
+    check_labels,
+)
+from catalogue.kinds import (
+    ARG_ROLES,
+    DESCRIPTIVE_ROWS,
+    FORMULA_ROLE_OF_CHECK,
+    NEGATIVE_CHECKS,
+    REQUIRED_ARGS,
+    Body,
+    CheckName,
+    ClaimKind,
+    FormulaRole,
+    Gyrostat,
+    InertiaRestriction,
+    Origin,
+    Potential,
+    RowKey,
+    Shade,
+    StateVariables,
+    Strict,
+    Support,
 )
 
-
-class Shade(StrEnum):
-    """The paper's shading (remark under each table): gray where the invariant exists,
-    partial fill where the set of integrals is incomplete."""
-
-    FULL = "full"
-    PARTIAL = "partial"
-    NONE = "none"
-
-
-class ClaimKind(StrEnum):
-    MEASURE = "measure"
-    INTEGRAL = "integral"
-    POISSON = "poisson"
-    GYROSTAT = "gyrostat"
-    BRUN = "brun"
-    REDUCTION = "reduction"
-    HAMILTONIAN_AFTER_TIME_CHANGE = "hamiltonian-after-time-change"
-    NEGATIVE = "negative"
-    IDENTITY = "identity"  # two printed expressions are equal (alternative forms, definitions)
-    STATIONARY = "stationary"  # families of permanent rotations ((2.40), (2.42))
-
-
-class CheckName(StrEnum):
-    """Names of the check functions the solver side registers (one per name)."""
-
-    INTEGRAL = "integral"  # dF/dt = grad F . v = 0 at random phase points
-    MEASURE = "measure"  # div(rho v) = 0 at random phase points
-    IDENTITY = "identity"  # printed expression == `against` (or its own second form)
-    REDUCED_AGREES = "reduced_agrees"  # printed (reduced) system == full field pushed forward
-    SOLVES_ODE = "solves_ode"  # printed solution satisfies the printed ODE `against`
-    LINEAR_INTEGRALS = "linear_integrals"  # integrals from the fundamental matrix of `system`
-    SYMMETRY = "symmetry"  # the field commutes with the printed symmetry field
-    JACOBI = "jacobi"  # the printed bracket satisfies the Jacobi identity
-    CASIMIR = "casimir"  # the listed functions are Casimirs of the bracket
-    BRACKET_RANK = "bracket_rank"  # rank of the bracket (number of Casimirs)
-    HAMILTONIAN_FIELD = "hamiltonian_field"  # after d tau = N dt the field is {x, H}
-    # the same on the zero level of the integral `against` only
-    HAMILTONIAN_FIELD_ON_LEVEL = "hamiltonian_field_on_level"
-    # a construction tried for an unprinted Hamiltonian form: Jacobi + flow everywhere;
-    # unchecked (inconclusive) when it fails: a failed attempt decides nothing
-    HAMILTONIAN_ATTEMPT = "hamiltonian_attempt"
-    FUNCTIONALLY_DEPENDENT = "functionally_dependent"  # dF ^ dG ^ ... = 0
-    PERMANENT_ROTATIONS = "permanent_rotations"  # dimension of the family of rotations
-    # negative statements: each expects a failure or collects evidence of absence
-    MEASURE_FAILS = "measure_fails"  # the printed density is NOT invariant here
-    INTEGRAL_FAILS = "integral_fails"  # the printed integral is NOT conserved here
-    JACOBI_FAILS = "jacobi_fails"  # the printed tensor does NOT satisfy Jacobi
-    NEGATIVE_MEASURE = "negative_measure"  # evidence of no smooth measure (attractors, ...)
-    NEGATIVE_INTEGRAL = "negative_integral"  # evidence of no further integral (3D maps)
-    NO_MEASURE = "no_measure"  # proof of no smooth measure: exact obstruction at a rest point
-    # formula-free: a property tested without any printed formula
-    LINEAR_INTEGRALS_RETURN = "linear_integrals_return"  # two integrals linear in M: (M, gamma)
-    # and M3 return to the same values at every crossing of one level of gamma3
-    # nothing to compute; recorded so the catalogue lists them
-    OPEN_PROBLEM = "open_problem"  # the paper says it is unknown
-    FORMULA_NOT_PRINTED = "formula_not_printed"  # asserted, but the paper prints no formula
-    NOT_CHECKABLE = "not_checkable"  # asserted, not decidable pointwise ("only one", ...)
-
-
-NEGATIVE_CHECKS = frozenset(
-    {
-        CheckName.MEASURE_FAILS,
-        CheckName.INTEGRAL_FAILS,
-        CheckName.JACOBI_FAILS,
-        CheckName.NEGATIVE_MEASURE,
-        CheckName.NEGATIVE_INTEGRAL,
-        CheckName.NO_MEASURE,
-    }
-)
-
-# Arguments each check needs in `check_args`.
-REQUIRED_ARGS: dict[CheckName, tuple[str, ...]] = {
-    CheckName.INTEGRAL: ("formula",),
-    CheckName.MEASURE: ("formula",),
-    CheckName.IDENTITY: ("formula",),
-    CheckName.REDUCED_AGREES: ("formula",),
-    CheckName.SOLVES_ODE: ("formula", "against"),
-    CheckName.LINEAR_INTEGRALS: ("system",),
-    CheckName.SYMMETRY: ("formula",),
-    CheckName.JACOBI: ("bracket",),
-    CheckName.CASIMIR: ("bracket", "casimirs"),
-    CheckName.BRACKET_RANK: ("bracket", "rank"),
-    CheckName.HAMILTONIAN_FIELD: ("bracket", "hamiltonian"),
-    CheckName.HAMILTONIAN_FIELD_ON_LEVEL: ("bracket", "hamiltonian", "multiplier", "against"),
-    CheckName.HAMILTONIAN_ATTEMPT: ("bracket", "hamiltonian", "multiplier"),
-    CheckName.FUNCTIONALLY_DEPENDENT: ("formula", "against"),
-    CheckName.PERMANENT_ROTATIONS: ("formula",),
-    CheckName.MEASURE_FAILS: ("formula",),
-    CheckName.INTEGRAL_FAILS: ("formula",),
-    CheckName.JACOBI_FAILS: ("bracket",),
-    CheckName.NEGATIVE_MEASURE: (),
-    CheckName.NEGATIVE_INTEGRAL: (),
-    CheckName.NO_MEASURE: (),
-    CheckName.LINEAR_INTEGRALS_RETURN: (),
-    CheckName.OPEN_PROBLEM: (),
-    CheckName.FORMULA_NOT_PRINTED: (),
-    CheckName.NOT_CHECKABLE: (),
-}
-
-
-# The role the formula named by a check argument must have (formulas.yaml `role`).
-ARG_ROLES: dict[str, str] = {
-    "system": "system",
-    "bracket": "bracket",
-    "hamiltonian": "hamiltonian",
-    "multiplier": "time-change",
-    "potential": "potential",
-}
-FORMULA_ROLE_OF_CHECK: dict[CheckName, tuple[str, ...]] = {
-    CheckName.INTEGRAL: ("integral",),
-    CheckName.INTEGRAL_FAILS: ("integral",),
-    CheckName.MEASURE: ("density",),
-    CheckName.MEASURE_FAILS: ("density",),
-    CheckName.REDUCED_AGREES: ("system",),
-    CheckName.SOLVES_ODE: ("solution",),
-    CheckName.FUNCTIONALLY_DEPENDENT: ("integral",),
-    CheckName.PERMANENT_ROTATIONS: ("condition",),
-    CheckName.SYMMETRY: ("definition",),
-}
-
-
-class Origin(StrEnum):
-    """Whose statement a claim or formula records."""
-
-    PAPER = "paper"
-    PROJECT = "project"  # the paper asserts the property but prints no formula: the formula
-    #                      and its check are the project's (e.g. hamiltonian_sphere.py)
-
-
-class StateVariables(StrEnum):
-    """Variables a claim or formula is written in (the phase space of the check)."""
-
-    M_GAMMA = "(M, gamma)"
-    OMEGA_GAMMA = "(omega, gamma)"
-    K_GAMMA = "(K, gamma)"  # K = rho M, (2.27)
-    M_R = "(M, r1, r2)"  # flat base on a sphere, (3.16)-(3.17)
-    OMEGA_R = "(omega, r1, r2)"
-    GAMMA3_K1_K2_K3 = "(gamma3, K1, K2, K3)"  # (2.6)
-    GAMMA3_K1_K2 = "(gamma3, K1, K2)"  # linear systems (2.13), (3.4), ...
-    THETA_K1_K2 = "(theta, K1, K2)"  # (2.16)
-    THETA_OMEGA3 = "(theta, omega3)"  # (2.17), (3.5)
-    X_OMEGA3 = "(x, omega3)"  # hypergeometric form
-    U_K1_K2 = "(u, K1, K2)"  # (3.22)
-    U_K1_K2_K3 = "(u, K1, K2, K3)"  # flat base reduced to 4 variables (hamiltonian_sphere.py)
-    GAMMA = "(gamma)"  # shape of the body
-    GAMMA3 = "(gamma3)"  # meridian of a body of revolution
-    PARAMETERS = "(parameters)"  # conditions on parameters only
-
-
-class FormulaRole(StrEnum):
-    SYSTEM = "system"  # equations of motion (full, rewritten or reduced)
-    DENSITY = "density"  # density of an invariant measure
-    INTEGRAL = "integral"  # a first integral
-    BRACKET = "bracket"  # a Poisson bracket or antisymmetric tensor
-    HAMILTONIAN = "hamiltonian"  # energy written in particular variables
-    DEFINITION = "definition"  # variables, shape functions, constants
-    POTENTIAL = "potential"
-    TIME_CHANGE = "time-change"
-    SOLUTION = "solution"  # explicit solution of a printed ODE
-    CONDITION = "condition"  # a restriction on parameters or shape
-    IDENTITY = "identity"  # a printed equality between expressions
-
-
-class Potential(StrEnum):
-    NONE = "none"  # U = 0
-    GRAVITY = "gravity"  # U = m g (r, gamma)
-    BRUN = "brun"  # U = eps/2 (I gamma, gamma)
-    AXISYMMETRIC = "axisymmetric"  # arbitrary U(gamma3)
-    ANY = "any"  # arbitrary U(gamma)
-
-
-class Gyrostat(StrEnum):
-    ZERO = "zero"
-    AXIAL = "axial"  # S = (0, 0, s) along the axis of dynamical symmetry
-    ANY = "any"  # arbitrary constant S
-
-
-class InertiaRestriction(StrEnum):
-    ANY = "any"
-    NONSYMMETRIC = "I1!=I2!=I3!=I1"
-    AXIAL = "I1=I2"
-    AXIAL_I1_GT_I3 = "I1=I2, I1>I3"
-    AXIAL_I1_LT_I3 = "I1=I2, I1<I3"
-    AXIAL_I1_NE_I3 = "I1=I2!=I3"
-    AXIAL_I3_2I1 = "I1=I2, I3=2*I1"
-    SPHERICAL = "I1=I2=I3"
-    ELLIPSOID_FAMILY = "I=mu*E+lambda*m*B"  # (2.40)
-    FLAT_PLATE = "I3=I1+I2"
-    WORONETZ = "I1=I2=I3/2"
-
-
-# --- small building blocks -------------------------------------------------------------
-
-LABEL_RE = re.compile(r"^[A-Za-z0-9.\-*/]+$")
-CASE_ID_RE = re.compile(r"^(plane|sphere)/[a-z0-9][a-z0-9-]*$")
-CLAIM_ID_RE = re.compile(r"^(plane|sphere)/[a-z0-9-]+(/[A-Za-z0-9_\-]+)+$")
-FORMULA_ID_RE = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
-REF_ID_RE = re.compile(r"^[A-Za-z][A-Za-z0-9\-:]*$")
-
-
-def _check_labels(labels: list[str]) -> list[str]:
-    for label in labels:
-        if not LABEL_RE.match(label):
-            raise ValueError(f"malformed equation label {label!r}")
-    return labels
-
-
-class Attribution(Strict):
-    """Who the paper credits at this place: a reference key and the name(s)/year as printed."""
-
-    ref: str
-    authors: str | None = None
-    year: int | None = Field(default=None, ge=1800, le=2100)
-    note: str | None = None
-
-
-class Conditions(Strict):
-    """Parameter restrictions under which a claim is made (None: as in the case's model)."""
-
-    potential: Potential | None = None
-    S: Gyrostat | None = None
-    I: InertiaRestriction | None = None
-    # offset of the centre of mass from the geometric centre ((2.28), (2.18)); for the
-    # Borisov-Fedorov ball, "2R" is the paper's a = 2R (a: ball radius, R: fixed sphere)
-    a: Literal["0", "nonzero", "any", "2R", "not 2R"] | None = None
-    z: Literal["0", "nonzero", "any"] | None = None  # flat base: r = (r1, r2, z)
-    lambda_: Literal["0", "1", "not 0 or 1", "any"] | None = Field(default=None, alias="lambda")
-    k: Literal["0", "nonzero", "any"] | None = None  # signed curvature of the support
-    text: str | None = None
-
-
-class CheckArgs(Strict):
-    """What a check needs; every *formula id* here must exist in formulas.yaml."""
-
-    formula: str | None = None  # the integral / density / system / expression under test
-    against: str | None = None  # what it is compared with (ODE, other form, full system)
-    system: str | None = None  # equations of motion to use if not the case's model
-    bracket: str | None = None
-    hamiltonian: str | None = None
-    multiplier: str | None = None  # time change d tau = N dt
-    transform: str | None = None  # change of variables
-    potential: str | None = None  # the potential U, when the claim is made with a field
-    casimirs: list[str] = []
-    rank: int | None = Field(default=None, ge=0)
-    candidate: bool = False  # the formula is NOT printed for this claim: a plausible guess
-    expect: str | None = None  # the expected outcome, in words, for the solver
-
-    def formula_ids(self) -> list[str]:
-        ids = [
-            self.formula,
-            self.against,
-            self.system,
-            self.bracket,
-            self.hamiltonian,
-            self.multiplier,
-            self.transform,
-            self.potential,
-            *self.casimirs,
-        ]
-        return [i for i in ids if i is not None]
-
-
-class SubRow(Strict):
-    """Second line of a row cell (Table 2's restrictions row has one: `a = 2R`)."""
-
-    printed: str
-    plain: str
-
-
-class Cell(Strict):
-    printed: str  # the cell's LaTeX exactly as printed (inside its \parbox)
-    plain: str  # plain-text rendering for people
-    labels: list[str] = []  # equation labels the cell refers to
-    attribution: list[Attribution] = []
-    colspan: int = Field(default=1, ge=1)
-    # a merged cell: the ids of ALL the cases it spans (itself included), in column order;
-    # the YAML shares such a cell between its columns with an anchor
-    merged: list[str] = []
-    shade: Shade
-    shade_note: str | None = None
-    subrow: SubRow | None = None
-    claims: list[str] = []  # claim ids that make the cell checkable
-    convention_note: str | None = None
-
-    @field_validator("labels")
-    @classmethod
-    def _labels(cls, v: list[str]) -> list[str]:
-        return _check_labels(v)
-
-    @model_validator(mode="after")
-    def _span(self) -> Cell:
-        if len(self.merged) == 1:
-            raise ValueError("a merged cell spans at least two cases")
-        if self.colspan != max(1, len(self.merged)):
-            raise ValueError(f"colspan {self.colspan} but the cell spans {self.merged or 1}")
-        return self
-
-
-class Claim(Strict):
-    id: str
-    kind: ClaimKind
-    printed: str  # LaTeX (or text) exactly as printed
-    plain: str  # plain-text statement
-    label: str | None  # the paper's equation label, or null ...
-    where: str | None = None  # ... with where the statement is printed
-    attribution: list[Attribution] = []
-    conditions: Conditions = Conditions()
-    variables: StateVariables
-    check: CheckName
-    check_args: CheckArgs = CheckArgs()
-    origin: Origin = Origin.PAPER  # project: `printed` is the assertion, the formula ours
-    convention_note: str | None = None
-    remarks: str | None = None
-    # verdict layer: how this record relates to others of its case
-    establishes: list[str] = []  # a formula-free test of the property these claims state
-    inherits: str | None = None  # fails only through this (failing) claim's formula
-    holds_under: str | None = None  # the convention under which the printed form holds
-    hedged: bool = False  # the paper hedges ("probably", "we were unable"): a conjecture
-
-    @field_validator("id")
-    @classmethod
-    def _id(cls, v: str) -> str:
-        if not CLAIM_ID_RE.match(v):
-            raise ValueError(f"malformed claim id {v!r}")
-        return v
-
-    @model_validator(mode="after")
-    def _consistent(self) -> Claim:
-        if self.label is None and not self.where:
-            raise ValueError(f"claim {self.id}: give a label or say `where` it is printed")
-        if self.label is not None:
-            _check_labels([self.label])
-        for arg in REQUIRED_ARGS[self.check]:
-            if getattr(self.check_args, arg) in (None, []):
-                raise ValueError(f"claim {self.id}: check {self.check} needs check_args.{arg}")
-        if self.check in NEGATIVE_CHECKS and self.kind is not ClaimKind.NEGATIVE:
-            raise ValueError(f"claim {self.id}: check {self.check} is only for kind negative")
-        if self.origin is Origin.PROJECT and not self.remarks:
-            raise ValueError(f"claim {self.id}: a project claim says in `remarks` what the "
-                             "paper asserts and what the project derived")
-        return self
+# the names the rest of the code imports from here, wherever they are defined
+__all__ = [
+    "ARG_ROLES", "CASE_ID_RE", "CLAIM_ID_RE", "DESCRIPTIVE_ROWS", "FORMULA_ID_RE",
+    "FORMULA_ROLE_OF_CHECK", "LABEL_RE", "NEGATIVE_CHECKS", "REF_ID_RE", "REQUIRED_ARGS",
+    "Attribution", "Body", "Case", "Catalogue", "Cell", "CheckArgs", "CheckName", "CheckedIn",
+    "Claim", "ClaimKind", "ColumnGroup", "Conditions", "CorrectedForm", "CorrectedForms",
+    "Formula", "FormulaRole", "Gyrostat", "InertiaRestriction", "ModelSpec", "Origin",
+    "Potential", "Reference", "RowKey", "RowSpec", "Shade", "Since2002", "SinceNote",
+    "SourceKind", "StateVariables", "Strict", "SubRow", "Support", "Table",
+]
 
 
 class ModelSpec(Strict):
@@ -424,7 +85,7 @@ class ModelSpec(Strict):
     @field_validator("equations")
     @classmethod
     def _labels(cls, v: list[str]) -> list[str]:
-        return _check_labels(v)
+        return check_labels(v)
 
 
 class Case(Strict):
@@ -750,7 +411,7 @@ class Formula(Strict):
         if self.label is None and not self.where:
             raise ValueError(f"formula {self.id}: give a label or say `where` it is printed")
         if self.label is not None:
-            _check_labels([self.label])
+            check_labels([self.label])
         return self
 
 

@@ -15,7 +15,7 @@ from functools import cache
 
 import yaml
 
-from catalogue.load import DATA_DIR, _UniqueKeyLoader, load_catalogue
+from catalogue.load import DATA_DIR, UniqueKeyLoader, load_catalogue
 from catalogue.schema import Reference, Since2002, SinceNote
 
 FILE = DATA_DIR / "since_2002.yaml"
@@ -58,7 +58,7 @@ def build(raw: dict) -> Since2002:
 @cache
 def load_since_2002() -> Since2002:
     with FILE.open(encoding="utf-8") as f:
-        return build(yaml.load(f, Loader=_UniqueKeyLoader))
+        return build(yaml.load(f, Loader=UniqueKeyLoader))
 
 
 def reference(ref_id: str) -> Reference:

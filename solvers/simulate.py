@@ -299,7 +299,7 @@ def _initial(model: Model, key, state0) -> np.ndarray:
     return y0
 
 
-def _times(t_end, samples) -> np.ndarray:
+def _sample_times(t_end, samples) -> np.ndarray:
     """linspace(0, t_end, samples), checked distinct once (integrator.output_times)."""
     t_out = output_times(t_end, samples)
     if t_out is None:
@@ -426,7 +426,7 @@ def simulate(case: str, params: dict | None, state0, t_end: float, *,
 
         check_taylor_options(method, precision, project, step)
     _check_options(t_end, method, rtol, atol, samples, project, max_steps, step, field)
-    t_out = _times(t_end, samples)
+    t_out = _sample_times(t_end, samples)
     checked = None
     if auto is None:
         res = _integrate(model, y0, t_out, method, rtol, atol, project, max_steps, step,

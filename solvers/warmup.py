@@ -60,7 +60,7 @@ def _general() -> None:
 EXTRA = (("plane/unbalanced-ball", {"g": 1.0}),)
 
 
-def _targets() -> list[tuple[str, dict]]:
+def warm_targets() -> list[tuple[str, dict]]:
     from solvers.models.cases import registry
 
     return [(cid, dict(case.example)) for cid, case in registry().items()] + \
@@ -78,7 +78,7 @@ def pending(generated: bool = False,
     from solvers.simulate import compiled_methods
 
     out: dict[tuple, list] = {}
-    for cid, params in _targets():
+    for cid, params in warm_targets():
         m = build(cid, params)
         if m.model not in generate.GENERATED_MODELS:
             continue
@@ -186,7 +186,7 @@ def part_name(what) -> str:
 def parts(generated: bool = False, only_pending: bool = True) -> list[tuple]:
     """The warm-up's tasks, each with the cases it serves: the general kernels, one task
     per structure whose small kernels are not compiled yet (only_pending=False: every
-    structure of _targets(), compiled or not), and the ensembles (generated: the big
+    structure of warm_targets(), compiled or not), and the ensembles (generated: the big
     generated integrators instead, whose ensemble twins come after them)."""
     groups = pending(all_structures=not only_pending)
     # the general kernels first (the longest task), the ensembles next: warm() runs them in
@@ -270,7 +270,7 @@ def warm_ensembles(generated: bool = False) -> None:
     from solvers.models.cases import build, registry
 
     seen = set()
-    for cid, params in _targets():
+    for cid, params in warm_targets():
         case = registry()[cid]
         m = build(cid, params)
         if (m.model,) not in seen:     # the general field: one specialization per model

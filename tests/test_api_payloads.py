@@ -153,7 +153,7 @@ def test_non_finite_numbers_are_null_in_json_and_ieee_in_arrow():
     assert d["invariants"]["energy"] == [1.0, None, 2.0, None]
     assert d["stats"]["drift"]["energy"] is None and d["stats"]["max_steps"] == 100
     # as the former path (ndarray.tolist() + json.dumps, non-finite -> null) wrote it
-    from app.services.jobs import _finite
+    from app.services.payloads import finite as _finite
     old = json.loads(json.dumps(_finite(res.to_json()), allow_nan=False))
     assert {k: v for k, v in d.items() if k != "stats"} == \
         {k: v for k, v in old.items() if k != "stats"}

@@ -7,10 +7,11 @@ import numpy as np
 import pytest
 from flint import fmpq
 
-from solvers.verify.exact.jet import Jet, NotRational
-from solvers.verify.exact.linalg import det, exact_linalg, solve
+from solvers.verify.exact.exact_mode import exact_linalg
+from solvers.verify.exact.jet import Jet, Radical
+from solvers.verify.exact.linalg import det, solve
 from solvers.verify.exact.points import GridRng, pythagorean, sphere_point, stereographic
-from solvers.verify.exact.radical import Radical
+from solvers.verify.exact.rational import NotRational
 
 X0, Y0 = fmpq(3, 7), fmpq(-5, 11)
 

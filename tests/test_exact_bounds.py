@@ -8,10 +8,10 @@ from flint import fmpq
 
 from catalogue.load import load_catalogue
 from solvers.kernels import layout as L
-from solvers.verify.exact.jet import Jet, _Lost
+from solvers.verify.exact.jet import Jet, Radical
 from solvers.verify.exact.linalg import det, solve
 from solvers.verify.exact.points import N_GRID, GridRng
-from solvers.verify.exact.radical import Radical, Strict
+from solvers.verify.exact.rational import Lost, Strict
 
 CAT = load_catalogue()
 # proofs.json holds at least this many current proofs (issue 18: at least 100 proved)
@@ -44,7 +44,7 @@ def test_every_drawn_coordinate_lies_exactly_on_its_grid(cid):
 
 def _examples(case, name):
     from solvers.models.cases import registry
-    from solvers.verify.exact.jet import q_of
+    from solvers.verify.exact.rational import q_of
     spec = registry()[case.id]
     return [q_of(spec.example[name])]
 
@@ -86,13 +86,13 @@ def test_a_cancelled_root_coefficient_keeps_its_degree_or_is_reported():
         assert isinstance(d, Radical) and d.c.v == 0 and d.c.n >= r.c.n
     finally:
         Strict.on = False
-    _Lost.reasons = []
+    Lost.reasons = []
     d = a - b
-    assert not isinstance(d, Radical) and _Lost.reasons
+    assert not isinstance(d, Radical) and Lost.reasons
     # the zero function drops silently
-    _Lost.reasons = []
+    Lost.reasons = []
     z = r * 0 + 1
-    assert not isinstance(z, Radical) and not _Lost.reasons
+    assert not isinstance(z, Radical) and not Lost.reasons
 
 
 def test_the_angle_counts_the_degree_of_one_over_sin_theta():
@@ -130,7 +130,7 @@ def test_tracked_degree_bounds_the_true_degree_of_rational_jets(fn):
 def _residual(case, claim, corrected=False):
     from solvers.verify import run  # noqa: F401  (registers formulas and checks)
     from solvers.verify.exact import checks as X
-    from solvers.verify.exact.registry import CERTIFIERS
+    from solvers.verify.exact.certifiers import CERTIFIERS
     from solvers.verify.params import draw
     name = claim.check.value
     if name == "reduced_agrees" and claim.check_args.transform is not None:
@@ -179,13 +179,13 @@ def test_a_wrong_density_is_not_proved(monkeypatch):
 
 def test_stored_proofs_are_current_and_a_sample_recomputes():
     """proofs.json: at least 100 proofs whose fingerprint matches the code and catalogue
-    (else regenerate: python -m solvers.verify.exact.proofs), and the fastest few, proved
+    (else regenerate: python -m solvers.verify.exact.prove_all), and the fastest few, proved
     again now, are proofs."""
     from solvers.verify import run  # noqa: F401  (registers formulas and checks)
     from solvers.verify.exact import proofs
+    from solvers.verify.exact.certifiers import residual_job
     from solvers.verify.exact.certify import prove
-    from solvers.verify.exact.registry import residual_job
-    stored = proofs._stored()
+    stored = proofs.stored_records()
     current, sample = 0, []
     for c in CAT.cases():
         for cl in c.claims:
@@ -198,7 +198,8 @@ def test_stored_proofs_are_current_and_a_sample_recomputes():
                     continue
                 current += 1
                 sample.append((rec["seconds"], key, c, cl, corrected))
-    assert current >= MIN_PROOFS, f"{current} current proofs: python -m solvers.verify.exact.proofs"
+    assert current >= MIN_PROOFS, (f"{current} current proofs: "
+                                   "python -m solvers.verify.exact.prove_all")
     sample.sort(key=lambda s: s[0])
     for _, key, c, cl, corrected in sample[:2] + sample[len(sample) // 2:len(sample) // 2 + 1]:
         seed_key, drawer, res = residual_job(CAT, c, cl, corrected)
@@ -217,8 +218,8 @@ DEGREE_ZERO = ["plane/routh-ball/integral/routh", "plane/routh-ball/gyrostat/sph
 @pytest.mark.parametrize("cid", [*AUDITED, *DEGREE_ZERO])
 def test_the_old_degree_losses_no_longer_occur(cid):
     from solvers.verify import run  # noqa: F401
+    from solvers.verify.exact.certifiers import residual_job
     from solvers.verify.exact.certify import run_points
-    from solvers.verify.exact.registry import residual_job
     case, claim = CAT.find(cid)
     key, drawer, res = residual_job(CAT, case, claim)
     ex = run_points(key, drawer, res)          # the k-point certificate, no stored proof

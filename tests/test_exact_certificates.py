@@ -6,9 +6,9 @@ import copy
 import pytest
 
 from catalogue.load import load_catalogue
+from solvers.verify.exact.certifiers import CERTIFIERS
 from solvers.verify.exact.certify import K_POINTS
 from solvers.verify.exact.points import BITS
-from solvers.verify.exact.registry import CERTIFIERS
 
 CAT = load_catalogue()
 CLAIMS = [cl.id for c in CAT.cases() for cl in c.claims]
@@ -97,7 +97,7 @@ def test_a_wrong_coefficient_is_caught_exactly(monkeypatch):
     """|M|^2 of the Chaplygin ball holds; M1^2 + M2^2 + 2 M3^2 (one coefficient changed)
     fails, with a rational witness whose residual is nonzero."""
     from solvers.verify import run  # noqa: F401  (registers formulas and checks)
-    from solvers.verify.exact import exact_for
+    from solvers.verify.exact.certifiers import exact_for
     from solvers.verify.registry import FORMULAS
     case, claim = CAT.find("plane/chaplygin-ball/integral/M2")
     right = exact_for(CAT, case, claim)
@@ -113,7 +113,7 @@ def test_a_wrong_coefficient_is_caught_exactly(monkeypatch):
 def test_a_wrong_density_is_caught_exactly(monkeypatch):
     """The corrected Yaroschuk density holds; its exponent 3/2 changed to 1/2 fails."""
     from solvers.verify import run  # noqa: F401
-    from solvers.verify.exact import exact_for
+    from solvers.verify.exact.certifiers import exact_for
     from solvers.verify.registry import CORRECTED
     case, claim = CAT.find("plane/spherical-inertia/measure/omega")
     assert exact_for(CAT, case, claim, corrected=True)["holds"] is True
@@ -124,7 +124,7 @@ def test_a_wrong_density_is_caught_exactly(monkeypatch):
 
 def test_witness_is_reproducible():
     from solvers.verify import run  # noqa: F401
-    from solvers.verify.exact import exact_for
+    from solvers.verify.exact.certifiers import exact_for
     case, claim = CAT.find("sphere/borisov-fedorov/reduction/to-chaplygin")
     a, b = exact_for(CAT, case, claim), exact_for(CAT, case, claim)
     assert a["holds"] is False and a["witness"] == b["witness"]

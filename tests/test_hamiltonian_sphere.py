@@ -18,7 +18,7 @@ import pytest
 import sympy as sp
 
 from catalogue.load import load_catalogue
-from solvers.models import reduced as rd
+from solvers.models import reduced_systems as rd
 from solvers.models.revolution import profile
 from solvers.verify.checks import structure as S
 from solvers.verify.checks.common import TOL, gradient
@@ -227,7 +227,7 @@ def test_bf_candidate_generates_the_flow_but_is_not_poisson():
         rng = np.random.default_rng(3)
         P = draw(case, cl, rng)
         if cid.startswith("plane"):     # the plane ball with no field: U = 0 in H below
-            from solvers.verify.checks.structure import _with_p
+            from solvers.verify.checks.rotations import with_params as _with_p
             P = _with_p(P, GRAV=0.0, BRUN=0.0)
         assert factor_312(P) == pytest.approx(kval)
         worst_flow, jac = 0.0, []

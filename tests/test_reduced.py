@@ -19,7 +19,7 @@ from scipy.integrate import solve_ivp
 from solvers.kernels import layout as L
 from solvers.kernels.fields import rhs
 from solvers.kernels.reduced import rev_reduced_general, rev_reduced_plane
-from solvers.models import reduced as rd
+from solvers.models import reduced_systems as rd
 from solvers.models.revolution import phi_derivs
 
 H = 1e-30          # complex step

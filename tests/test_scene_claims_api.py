@@ -8,7 +8,7 @@ import math
 import numpy as np
 import pytest
 
-from catalogue.scenes import load_scenes
+from solvers.scenes.teaching import load_scenes
 
 SCENES = load_scenes()
 CASES = [(sid, k) for sid, s in SCENES.items() for k in range(len(s.checks))]

@@ -4,10 +4,10 @@ response's `series` (solvers/models/kinematics.py) and the preset's `plot`
 
 import numpy as np
 
-from catalogue.scenes import load_scenes
 from solvers.models.cases import build
 from solvers.models.kinematics import scene
 from solvers.models.observables import spin_reversals, vertical_spin
+from solvers.scenes.teaching import load_scenes
 
 
 def _run(sid):

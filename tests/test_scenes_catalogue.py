@@ -1,4 +1,4 @@
-"""Teaching scenes (catalogue/scenes.yaml, catalogue/scenes.py): strict schema, every
+"""Teaching scenes (catalogue/scenes.yaml, solvers/scenes/teaching.py): strict schema, every
 scene's checks on its own run, the rattleback case, and the explorer's /scenes page."""
 
 import copy
@@ -8,11 +8,11 @@ import pytest
 import yaml
 from pydantic import ValidationError
 
-from catalogue.scenes import PATH, load_scenes, parse
 from solvers.kernels import layout as L
 from solvers.models.bodies import rattleback_B
 from solvers.models.cases import build, registry, table_case_ids
 from solvers.scenes.scene_checks import run_checks
+from solvers.scenes.teaching import PATH, load_scenes, parse
 
 SCENES = load_scenes()
 REQUIRED_CASES = {"plane/chaplygin-ball", "plane/round-disk", "plane/routh-ball",

@@ -9,7 +9,7 @@ import pytest
 from fastapi.testclient import TestClient
 
 from app.main import create_app
-from app.services import site_shell
+from app.services import site_shell, templates
 from app.testing import settings_for_tests
 
 pytestmark = pytest.mark.filterwarnings("ignore::DeprecationWarning")
@@ -52,4 +52,4 @@ def test_static_files_hold_no_copy_of_the_shared_parts():
 
 def test_a_page_without_the_placeholders_is_refused():
     with pytest.raises(ValueError, match="head"):
-        site_shell.fill("<html><head></head><body></body></html>")
+        templates.render("<html><head></head><body></body></html>")

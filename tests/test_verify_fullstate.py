@@ -13,8 +13,9 @@ import numpy as np
 import pytest
 
 from catalogue.load import load_catalogue
-from solvers.models.reduced import to_reduced
+from solvers.models.reduced_systems import to_reduced
 from solvers.verify import verify
+from solvers.verify.checks import rotations as R
 from solvers.verify.checks import structure as S
 from solvers.verify.checks.common import TOL, directional, full_field
 from solvers.verify.formulas import chaplygin as CH
@@ -281,7 +282,8 @@ def test_momentum_inverse(catalogue):
 
 
 def test_sphere_reduced_variables_match_solvers(catalogue):
-    """eq3.2-1 here and in solvers.models.reduced.to_reduced (the map the reduced checks use)."""
+    """eq3.2-1 here and in solvers.models.reduced_systems.to_reduced (the map the reduced
+    checks use)."""
     rng = np.random.default_rng(3)
     for _, P, ys in _models(catalogue, ["sphere/body-of-revolution", "sphere/round-disk"], rng):
         for y in ys:
@@ -293,7 +295,7 @@ def test_sphere_measure_exponent(catalogue):
     s = +1 is invariant (the printed p = 3 is not)."""
     from solvers.models.revolution import Profile, profile
     from solvers.verify.checks.common import divergence_terms
-    from solvers.verify.checks.pointwise import _complex_field
+    from solvers.verify.checks.pointwise import complex_field
     rng = np.random.default_rng(4)
     _, P, ys = next(_models(catalogue, ["sphere/body-of-revolution"], rng))
 
@@ -305,7 +307,7 @@ def test_sphere_measure_exponent(catalogue):
         worst = 0.0
         for y in ys[:4]:
             d = float(directional(lnrho, y, full_field(P, y)))
-            div, scale = divergence_terms(lambda yy: _complex_field(P, yy), y)
+            div, scale = divergence_terms(lambda yy: complex_field(P, yy), y)
             worst = max(worst, abs(d + div) / (abs(d) + scale))
         return worst
 
@@ -349,7 +351,7 @@ def test_flat_kinematics_sign(catalogue):
     rng = np.random.default_rng(7)
     _, P, ys = next(_models(catalogue, ["sphere/flat-base-z0"], rng))
     assert P.k < 0
-    flipped = S._with_p(P, CURV=-P.k)
+    flipped = R.with_params(P, CURV=-P.k)
     for y in ys:
         v = full_field(P, y)
         assert _rel(FORMULAS["flat_kinematics"](P, y), v) < 1e-12
@@ -367,16 +369,16 @@ def test_permanent_rotations_reality(catalogue):
     for lam in (0.4, 1.6):
         mu, m, b = P.mu, P.m, P.b
         I = mu + lam * m * b
-        Q = S._with_p(P, I1=I[0], I2=I[1], I3=I[2], GRAV=1.3)
-        res = S.two_parameter_residual(Q, rng, n=6)[0]
+        Q = R.with_params(P, I1=I[0], I2=I[1], I3=I[2], GRAV=1.3)
+        res = R.two_parameter_residual(Q, rng, n=6)[0]
         assert res < TOL
         g = rng.standard_normal(3)
         g /= np.linalg.norm(g)
-        A, B = S.rotation_terms(Q, g)
+        A, B = R.rotation_terms(Q, g)
         w = -(A @ B) / (A @ A)
         assert abs(w - 1.3 / ((lam - 1) * np.sqrt(b * g @ g))) < 1e-12 * abs(w)
-    free = S._with_p(P, I1=mu + m * b[0], I2=mu + m * b[1], I3=mu + m * b[2], GRAV=0.0)
-    assert S.two_parameter_residual(free, rng, n=4)[2] < 1e-12
+    free = R.with_params(P, I1=mu + m * b[0], I2=mu + m * b[1], I3=mu + m * b[2], GRAV=0.0)
+    assert R.two_parameter_residual(free, rng, n=4)[2] < 1e-12
 
 
 # --- the checks catch what is wrong ------------------------------------------------------------
@@ -441,7 +443,7 @@ def test_wrong_objects_are_caught(monkeypatch):
 
 def test_dependence_check_on_known_functions(catalogue, monkeypatch):
     """A function of F is dependent on F; M^2 and F are not (the against slot replaced)."""
-    from solvers.models.reduced import flat_reduced
+    from solvers.models.reduced_systems import flat_reduced
     case = catalogue.case("sphere/flat-base-axisymmetric")
     claim = case.claim("sphere/flat-base-axisymmetric/identity/particular-case")
     Q = FORMULAS["flat_axisym_quadratic"]

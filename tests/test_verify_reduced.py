@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from catalogue.load import load_catalogue
-from solvers.models import reduced as rd
+from solvers.models import reduced_systems as rd
 from solvers.verify.checks import ode
 from solvers.verify.checks.common import TOL, full_field, gradient
 from solvers.verify.formulas import reduced_flat as rf

@@ -35,10 +35,10 @@ def clicks() -> None:
     import app.api.routes.simulate as simulate_route
     from app.schemas.simulate import SceneRequest, SimulateRequest
     from app.services import jobs, poincare_jobs
-    from catalogue.scenes import load_scenes
     from solvers.kernels import layout as L
     from solvers.models.cases import registry
     from solvers.scenes.scene_checks import check_json
+    from solvers.scenes.teaching import load_scenes
 
     jobs.warm()
     steps = 10**6

@@ -16,6 +16,7 @@ from pathlib import Path
 from fastapi import FastAPI, Request
 from fastapi.exceptions import RequestValidationError
 from fastapi.responses import HTMLResponse, JSONResponse, Response
+from markupsafe import Markup
 from pydantic import BaseModel
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
@@ -221,11 +222,11 @@ def not_found_page(static_dir: Path, heading: str, message: str) -> HTMLResponse
 def error_page(static_dir: Path, status: int, heading: str, message: str) -> HTMLResponse:
     """An HTML error page with the site's navigation (the 404 page's template)."""
     text = (Path(static_dir) / "404.html").read_text()
-    text = text.replace("{{heading}}", html.escape(heading)).replace(
-        "{{message}}", html.escape(message[:500]))
     from app.services.reader_pages import render_page  # the site's navigation, lazily
 
-    return HTMLResponse(render_page(text, "404.html"), status_code=status)
+    return HTMLResponse(render_page(text, "404.html", heading=Markup(html.escape(heading)),
+                                    message=Markup(html.escape(message[:500]))),
+                        status_code=status)
 
 
 def _is_api(path: str) -> bool:

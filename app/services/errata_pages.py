@@ -22,8 +22,11 @@ from functools import cache
 from html import escape
 from pathlib import Path
 
+from markupsafe import Markup
+
 from app import __version__
 from app.services import reader_pages
+from app.services.anchors import claim_anchor
 
 SECTION_TITLES = {"1": "Equations of motion", "2": "Body on a plane", "3": "Body on a sphere"}
 
@@ -129,8 +132,7 @@ def _res(x) -> str:
 
 
 def _claim_href(e: dict) -> str:
-    return e.get("href") or f"/case/{e['case']}#claim-" + re.sub(r"[^A-Za-z0-9_-]+", "_",
-                                                                 e["claim"])
+    return e.get("href") or f"/case/{e['case']}#{claim_anchor(e['claim'])}"
 
 
 def _claim_link(e: dict) -> str:
@@ -221,37 +223,22 @@ def status_sentence(errata: list[dict], conventions: list[dict], findings: list[
                 f" — verification {state}: {done} of {total} cases so far.")
 
 
-def errata_page(template: str, errata: list[dict], conventions: list[dict],
-                findings: list[dict], state: str = "done", done: int = 0,
-                total: int = 0) -> str:
-    """errata.html with its status, index and rows filled in."""
+def errata_context(errata: list[dict], conventions: list[dict], findings: list[dict],
+                   state: str = "done", done: int = 0, total: int = 0) -> dict:
+    """The server-drawn parts of errata.html: its status, index, counts and rows."""
     n = counts(errata)
-    fill = {
-        '<p class="status" id="errata-status" role="status" aria-live="polite"></p>':
-            '<p class="status" id="errata-status" role="status" aria-live="polite">'
-            f"{escape(status_sentence(errata, conventions, findings, state, done, total))}"
-            "</p>",
-        '<div id="index-table"><p class="loading">Loading…</p></div>':
-            f'<div id="index-table">{index_html(errata, conventions, findings)}</div>',
-        '<span id="n-errata"></span>':
-            f'<span id="n-errata">({n["misprints"]} misprints in {n["rows"]} rows)</span>',
-        '<div id="errata-list"><p class="loading">Loading…</p></div>':
-            '<div id="errata-list">' + (_grouped(errata, erratum_html)
-                                        or "<p>No misprint found yet.</p>") + "</div>",
-        '<span id="n-conventions"></span>': f'<span id="n-conventions">({len(conventions)})</span>',
-        '<div id="conventions-list"><p class="loading">Loading…</p></div>':
-            '<div id="conventions-list">' + ("".join(map(convention_html, conventions))
-                                             or "<p>None yet.</p>") + "</div>",
-        '<span id="n-findings"></span>': f'<span id="n-findings">({len(findings)})</span>',
-        '<div id="findings-list"><p class="loading">Loading…</p></div>':
-            '<div id="findings-list">' + ("".join(map(finding_html, findings))
-                                          or "<p>None found yet.</p>") + "</div>",
+    status = status_sentence(errata, conventions, findings, state, done, total)
+    return {
+        "status": Markup(escape(status)),
+        "index": Markup(index_html(errata, conventions, findings)),
+        "n_errata": Markup(f'({n["misprints"]} misprints in {n["rows"]} rows)'),
+        "errata_rows": Markup(_grouped(errata, erratum_html) or "<p>No misprint found yet.</p>"),
+        "n_conventions": Markup(f"({len(conventions)})"),
+        "convention_rows": Markup("".join(map(convention_html, conventions))
+                                  or "<p>None yet.</p>"),
+        "n_findings": Markup(f"({len(findings)})"),
+        "finding_rows": Markup("".join(map(finding_html, findings)) or "<p>None found yet.</p>"),
     }
-    for old, new in fill.items():
-        if old not in template:
-            raise ValueError(f"errata.html has no {old!r}")
-        template = template.replace(old, new, 1)
-    return template
 
 
 # ---- exports

@@ -7,7 +7,7 @@ from catalogue.schema import CheckName
 from solvers.verify.checks import common, formula_free, negative, nonexistence
 from solvers.verify.exact import certify as exact_certify
 from solvers.verify.exact import points as exact_points
-from solvers.verify.marks import vocabulary
+from solvers.verify.marks import verdicts, vocabulary
 
 
 def constants() -> dict[str, float]:
@@ -130,18 +130,6 @@ def marks() -> list[dict]:
     return [m.model_dump() for m in vocabulary()]
 
 
-# the coarse `verdict` every record also keeps (for compatibility); the mark says which
-VERDICTS = [
-    ("verified", "✓", "the property was shown to hold by a computation to round-off: as "
-     "printed, under a stated convention, or, for a correction or a table cell, after "
-     "correction or by a formula-free test. The mark says which."),
-    ("fails", "✗", "the check ran and the printed statement does not hold: the residual is far "
-     "above the tolerance. The printed form is kept; a correction the project found is shown "
-     "beside it as its own record (mark: holds after correction)."),
-    ("evidence", "◐", "numerical evidence, not a proof (mark: evidence for)."),
-    ("unchecked", "?", "nothing decided: open in the paper, not checkable (nothing was run), "
-     "or inconclusive (a check ran and could not decide). The mark says which."),
-    ("pending", "…", "checking: the check is running now (a fresh server recomputes the "
-     "verdicts whose catalogue entry or checking code changed); the page updates when it "
-     "finishes."),
-]
+# the coarse `verdict` every record also keeps (for compatibility); the mark says which:
+# (verdict, sign, meaning), from the vocabulary (solvers/verify/marks.yaml)
+VERDICTS = [(v.id, v.shape, v.meaning) for v in verdicts()]

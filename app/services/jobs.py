@@ -10,33 +10,22 @@ from __future__ import annotations
 
 import csv
 import io
-import json
-import math
 import os
-from pathlib import Path
 
-# Worker processes run at a lower CPU priority than the server's event loop, so that on a
-# busy machine (2 cores, 2 workers) the loop still answers /api/health and parses requests
-# at once; the runs themselves lose little, as they have the cores to themselves otherwise.
-WORKER_NICE = 5
-_niced = False
+from app.services.kernel_prepare import prepare_run
+from app.services.payloads import arrow_bytes, csv_header, dumps, finite, json_bytes
+from app.services.worker_run import lower_priority, run_request
 
-
-def _lower_priority() -> None:
-    global _niced
-    if not _niced:
-        _niced = True
-        try:
-            os.nice(WORKER_NICE)
-        except OSError:
-            pass
+# The solvers are imported inside the jobs below: they load numba and the compiled kernels,
+# which a worker needs and the server's process (it imports this module for the jobs'
+# names, which the pool pickles by reference) does not.
 
 
 def warm() -> int:
     """Import the solvers and load the compiled kernels from numba's cache: one short run
     of every case, so that no request pays for a first call (a noticeable wait on a sphere).
     Only once the kernels are compiled (the warm-up done): before, `warm_imports`."""
-    _lower_priority()
+    lower_priority()
     from solvers.models.cases import registry
     from solvers.simulate import simulate
 
@@ -49,7 +38,7 @@ def warm_imports() -> int:
     """A worker started while the kernel warm-up still compiles (app/services/
     kernel_warmup.py): the imports only, no run, so that it compiles nothing the warm-up
     is compiling; the routes prepare what a request needs (kernel_prepare.py)."""
-    _lower_priority()
+    lower_priority()
     import pyarrow  # noqa: F401   (the Arrow answer's first use: its imports are slow)
 
     import app.services.payloads  # noqa: F401
@@ -58,45 +47,14 @@ def warm_imports() -> int:
     return os.getpid()
 
 
-def _finite(x):
-    if isinstance(x, float) and not math.isfinite(x):
-        return None
-    if isinstance(x, dict):
-        return {k: _finite(v) for k, v in x.items()}
-    if isinstance(x, list):
-        return [_finite(v) for v in x]
-    return x
-
-
-def dumps(obj) -> bytes:
-    """Strict JSON (no NaN tokens): a non-finite number, which the solvers never return
-    on purpose, is sent as null (orjson, app/services/payloads.py)."""
-    from app.services.payloads import dumps as _dumps
-
-    return _dumps(obj)
-
-
-def _run(req: dict, max_steps: int):
-    _lower_priority()
-    from solvers.simulate import simulate
-
-    return simulate(req["case"], req["params"], req["state"], req["t_end"],
-                    method=req["method"], rtol=req["rtol"], atol=req["atol"],
-                    samples=req["samples"], project=req["project"], max_steps=max_steps,
-                    allow_any_inertia=req["allow_any_inertia"], step=req.get("step"),
-                    field=req.get("field", "auto"), precision=req.get("precision"))
-
-
 def prepare_kernels(req: dict) -> int:
     """Compile (or load) the kernels a simulate request will run, on a tiny run of the same
     case, parameters, method and options (no request pays a compile inside its deadline;
     the route runs this without a deadline: app/services/kernel_prepare.py);
     methods "taylor" and "auto": kernel_prepare.prepare_run. A tiny run that fails (bad input) is
     left to the request itself to report. Returns how many runs completed."""
-    _lower_priority()
+    lower_priority()
     if req["method"] in ("taylor", "auto"):     # the rungs the request fixes (run_plan.py)
-        from app.services.kernel_prepare import prepare_run
-
         return prepare_run(req)
     from solvers.integrate.integrator import SMALL_METHODS
 
@@ -106,7 +64,7 @@ def prepare_kernels(req: dict) -> int:
     done = 0
     for method in methods:
         try:
-            _run({**tiny, "method": method}, 1000)
+            run_request({**tiny, "method": method}, 1000)
             done += 1
         except Exception:   # the request's own run reports it
             pass
@@ -115,7 +73,7 @@ def prepare_kernels(req: dict) -> int:
 
 def prepare_scene(req: dict) -> int:
     """The kernels of a scene (the scene model's compiled run), on a tiny run."""
-    _lower_priority()
+    lower_priority()
     from solvers.models.kinematics import scene
 
     try:
@@ -130,8 +88,8 @@ def prepare_scene(req: dict) -> int:
 def prepare_scene_check(scene_id: str) -> int:
     """A teaching scene's checks run its scene and plain runs of its case: their
     kernels, on tiny runs of the scene's own declaration (catalogue/scenes.yaml)."""
-    from catalogue.scenes import load_scenes
     from solvers.models.cases import registry
+    from solvers.scenes.teaching import load_scenes
 
     run = load_scenes()[scene_id].scene
     case = registry()[run.case]
@@ -143,39 +101,17 @@ def prepare_scene_check(scene_id: str) -> int:
 
 
 def simulate_json(req: dict, max_steps: int) -> bytes:
-    from app.services.payloads import json_bytes
-
-    return json_bytes(_run(req, max_steps), max_steps)
+    return json_bytes(run_request(req, max_steps), max_steps)
 
 
 def simulate_arrow(req: dict, max_steps: int) -> bytes:
     """The run as an Arrow IPC stream (app/services/payloads.py)."""
-    from app.services.payloads import arrow_bytes
-
-    return arrow_bytes(_run(req, max_steps), max_steps)
-
-
-COLUMNS_JSON = Path(__file__).resolve().parents[1] / "static" / "data" / "columns.json"
-
-
-def csv_header(state_labels: list[str], invariants: list[str]) -> list[str]:
-    """t, the state, then the invariants under their CSV names (static/data/columns.json,
-    shared with the case page's CSV button): unique, so the integral M^2 is `M_squared`
-    beside the component `M2`."""
-    names = {k: v for k, v in json.loads(COLUMNS_JSON.read_text()).items()
-             if not k.startswith("_")}
-    header = ["t", *state_labels]
-    for n in invariants:
-        col = names.get(n, n)
-        while col in header:
-            col += "_integral"
-        header.append(col)
-    return header
+    return arrow_bytes(run_request(req, max_steps), max_steps)
 
 
 def simulate_csv(req: dict, max_steps: int) -> bytes:
     """One row per sample: t, the state, then every invariant the case carries."""
-    res = _run(req, max_steps)
+    res = run_request(req, max_steps)
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
     names = list(res.invariants)
@@ -187,7 +123,7 @@ def simulate_csv(req: dict, max_steps: int) -> bytes:
 
 
 def scene_json(req: dict, frames: int, max_steps: int) -> bytes:
-    _lower_priority()
+    lower_priority()
     from solvers.models.kinematics import scene
 
     return dumps(scene(req["case"], req["params"], req["state"], req["t_end"],
@@ -197,7 +133,7 @@ def scene_json(req: dict, frames: int, max_steps: int) -> bytes:
 
 
 def verify_case(case_id: str | None) -> list[dict]:
-    _lower_priority()
+    lower_priority()
     from solvers.verify import verify
 
-    return [_finite(dict(r)) for r in verify(case_id)]
+    return [finite(dict(r)) for r in verify(case_id)]

@@ -26,6 +26,7 @@ class KernelCache:
 
     def check(self) -> str | None:
         """Probe the cache now: None when it takes a written file, else why not."""
+        # imported here: generate.py loads numba, which the server's process imports late
         from solvers.kernels.generate import cache_dir, cache_probe
 
         self.reason = cache_probe()

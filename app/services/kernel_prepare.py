@@ -39,6 +39,10 @@ import anyio
 import numpy as np
 
 from app.services.kernel_warmup import KernelWarmup
+from app.services.worker_run import lower_priority, run_request
+
+# The solvers are imported inside the functions below: they load numba (and heyoka for the
+# Taylor rungs), which the server's process must not wait for at start-up.
 
 _PREPARED: set = set()     # keys prepared by this server process (their kernels are cached)
 _WARMED: set = set()
@@ -55,10 +59,10 @@ def _warmed() -> set:
     """("small", model, structure, method) of the small kernels the warm-up compiles."""
     if not _WARMED:
         from solvers.models.cases import build
-        from solvers.warmup import WARM_SMALL, _targets
+        from solvers.warmup import WARM_SMALL, warm_targets
 
         _WARMED.update(("small", *structure(build(cid, params)), method)
-                       for cid, params in _targets() for method in WARM_SMALL)
+                       for cid, params in warm_targets() for method in WARM_SMALL)
     return _WARMED
 
 
@@ -110,10 +114,9 @@ def prepare_run(req: dict) -> int:
     tighter than simulate's smallest rtol is compiled directly), a Runge-Kutta rung's
     kernel. A rung that fails (bad input) is left to the request itself to report.
     Returns how many rungs are ready."""
-    from app.services.jobs import _lower_priority, _run
     from solvers.integrate.run_plan import TAYLOR, rungs
 
-    _lower_priority()
+    lower_priority()
     try:
         plan = _plan(req, rungs)
     except Exception:   # the request's own run reports it
@@ -130,10 +133,10 @@ def prepare_run(req: dict) -> int:
                 m = build(req["case"], req["params"], allow_any_inertia=req["allow_any_inertia"])
                 compiled(m.model, m.p, rung["precision"], rung["tol"])
             elif rung["method"] == TAYLOR:     # rtol = the compiled tol (snap_tol keeps it)
-                _run({**tiny, "rtol": rung["tol"], "atol": rung["tol"]}, 1000)
+                run_request({**tiny, "rtol": rung["tol"], "atol": rung["tol"]}, 1000)
             else:       # as jobs.prepare_kernels: a fixed step fits twice in the run
                 step = req.get("step")
-                _run({**tiny, "step": step, "t_end": 2.0 * step if step else 1e-6}, 1000)
+                run_request({**tiny, "step": step, "t_end": 2.0 * step if step else 1e-6}, 1000)
             done += 1
         except Exception:   # the request's own run reports it
             pass

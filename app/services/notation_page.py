@@ -8,6 +8,7 @@ from __future__ import annotations
 from functools import cache
 from html import escape
 
+from app.services.reader_pages import layout
 from catalogue.load import load_catalogue, load_corrected_forms
 from catalogue.notation import entry_for, load_notation
 from catalogue.numbering import cite, printed
@@ -104,7 +105,6 @@ def _plain_forms(e) -> str:
 
 
 def page() -> str:
-    from app.services.reader_pages import layout
 
     n = load_notation()
     index = " ".join(

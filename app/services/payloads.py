@@ -19,6 +19,8 @@ NaN or inf (Arrow has no need of null for it).
 from __future__ import annotations
 
 import json
+import math
+from pathlib import Path
 
 import numpy as np
 import orjson
@@ -30,6 +32,7 @@ ARROW = "application/vnd.apache.arrow.stream"
 CSV = "text/csv"
 OFFERED = (JSON, ARROW, CSV)      # in order of preference when the client has none
 _OPTS = orjson.OPT_SERIALIZE_NUMPY | orjson.OPT_NON_STR_KEYS
+COLUMNS_JSON = Path(__file__).resolve().parents[1] / "static" / "data" / "columns.json"
 
 
 def _ranges(accept: str):
@@ -79,10 +82,34 @@ def dumps(obj) -> bytes:
     try:
         return orjson.dumps(obj, option=_OPTS)
     except TypeError:       # something orjson does not take (a >64-bit int, an object)
-        from app.services.jobs import _finite
-
-        return json.dumps(_finite(_plain(obj)), allow_nan=False,
+        return json.dumps(finite(_plain(obj)), allow_nan=False,
                           separators=(",", ":")).encode()
+
+
+def finite(x):
+    """Plain data with every non-finite float replaced by None (strict JSON's null)."""
+    if isinstance(x, float) and not math.isfinite(x):
+        return None
+    if isinstance(x, dict):
+        return {k: finite(v) for k, v in x.items()}
+    if isinstance(x, list):
+        return [finite(v) for v in x]
+    return x
+
+
+def csv_header(state_labels: list[str], invariants: list[str]) -> list[str]:
+    """t, the state, then the invariants under their CSV names (static/data/columns.json,
+    shared with the case page's CSV button): unique, so the integral M^2 is `M_squared`
+    beside the component `M2`."""
+    names = {k: v for k, v in json.loads(COLUMNS_JSON.read_text()).items()
+             if not k.startswith("_")}
+    header = ["t", *state_labels]
+    for n in invariants:
+        col = names.get(n, n)
+        while col in header:
+            col += "_integral"
+        header.append(col)
+    return header
 
 
 def _plain(x):
@@ -109,9 +136,8 @@ def json_bytes(res, max_steps: int) -> bytes:
 
 
 def arrow_bytes(res, max_steps: int) -> bytes:
+    # imported here: pyarrow's imports take a noticeable time and only this answer needs it
     import pyarrow as pa
-
-    from app.services.jobs import csv_header
 
     out = result_dict(res, max_steps)
     labels = list(res.state_labels)

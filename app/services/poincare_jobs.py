@@ -9,6 +9,7 @@ from __future__ import annotations
 def trajectories(job: dict, starts: list[list[float]]) -> list[dict]:
     import numpy as np
 
+    # imported here, in the worker: the maps load numba and their compiled kernels
     from solvers.maps.poincare import MapSpec, integral_spread, map_model, trace_checked_all
 
     model = map_model(job["case"], job["params"], allow_any_inertia=job["allow_any_inertia"])

@@ -10,26 +10,23 @@ from html import escape
 from pathlib import Path
 from urllib.parse import urlsplit
 
+from markupsafe import Markup
+
 from app import __version__
-from app.services import howcheck, site_shell, ssr
+from app.core.config import get_settings
+from app.services import howcheck, ssr, templates
+from app.services.anchors import claim_anchor
 from catalogue.glossary import load_glossary
 from catalogue.load import load_catalogue
 from catalogue.numbering import cite, printed
 from catalogue.since_2002 import load_since_2002, note_json
+from solvers.verify import marks as vocab
 
 PAPER_DOI = "10.1070/RD2002v007n02ABEH000204"   # the seed's \doi{...}
 
-_PLACEHOLDER = re.compile(r"\{\{(printed|fig):([^}]+)\}\}")
 # the address of each static page, for the navigation's aria-current
 _PAGE_PATHS = {"errata.html": "/errata", "poincare.html": "/poincare",
                "scenes.html": "/scenes", "work-precision.html": "/work-precision"}
-
-
-def _number(kind: str, label: str) -> str:
-    num = printed(label)
-    if num is None:
-        raise KeyError(f"no printed number for {label!r}")
-    return num.removeprefix("Fig. ") if kind == "fig" else num
 
 
 def static_page(path: Path) -> str:
@@ -38,31 +35,18 @@ def static_page(path: Path) -> str:
     return render_page(path.read_text(encoding="utf-8"), path.name)
 
 
-def render_page(text: str, name: str) -> str:
-    """`static_page` for a page's text already in hand (`name`: its file name)."""
-    html = _PLACEHOLDER.sub(lambda m: _number(m[1], m[2]), text)
-    html = site_shell.fill(html, _PAGE_PATHS.get(name))
-    if name == "index.html":
-        html = html.replace("</main>", cite_box() + "</main>", 1)
-    return html
+def render_page(text: str, name: str, **context) -> str:
+    """`static_page` for a page's text already in hand (`name`: its file name), with the
+    values of the template's own variables in `context` (ssr.py: the server-drawn parts)."""
+    if name == "index.html":      # the home page's Cite box, at the end of its <main>
+        context["cite_box"] = Markup(cite_box())
+    return templates.render(text, _PAGE_PATHS.get(name), **context)
 
 
 def layout(title: str, body: str, current: str | None = None) -> str:
-    return f"""<!doctype html>
-<html lang="en">
-<head>
-{site_shell.HEAD}
-<title>{escape(title)} — Rolling hierarchy</title>
-</head>
-<body>
-{site_shell.header("Skip to the content", current)}
-<main id="main" class="reader">
-<h1>{escape(title)}</h1>
-{body}
-</main>
-{site_shell.FOOTER}
-</body>
-</html>"""
+    """A page built here: its title and body in the reader's page (templates/reader.html)."""
+    return templates.render_file("reader.html", current, title=Markup(escape(title)),
+                                 body=Markup(body))
 
 
 def tex(s: str) -> str:
@@ -172,7 +156,6 @@ def cite_key(what: str = "") -> str:
 
 
 def public_url() -> str | None:
-    from app.core.config import get_settings
 
     return get_settings().public_url
 
@@ -184,7 +167,6 @@ def cite_data(base_url: str | None = None) -> dict:
     `base_url` (returned as `public_url`): the configured public address
     (ROLLING_PUBLIC_URL), else None and the page's own address is used; `marks`: each
     mark's shape and name, for a claim's box."""
-    from solvers.verify import marks as vocab
 
     r = load_catalogue().reference(PAPER_ID)
     paper = {"author": " and ".join(_bib_name(a) for a in r.authors), "title": r.title,
@@ -329,7 +311,7 @@ def _since_2002_html() -> str:
     notes = "".join(
         f'<li class="since-note" data-record="{escape(n.record)}">'
         f'<a href="/case/{escape("/".join(n.record.split("/")[:2]))}#'
-        f'{escape(ssr._anchor(n.record))}">{escape(_record_words(n.record))}</a>'
+        f'{escape(claim_anchor(n.record))}">{escape(_record_words(n.record))}</a>'
         f"{ssr.since_html(note_json(n))}</li>" for n in data.notes)
     return ('<h2 id="since-2002">Since 2002</h2><p>What later work says about every open '
             "cell, open claim, refuted conjecture and non-existence result, with how much of "

@@ -1,15 +1,12 @@
 """The parts every page of the explorer shares, written once: the common <head> links, the
 site header (skip link, brand, navigation with the current page marked) and the footer.
 
-A static page (app/static/*.html) holds only what is its own, with three placeholders:
-`{{head}}` inside <head>, `{{site-header:Skip to the …}}` at the top of <body> and
-`{{site-footer}}` after </main>; `fill()` puts the shared parts in. The pages built in
-Python (reader_pages.layout) use the same functions.
+A page (app/static/*.html, app/templates/*.html) holds only what is its own and names the
+shared parts in short forms that templates.py renders with these.
 """
 
 from __future__ import annotations
 
-import re
 from html import escape
 
 from app import __version__
@@ -65,17 +62,3 @@ def header(skip: str, current: str | None = None) -> str:
             '  <a class="brand" href="/"><span class="logo" aria-hidden="true"></span>'
             f'Rolling hierarchy</a>\n  {MENU}\n'
             f'  <nav aria-label="Site">{nav(current)}</nav>\n</header>')
-
-
-_HEADER = re.compile(r"\{\{site-header:([^}]*)\}\}")
-
-
-def fill(html: str, current: str | None = None) -> str:
-    """A static page with the shared head, header and footer put in its placeholders."""
-    for mark in ("{{head}}", "{{site-footer}}"):
-        if mark not in html:
-            raise ValueError(f"a static page lacks {mark}")
-    if not _HEADER.search(html):
-        raise ValueError("a static page lacks {{site-header:…}}")
-    html = html.replace("{{head}}", HEAD, 1).replace("{{site-footer}}", FOOTER, 1)
-    return _HEADER.sub(lambda m: header(m[1], current), html, count=1)

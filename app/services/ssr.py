@@ -8,15 +8,12 @@ words with its verdict; the paper's internal LaTeX labels are not shown.
 
 from __future__ import annotations
 
-import re
 from html import escape
 
+from markupsafe import Markup
+
+from app.services.anchors import claim_anchor
 from solvers.verify import marks as vocab
-
-
-def _anchor(claim_id: str) -> str:
-    # the same anchors as the page's script (case.js anchor())
-    return "claim-" + re.sub(r"[^A-Za-z0-9_-]+", "_", claim_id)
 
 
 def _info(mark: str):
@@ -41,12 +38,13 @@ def claim_label(c: dict) -> str:
 def permalink_html(c: dict) -> str:
     """The claim's visible permalink, the same as the script draws (cite.js permalinkHtml):
     with scripts off a reader can still link to one claim."""
-    a = _anchor(c["id"])
+    a = claim_anchor(c["id"])
     return (f'<a class="permalink" href="#{a}" title="Permalink to this claim" '
             f'aria-label="Permalink to the claim {escape(claim_label(c))}">¶</a>')
 
 
-def claim_html(c: dict) -> str:
+def claim_html(c: dict, since: str = "") -> str:
+    """A claim as an article, with its 'since 2002' note (`since`, since_html) last."""
     v = c["verdict"]
     residual = (f"; largest normalised residual {v['residual']:.1e}"
                 if isinstance(v.get("residual"), float) else "")
@@ -57,10 +55,10 @@ def claim_html(c: dict) -> str:
             f'{f" ({links})" if links else ""}.</p>') if v.get("mark_note") else ""
     msg = (f"<details><summary>How it was checked</summary><p>{escape(v['message'])}</p>"
            f"</details>") if v.get("message") else ""
-    return (f'<article class="claim ssr" id="{_anchor(c["id"])}">'
+    return (f'<article class="claim ssr" id="{claim_anchor(c["id"])}">'
             f'<h3>{permalink_html(c)} {escape(claim_label(c))}: {escape(c["plain"])}</h3>'
             f'<p>Mark: {badge_html(v.get("mark") or "not-checkable")}'
-            f'{escape(residual)}.</p>{note}{where}{msg}</article>')
+            f'{escape(residual)}.</p>{note}{where}{msg}{since}</article>')
 
 
 ACCESS_WORDS = {"full": "read in full", "abstract": "only abstracts or records read",
@@ -82,12 +80,6 @@ def since_html(n: dict) -> str:
             f'{ACCESS_WORDS[n["access"]]}): {escape(n["note"])}</p>{refs}{project}</aside>')
 
 
-def _with_since(claim_html_text: str, c: dict, notes: dict) -> str:
-    n = notes.get(c["id"])
-    return claim_html_text.replace("</article>", since_html(n) + "</article>", 1) \
-        if n else claim_html_text
-
-
 def symbol_link(s: dict) -> str:
     """A symbol of a formula as a link to its entry on /notation, its name on hover; the
     same markup as the page's script (static/js/notation.js symbolLink). A click or tap
@@ -107,33 +99,24 @@ def notation_html(refs: list[dict]) -> str:
         for s in refs) + "</ul>")
 
 
-def case_page(template: str, detail: dict) -> str:
-    """case.html with the case's title, its counts by mark and its claims filled in; each
-    claim and open cell with its 'since 2002' note, if it has one."""
-    title = escape(detail["title"])
+def case_context(detail: dict) -> dict:
+    """The server-drawn parts of case.html: the case's title, its counts by mark, its
+    claims (each claim and open cell with its 'since 2002' note, if it has one) and the
+    symbols of its formulas."""
     notes = {n["record"]: n for n in detail.get("since_2002") or []}
-    claims = "".join(_with_since(claim_html(c), c, notes) for c in detail["claims"])
+    claims = "".join(claim_html(c, since_html(notes[c["id"]]) if c["id"] in notes else "")
+                     for c in detail["claims"])
     cells = [n for n in notes.values() if "/cell/" in n["record"]]
     if cells:
         claims += ('<section class="since-cells ssr" id="since-2002"><h3>Since 2002: the '
                    'table\'s open cells</h3>' +
-                   "".join(f'<div id="{_anchor(n["record"])}"><p>Cell '
+                   "".join(f'<div id="{claim_anchor(n["record"])}"><p>Cell '
                            f'{escape(n["record"].split("/cell/")[1].replace("_", " "))}:</p>'
                            f'{since_html(n)}</div>' for n in cells) + "</section>")
-    summary = escape(detail.get("summary") or "")
-    return (template
-            .replace("<title>Case — Rolling hierarchy</title>",
-                     f"<title>{title} — Rolling hierarchy</title>", 1)
-            .replace('<h1 id="case-title">Loading…</h1>', f'<h1 id="case-title">{title}</h1>', 1)
-            .replace('<div class="tally" id="tally" aria-live="polite"></div>',
-                     '<div class="tally" id="tally" aria-live="polite"><p class="mark-summary" '
-                     f'id="mark-summary">{summary}</p></div>', 1)
-            .replace('<div id="claimlist"></div>',
-                     f'<div id="claimlist"><p class="status ssr">{summary}</p>{claims}</div>',
-                     1)
-            .replace('<div id="symbollist"></div>',
-                     f'<div id="symbollist">{notation_html(detail.get("notation") or [])}'
-                     "</div>", 1))
+    return {"title": Markup(escape(detail["title"])),
+            "summary": Markup(escape(detail.get("summary") or "")),
+            "claims": Markup(claims),
+            "notation": Markup(notation_html(detail.get("notation") or []))}
 
 
 def shade_why(c: dict) -> str:
@@ -226,14 +209,8 @@ def table_html(t: dict) -> str:
             f'<tbody>{"".join(rows)}</tbody></table>')
 
 
-def home_page(template: str, tables: dict[str, dict], summary: str = "") -> str:
-    """index.html with Tables 1 and 2, the key to the marks and the counts by mark in the
-    HTML itself."""
-    template = template.replace("<!--marks-legend-->", legend_html(), 1)
-    template = template.replace("<!--marks-summary-->", escape(summary), 1)
-    for n, t in enumerate(tables.values(), start=1):
-        loading = (f'<div class="table-wrap" tabindex="0"><p class="loading">'
-                   f'Loading Table {n}…</p></div>')
-        template = template.replace(
-            loading, f'<div class="table-wrap" tabindex="0">{table_html(t)}</div>', 1)
-    return template
+def home_context(tables: dict[str, dict], summary: str = "") -> dict:
+    """The server-drawn parts of index.html: Tables 1 and 2, the key to the marks and the
+    counts by mark."""
+    return {"legend": Markup(legend_html()), "summary": Markup(escape(summary)),
+            "tables": [Markup(table_html(t)) for t in tables.values()]}

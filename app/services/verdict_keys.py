@@ -16,10 +16,13 @@ import json
 from functools import cache
 from pathlib import Path
 
+from catalogue.load import load_catalogue
+
 ROOT = Path(__file__).resolve().parents[2]
 FORMULA_DIR = ROOT / "solvers" / "verify" / "formulas"
 # sources outside solvers/ that change what a check computes
-SHARED_EXTRA = ("catalogue/schema.py", "catalogue/load.py", "app/services/jobs.py")
+SHARED_EXTRA = ("catalogue/schema.py", "catalogue/kinds.py", "catalogue/claims.py",
+                "catalogue/load.py", "app/services/jobs.py", "app/services/worker_run.py")
 
 
 def _digest(*parts: bytes) -> str:
@@ -52,7 +55,7 @@ def _module_sources() -> dict[str, bytes]:
 def _implementing_modules(fid: str) -> list[str]:
     """The formula modules holding the implementation, correction or comparison of `fid`
     (their short names); every module when the registry cannot be imported."""
-    try:
+    try:   # imported here: the formulas load sympy and the kernels, only for a re-check
         import solvers.verify.formulas  # noqa: F401  (registers on import)
         from solvers.verify import registry as reg
     except Exception:  # the check itself will say so; hash conservatively
@@ -72,7 +75,6 @@ def _implementing_modules(fid: str) -> list[str]:
 
 def case_keys(case_ids: list[str]) -> dict[str, str]:
     """case id -> hash of everything its verdicts depend on."""
-    from catalogue.load import load_catalogue
 
     cat = load_catalogue()
     formulas = {f.id: f for f in cat.formulas}

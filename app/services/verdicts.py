@@ -20,6 +20,11 @@ from app import __version__
 from app.core.pool import QueueFull, WorkerPool
 from app.services import jobs
 from app.services.verdict_db import VerdictDB
+from app.services.verdict_keys import case_keys
+from catalogue.load import load_catalogue
+from catalogue.numbering import cite
+from solvers.verify import marks as vocab
+from solvers.verify.levels import DECIDING, combine, formula_mark
 
 log = logging.getLogger("rolling.verdicts")
 VERDICTS = ("verified", "fails", "evidence", "unchecked")
@@ -43,7 +48,6 @@ class VerdictStore:
     def keys(self) -> dict[str, str]:
         """case id -> hash of what its verdicts depend on (computed once per process)."""
         if self._keys is None:
-            from app.services.verdict_keys import case_keys
 
             self._keys = case_keys(self.case_ids)
         return self._keys
@@ -51,7 +55,6 @@ class VerdictStore:
     def key(self, case_id: str) -> str:
         keys = self.keys()
         if case_id not in keys:
-            from app.services.verdict_keys import case_keys
 
             keys.update(case_keys([case_id]))
         return keys[case_id]
@@ -195,7 +198,6 @@ def cell_mark_of(rec: dict | None, waiting: bool) -> tuple[str, str | None, list
             ("not-checkable", "the check did not run on this server", [], "unchecked")
     mark = rec.get("mark")
     if mark is None:                  # a record stored before marks existed
-        from solvers.verify.levels import formula_mark
 
         mark, note, errata = formula_mark(rec, None, {})
     else:
@@ -214,10 +216,6 @@ def summary(claim_ids: list[str], by_claim: dict[str, dict], row: str,
     check failed) is not checkable."""
     if not claim_ids:
         return None
-    from catalogue.load import load_catalogue
-    from catalogue.numbering import cite
-    from solvers.verify import marks as vocab
-    from solvers.verify.levels import DECIDING, combine
 
     cat = load_catalogue()
     marks, notes = [], []

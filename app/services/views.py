@@ -7,8 +7,9 @@ from __future__ import annotations
 import re
 from functools import cache
 
+from app.services.notation_page import case_formulas
 from app.services.verdicts import VERDICTS, summary
-from catalogue.load import load_catalogue
+from catalogue.load import load_catalogue, load_corrected_forms
 from catalogue.notation import entry_for
 from catalogue.numbering import cite, cite_latex, printed
 from catalogue.plain_words import cite_names, phrases
@@ -17,8 +18,9 @@ from catalogue.since_2002 import note_json, notes_for
 from catalogue.symbols import plain as plain_symbol
 from catalogue.symbols import symbols as symbol_tokens
 from solvers.models.bodies import STATE_LABELS
-from solvers.models.cases import CaseSpec, beyond_table_ids, registry
+from solvers.models.cases import CaseSpec, beyond_table_ids, build, registry
 from solvers.verify import marks as vocab
+from solvers.verify.levels import formula_mark
 
 UNCHECKED_MSG = "no verdict: the check has not run on this server (see /api/health, verification)"
 PENDING_MSG = ("being checked now: this server is computing the verdicts of the cases whose "
@@ -65,7 +67,6 @@ def page_notation(case: Case) -> list[dict]:
     """Every symbol of the formulas a case page can typeset (its cells, its claims and the
     project's corrected forms, notation_page.case_formulas), once per entry, in the page's
     order."""
-    from app.services.notation_page import case_formulas
 
     refs = [s for tex, text in case_formulas(case) for s in symbol_refs(tex, text)]
     seen: dict[str, dict] = {}
@@ -152,7 +153,6 @@ _CORRECTION_OF = re.compile(r"\[project's correction of (\w+)\]\s*")
 @cache
 def corrected_forms() -> dict[str, str]:
     """fid -> the TeX of the project's corrected form (catalogue/corrected_forms.yaml)."""
-    from catalogue.load import load_corrected_forms
 
     return {fid: cf.latex for fid, cf in load_corrected_forms().items()}
 
@@ -160,7 +160,6 @@ def corrected_forms() -> dict[str, str]:
 @cache
 def _corrected_changes() -> dict[str, str]:
     """fid -> what the correction changes, in a reader's words (corrected_forms.yaml)."""
-    from catalogue.load import load_corrected_forms
 
     return {fid: cf.change for fid, cf in load_corrected_forms().items()}
 
@@ -192,7 +191,6 @@ def record(rec: dict) -> dict:
     if out.get("verdict") not in VERDICTS:
         out["verdict"] = "unchecked"
     if rec.get("mark") is None:       # a record stored before marks existed
-        from solvers.verify.levels import formula_mark
 
         out["mark"], out["mark_note"], out["errata"] = formula_mark(
             {**rec, "verdict": out["verdict"]}, None, {})
@@ -222,7 +220,6 @@ def claim(c: Claim, by_claim: dict[str, dict], corrections: dict[str, list[dict]
 
 
 def runnable(spec: CaseSpec) -> dict:
-    from solvers.models.cases import build
 
     model = build(spec.id, spec.example)
     params = [{"name": n, "required": True, "default": None,

@@ -24,12 +24,12 @@ def next_point(model: Model, spec: MapSpec, x) -> np.ndarray | None:
     """P(x): the map point of the first crossing after the start x = (L/G, H/G, l) on
     the level spec.energy and the section (None if it does not return)."""
     from solvers.integrate.integrator import integrate
-    from solvers.maps.poincare import PILOT_TAUS, _omega_norm
+    from solvers.maps.poincare import PILOT_TAUS, omega_norm
 
     y0 = on_energy_level(model, x[0], x[1], x[2], spec.g0, spec.energy)
     if y0 is None:
         return None
-    tau = TWO_PI / _omega_norm(model, y0)
+    tau = TWO_PI / omega_norm(model, y0)
     res = integrate(model.model, model.p, y0, [0.0, PILOT_TAUS * tau], method=spec.method,
                     rtol=spec.rtol, atol=spec.atol, section=spec.section(),
                     max_crossings=2, max_steps=spec.max_steps)

@@ -142,7 +142,7 @@ def run(scene: Scene, the_plan: Plan | None = None) -> SceneRun:
     n_base = model.dim
     t_out = np.linspace(0.0, scene.t_end, pl.samples)
     if pl.kind == "reduced":
-        from solvers.models.reduced import to_reduced
+        from solvers.models.reduced_systems import to_reduced
 
         z0 = to_reduced(model.p, y0)
     elif pl.kind == "full+orientation":
@@ -181,7 +181,7 @@ def _shown(scene: Scene, pl: Plan, model: Model, res: IntegrationResult, n: int)
             labels = STATE_LABELS[model.model]
             red = None
             if any(v in REDUCED_LABELS for v in names):
-                from solvers.models.reduced import to_reduced
+                from solvers.models.reduced_systems import to_reduced
 
                 red = np.array([to_reduced(model.p, y[:n]) for y in Y]).reshape(-1, 4)
             out["series"] = {v: (Y[:, labels.index(v)] if v in labels

@@ -1,7 +1,7 @@
 """Run the checks of a teaching scene (catalogue/scenes.yaml) on the scene's own run
 (the preset's `scene` declaration: case, parameters, state, t_end).
 
-One function per check kind of catalogue/scenes.py; each returns a CheckResult with the
+One function per check kind of solvers/scenes/teaching.py; each returns a CheckResult with the
 measured value, so a failing scene says by how much, and the plot of exactly the data the
 verdict was taken from (`plot`): /scenes draws it (GET /api/scenes/{id}/checks/{k}), so
 what a class sees is what the test suite checked.
@@ -271,7 +271,7 @@ _runs: dict[str, object] = {}
 def check_json(scene_id: str, k: int) -> dict:
     """Check k of scene `scene_id` with its plot, for GET /api/scenes/{id}/checks/{k}
     (a worker process: the scene's run is kept for its other checks)."""
-    from catalogue.scenes import load_scenes
+    from solvers.scenes.teaching import load_scenes
 
     scene = load_scenes()[scene_id]
     check = scene.checks[k]

@@ -20,6 +20,10 @@ from __future__ import annotations
 
 import re
 
+from catalogue.load import load_corrected_forms
+from catalogue.numbering import cite as _cite
+from catalogue.numbering import cite_latex as _cite_latex
+from catalogue.numbering import printed
 from catalogue.schema import Catalogue
 
 ERRATA_KINDS = ("misprint", "inherited")
@@ -47,7 +51,6 @@ FINDING_TITLES = {
 
 def printed_number(label: str | None) -> str | None:
     """What a reader of the printed paper finds: "(2.15)", not the LaTeX label."""
-    from catalogue.numbering import printed
 
     return printed(label)
 
@@ -55,7 +58,6 @@ def printed_number(label: str | None) -> str | None:
 def cite(text):
     """Reader's text: every internal label replaced by its printed number (strings inside
     lists and dicts too); labels stay as data in the `label` field only."""
-    from catalogue.numbering import cite as _cite
 
     if isinstance(text, str):
         return _cite(text)
@@ -67,7 +69,6 @@ def cite(text):
 
 
 def cite_latex(tex: str | None) -> str | None:
-    from catalogue.numbering import cite_latex as _cite_latex
 
     return _cite_latex(tex)
 
@@ -111,7 +112,6 @@ def short_place(number: str | None, where: str | None) -> str:
 def corrected_display(fid: str | None, cat: Catalogue) -> dict:
     """The display the correction of formula `fid` changes (corrected_forms.yaml: its
     `display`, else the formula's own), its printed number or place, and its section."""
-    from catalogue.load import load_corrected_forms
 
     cf = load_corrected_forms().get(fid or "")
     if cf is None:

@@ -53,7 +53,7 @@ its JSON and the API.
 
 from __future__ import annotations
 
-from catalogue.schema import Case, Catalogue
+from catalogue.schema import Case, Catalogue, RowKey
 from solvers.verify import plain_notes
 
 NEUTRAL_CHECKS = frozenset({"open_problem", "formula_not_printed", "not_checkable"})
@@ -277,7 +277,7 @@ def _claim_mark(r: dict, basis: str | None, on: list[str], by_claim: dict):
     return r["mark"], r.get("mark_note"), list(r.get("errata") or [])
 
 
-def _aggregate(judged: list[tuple[str, dict]]) -> str:
+def aggregate(judged: list[tuple[str, dict]]) -> str:
     verdicts = [v for v, _ in judged]
     if "fails" in verdicts:
         return "fails"
@@ -322,7 +322,7 @@ def cell_records(records: list[dict], cat: Catalogue, case_ids=None) -> list[dic
                         notes.append(CELL_NOTE[basis])
                     marked.append(_claim_mark(by_claim[c], basis, on, by_claim))
                 rests.sort(key=lambda x: _rank(x, by_claim))
-                verdict = _aggregate(judged)
+                verdict = aggregate(judged)
                 # a formula-free test of another claim of this cell is support for that
                 # claim's property (already in its judgement), not one more condition: it
                 # counts here only when it goes against (fails, evidence against, undecided)
@@ -368,7 +368,6 @@ def plan(cat: Catalogue, case: str | None, claim: str | None):
     """(claim ids to run, keep(record) -> bool, case ids of the cell records) for
     `verify(case, claim)`; claim may be any record id: a claim, `<claim>/corrected` or a
     cell `<case>/cell/<row>`. Raises KeyError for an unknown id."""
-    from catalogue.schema import RowKey
 
     cases = [c for c in cat.cases() if case in (None, c.id)]
     if claim is None:

@@ -25,15 +25,38 @@ class Mark(BaseModel):
     definition: str
 
 
+class Verdict(BaseModel):
+    """A coarse verdict (the API's `verdict` field), its sign and what it means."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+    id: str
+    shape: str
+    meaning: str
+
+
+@cache
+def _raw() -> dict:
+    return yaml.safe_load(Path(__file__).with_name("marks.yaml").read_text(encoding="utf-8"))
+
+
 @cache
 def vocabulary() -> tuple[Mark, ...]:
-    raw = yaml.safe_load(Path(__file__).with_name("marks.yaml").read_text(encoding="utf-8"))
-    marks = tuple(Mark(**m) for m in raw)
+    marks = tuple(Mark(**m) for m in _raw()["marks"])
     for attr in ("id", "shape", "word", "name"):
         values = [getattr(m, attr) for m in marks]
         if len(set(values)) != len(values):
             raise ValueError(f"marks.yaml: two marks share a {attr}")
     return marks
+
+
+@cache
+def verdicts() -> tuple[Verdict, ...]:
+    """The coarse verdicts, in the order /how-we-check lists them."""
+    out = tuple(Verdict(**v) for v in _raw()["verdicts"])
+    if len({v.id for v in out}) != len(out):
+        raise ValueError("marks.yaml: two verdicts share an id")
+    return out
 
 
 def by_id() -> dict[str, Mark]:

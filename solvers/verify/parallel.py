@@ -6,15 +6,18 @@ from concurrent.futures import ProcessPoolExecutor
 
 
 def _one(claim_id):
+    # imported here, in the worker process, which loads the checks on its first claim
     from catalogue.load import load_catalogue
-    from solvers.verify.run import _run_claim
+    from solvers.verify.run import run_claim
 
     cat = load_catalogue()
     case, claim = cat.find(claim_id)
-    return [r.to_json() for r in _run_claim(cat, case, claim)]
+    return [r.to_json() for r in run_claim(cat, case, claim)]
 
 
 def verify_parallel(case=None, claim=None, workers=0) -> list[dict]:
+    # imported here: run.py loads every check and formula, which a caller that only
+    # imports this module (app/cli.py) does not need until it verifies
     from catalogue.load import load_catalogue
     from solvers.verify import levels
     from solvers.verify.run import resolve

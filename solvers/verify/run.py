@@ -6,11 +6,14 @@ from dataclasses import asdict, dataclass
 import numpy as np
 
 from catalogue.load import load_catalogue
+from solvers.errors import InputError
 from solvers.verify import (
     checks,  # noqa: F401  (registers the checks)
     formulas,  # noqa: F401  (registers the formulas)
+    levels,
 )
-from solvers.verify.exact import exact_for
+from solvers.verify.checks.common import TOL
+from solvers.verify.exact.certifiers import exact_for
 from solvers.verify.registry import CHECKS, CORRECTED, CORRECTION_NOTES, Outcome
 
 VERDICTS = ("verified", "fails", "evidence", "unchecked")
@@ -41,7 +44,7 @@ class Record:
         return d
 
 
-def _run_claim(catalogue, case, claim) -> list[Record]:
+def run_claim(catalogue, case, claim) -> list[Record]:
     t0 = time.perf_counter()
     fn = CHECKS.get(claim.check.value)
     try:
@@ -58,7 +61,6 @@ def _run_claim(catalogue, case, claim) -> list[Record]:
     args = claim.check_args          # the corrected object: the first with a correction
     fid = next((f for f in (args.formula, args.system, args.bracket) if f in CORRECTED), None)
     if out.verdict == "fails" and out.corrected_residual is not None and fid in CORRECTED:
-        from solvers.verify.checks.common import TOL
         ok = out.corrected_residual <= TOL
         records.append(Record(
             case.id, f"{claim.id}/corrected", claim.kind.value,
@@ -117,19 +119,16 @@ def verify(case: str | None = None, claim: str | None = None) -> list[dict]:
     >>> reduction["label"], reduction["verdict"], reduction["qualifier"]
     ('eq3.13', 'fails', 'refuted')
     """
-    from solvers.verify import levels
 
     cat = load_catalogue()
     ids, keep, cell_cases = resolve(cat, case, claim)
     owner = {cl.id: c for c in cat.cases() for cl in c.claims}
-    raw = [r.to_json() for cid in ids for r in _run_claim(cat, owner[cid], owner[cid].claim(cid))]
+    raw = [r.to_json() for cid in ids for r in run_claim(cat, owner[cid], owner[cid].claim(cid))]
     return levels.finish(raw, cat, keep, cell_cases)
 
 
 def resolve(cat, case: str | None, claim: str | None):
     """levels.plan with clear errors for an unknown case or record id."""
-    from solvers.errors import InputError
-    from solvers.verify import levels
 
     known = [c.id for c in cat.cases()]
     if case is not None and case not in known:

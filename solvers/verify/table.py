@@ -6,9 +6,7 @@ else a formula-free test). A misprinted formula under a true property leaves the
 verified, with a note; the ✗ stays on the formula record.
 """
 
-from solvers.verify.levels import NEUTRAL_CHECKS, cell_id  # noqa: F401  (re-exported)
-
-MARKS = {"verified": "✓", "fails": "✗", "evidence": "~", "unchecked": "?", "": ""}
+from solvers.verify.levels import NEUTRAL_CHECKS, aggregate, cell_id  # noqa: F401  (re-exported)
 
 
 def table_marks(table, records: list[dict]) -> dict[str, dict[str, str]]:
@@ -26,10 +24,9 @@ def cell_notes(table, records: list[dict]) -> dict[str, dict[str, list[str]]]:
 
 
 def cell_verdict(cell_claims: list[str], by_claim: dict[str, dict]) -> str:
-    """The aggregation rule of a cell over verdicts as given (levels._aggregate): fails if
+    """The aggregation rule of a cell over verdicts as given (levels.aggregate): fails if
     any fails, verified if all checkable ones are (open problems and statements without a
     formula are neutral), evidence if all are evidence or verified, else unchecked."""
-    from solvers.verify.levels import _aggregate
 
     recs = [by_claim[c] for c in cell_claims if c in by_claim]
-    return _aggregate([(r["verdict"], r) for r in recs]) if recs else ""
+    return aggregate([(r["verdict"], r) for r in recs]) if recs else ""

@@ -9,7 +9,7 @@ det d(vars)/d(full) so a density in those variables can be pulled back:
 
 import numpy as np
 
-from solvers.models.reduced import flat_reduced, to_reduced
+from solvers.models.reduced_systems import flat_reduced, to_reduced
 
 SAME_DIMENSION = {"(M, gamma)", "(omega, gamma)", "(K, gamma)", "(M, r1, r2)",
                   "(omega, r1, r2)"}

@@ -17,7 +17,7 @@ def stored_verdicts_server(records, cache_dir):
     and tests/test_verdict_store.py check; the pages that only show verdicts read them
     here (a module that asked the session's server to verify its cases paid 40-55 s of
     CPU for records the session has already computed)."""
-    from app.services.jobs import _finite
+    from app.services.payloads import finite as _finite
     from app.services.verdicts import VerdictStore
     from solvers.models.cases import table_case_ids
 

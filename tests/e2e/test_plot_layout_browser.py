@@ -8,7 +8,7 @@ from functools import partial
 
 import pytest
 
-from catalogue.scenes import load_scenes
+from solvers.scenes.teaching import load_scenes
 from tests.e2e.test_maps_and_scenes_browser import draw_every_figure
 
 # the parts of a plot a reader must be able to read, by Plotly's class names

@@ -19,8 +19,8 @@ test's cost, and issue 19 asks for CI under 12 minutes):
 import pytest
 from playwright.sync_api import expect
 
-from catalogue.scenes import load_scenes
 from solvers.scenes.scene_checks import PRETTY
+from solvers.scenes.teaching import load_scenes
 from tests.e2e.test_plot_layout_browser import problems
 
 SCENES = load_scenes()

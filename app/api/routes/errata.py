@@ -15,7 +15,7 @@ from catalogue.load import load_catalogue
 router = APIRouter(tags=["errata"])
 
 
-def _records(store) -> list[dict]:
+def store_records(store) -> list[dict]:
     return [r for recs in store.records.values() for r in recs]
 
 
@@ -26,7 +26,7 @@ async def get_errata(store: VerdictsDep) -> list[dict]:
     the exact witness when there is one and the command that reproduces it."""
     from solvers.verify import errata
 
-    return errata.errata(_records(store), load_catalogue())
+    return errata.errata(store_records(store), load_catalogue())
 
 
 @router.get("/conventions", response_model=list[ConventionPublic])
@@ -35,7 +35,7 @@ async def get_conventions(store: VerdictsDep) -> list[dict]:
     Poisson bracket), with the convention and the residuals under it and under ours."""
     from solvers.verify import errata
 
-    return errata.conventions(_records(store), load_catalogue())
+    return errata.conventions(store_records(store), load_catalogue())
 
 
 @router.get("/findings", response_model=list[FindingPublic])
@@ -47,11 +47,11 @@ async def get_findings(store: VerdictsDep, settings: SettingsDep) -> list[dict]:
     from solvers.verify import errata
 
     cat = load_catalogue()
-    return errata.findings(_records(store), cat) + _figure_findings(
+    return errata.findings(store_records(store), cat) + figure_findings_of(
         settings.static_dir / "data" / "paper_figures.json")
 
 
-def _figure_findings(path: Path) -> list[dict]:
+def figure_findings_of(path: Path) -> list[dict]:
     """From the figure data bench/paper_figures.py writes (about a megabyte of points:
     parsed again only when the file changes)."""
     from solvers.verify import errata

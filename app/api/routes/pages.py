@@ -9,9 +9,12 @@ from fastapi import APIRouter, HTTPException, Request
 from fastapi.responses import FileResponse, HTMLResponse, RedirectResponse, Response
 
 from app.api.deps import PagesDep, SettingsDep, VerdictsDep
+from app.api.routes.errata import figure_findings_of, store_records
 from app.core.errors import not_found_page
 from app.services import errata_pages, ssr, views
 from app.services.reader_pages import render_page
+from catalogue.load import load_catalogue
+from solvers.verify import errata
 
 router = APIRouter(include_in_schema=False)
 _ONE_DAY = {"Cache-Control": "public, max-age=86400"}
@@ -34,7 +37,7 @@ async def home(settings: SettingsDep, verdicts: VerdictsDep, pages: PagesDep) ->
         by_claim, pending = verdicts.by_claim(), verdicts.pending()
         tables = {tid: views.table(tid, by_claim, pending) for tid in ("plane", "sphere")}
         summary = views.cells_sentence(views.tables_cell_marks(tables.values()))
-        return render_page(ssr.home_page(path.read_text(), tables, summary), "index.html")
+        return render_page(path.read_text(), "index.html", **ssr.home_context(tables, summary))
 
     return HTMLResponse(pages.get("/", pages.stamp(verdicts, path), build))
 
@@ -53,19 +56,16 @@ async def case_page(case_id: str, settings: SettingsDep, verdicts: VerdictsDep,
         # the claims and their verdicts in the HTML itself (readable with scripts off)
         detail = views.case_detail(case_id, verdicts.by_claim(), verdicts.corrections(),
                                    verdicts.case_state(case_id))
-        return render_page(ssr.case_page(path.read_text(), detail), "case.html")
+        return render_page(path.read_text(), "case.html", **ssr.case_context(detail))
 
     return HTMLResponse(pages.get(f"/case/{case_id}", pages.stamp(verdicts, path), build))
 
 
 def _errata_rows(verdicts, settings) -> tuple[list[dict], list[dict], list[dict]]:
-    from app.api.routes.errata import _figure_findings, _records
-    from catalogue.load import load_catalogue
-    from solvers.verify import errata
 
-    records, cat = _records(verdicts), load_catalogue()
+    records, cat = store_records(verdicts), load_catalogue()
     return (errata.errata(records, cat), errata.conventions(records, cat),
-            errata.findings(records, cat) + _figure_findings(
+            errata.findings(records, cat) + figure_findings_of(
                 settings.static_dir / "data" / "paper_figures.json"))
 
 
@@ -83,9 +83,8 @@ async def errata_page(settings: SettingsDep, verdicts: VerdictsDep,
 
     def build() -> str:
         ers, cvs, fds = _errata_rows(verdicts, settings)
-        html = errata_pages.errata_page(path.read_text(), ers, cvs, fds, verdicts.state,
-                                        len(verdicts.records), len(verdicts.case_ids))
-        return render_page(html, "errata.html")
+        return render_page(path.read_text(), "errata.html", **errata_pages.errata_context(
+            ers, cvs, fds, verdicts.state, len(verdicts.records), len(verdicts.case_ids)))
 
     # the figure findings come from a file of their own: its change is a new page too
     figures = settings.static_dir / "data" / "paper_figures.json"

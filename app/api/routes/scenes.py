@@ -58,7 +58,7 @@ def _public(s) -> dict:
 @router.get("/scenes", response_model=list[ScenePreset])
 async def scenes() -> list[dict]:
     """Every teaching scene, in the catalogue's order."""
-    from catalogue.scenes import load_scenes
+    from solvers.scenes.teaching import load_scenes
 
     return [_public(s) for s in load_scenes().values()]
 
@@ -66,7 +66,7 @@ async def scenes() -> list[dict]:
 @router.get("/scenes/{scene_id}", response_model=ScenePreset,
             responses={404: {"description": "no such scene"}})
 async def scene_preset(scene_id: str) -> dict:
-    from catalogue.scenes import load_scenes
+    from solvers.scenes.teaching import load_scenes
 
     s = load_scenes().get(scene_id)
     if s is None:
@@ -102,8 +102,8 @@ async def scene_check(scene_id: str, k: int, request: Request, pool: PoolDep,
     plot of exactly the data its verdict was taken from: what /scenes draws."""
     from app.services import kernel_prepare
     from app.services.jobs import dumps, prepare_scene_check
-    from catalogue.scenes import load_scenes
     from solvers.scenes.scene_checks import check_json
+    from solvers.scenes.teaching import load_scenes
 
     s = load_scenes().get(scene_id)
     if s is None:

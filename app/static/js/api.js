@@ -58,12 +58,3 @@ export function fmt(x, digits = 3) {
   return x.toExponential(digits - 1).replace("e", "e");
 }
 
-export const VERDICT_TEXT = {
-  verified: "verified",
-  fails: "fails",
-  evidence: "evidence",
-  unchecked: "not checkable",
-  pending: "checking",
-};
-// "?" means only "not checkable"; "…" a check running now (a fresh server recomputing)
-export const VERDICT_ICON = { verified: "✓", fails: "✗", evidence: "◐", unchecked: "?", pending: "…" };

@@ -5,6 +5,7 @@
 // Data: GET /api/errata, /api/conventions, /api/findings (solvers/verify/errata.py).
 "use strict";
 
+import { claimAnchor } from "./anchor.js";
 import { api, escapeHtml } from "./api.js";
 import { mathHtml, printedHtml } from "./latex.js";
 
@@ -15,7 +16,6 @@ function katexReady() {
   });
 }
 
-const claimAnchor = (id) => "claim-" + id.replace(/[^A-Za-z0-9_-]+/g, "_");
 const caseHref = (e) => (e.href ? e.href : `/case/${e.case}#${claimAnchor(e.claim)}`);
 const sectionOf = (e) => (e.section || "").replace(/^section /, "") || "other";
 // a residual as a reader compares it: two digits, round-off in exponent form

@@ -7,6 +7,7 @@
 // column order, so a merged cell never hides one body's mark behind another's.
 "use strict";
 
+import { claimAnchor as anchor } from "./anchor.js";
 import { api, escapeHtml } from "./api.js";
 
 let vocabulary = { marks: [], cells: {}, cells_total: 0, summary: "" };
@@ -31,7 +32,6 @@ export async function overview() {
   return vocabulary;
 }
 
-const anchor = (claimId) => "claim-" + claimId.replace(/[^A-Za-z0-9_-]+/g, "_");
 
 // the erratum of a misprinted formula: its row on /errata
 export function erratumLinks(errata) {

@@ -7,5 +7,6 @@ from solvers.verify.checks import (  # noqa: F401
     ode,
     pointwise,
     recorded,
+    rotations,
     structure,
 )

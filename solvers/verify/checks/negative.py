@@ -42,10 +42,12 @@ from dataclasses import replace
 import numpy as np
 from scipy.spatial import cKDTree
 
+from solvers.integrate.integrator import Section, integrate
 from solvers.kernels import layout as L
 from solvers.models.cases import build
 from solvers.models.derivatives import field
 from solvers.verify.checks.common import TOL, directional, divergence_terms, full_field
+from solvers.verify.checks.pointwise import measure_residual
 from solvers.verify.params import Params, draw, merged_conditions, random_states
 from solvers.verify.registry import Outcome, check
 
@@ -254,7 +256,6 @@ def liouville_residual(P, rho, rng, n):
 # --- (3) attractors on the section ------------------------------------------------------------
 
 def section_points(P, y0, T, coef, max_crossings=MAX_CROSSINGS):
-    from solvers.integrate.integrator import Section, integrate
 
     run = integrate(P.model.model, P.p, y0, np.array([0.0, T]), rtol=1e-10, atol=1e-12,
                     section=Section(coef=coef), max_crossings=max_crossings)
@@ -298,7 +299,6 @@ def check_negative_measure(catalogue, case, claim, *, n_points=N_POINTS_NEG,
     cand = {name: 0.0 for name, _ in CANDIDATES.get(case.id, ())}
     named = claim.check_args.formula       # a candidate density the claim names, if any
     if named:
-        from solvers.verify.checks.pointwise import measure_residual
         cand[named] = measure_residual(catalogue, case, claim, named)
     drawn = []
     for _ in range(settings):

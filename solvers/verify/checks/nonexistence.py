@@ -58,8 +58,10 @@ from flint import fmpq
 
 from solvers.kernels import layout as L
 from solvers.models.cases import build, registry
+from solvers.models.derivatives import field as ffield
 from solvers.verify.checks import negative
-from solvers.verify.checks.common import N_SETTINGS
+from solvers.verify.checks.common import N_SETTINGS, divergence_terms
+from solvers.verify.checks.negative import case_params
 from solvers.verify.exact.jet import Jet
 from solvers.verify.exact.model import ExactParams, field
 from solvers.verify.registry import Outcome, check
@@ -214,7 +216,6 @@ def _params_text(model):
 
 @check("no_measure")
 def check_no_measure(catalogue, case, claim, *, settings=N_SETTINGS):
-    from solvers.verify.checks.negative import case_params
 
     if case.id not in CONTROLS:
         return Outcome("unchecked", None, f"no_measure: no homogeneous model for {case.id}")
@@ -286,8 +287,6 @@ def steady_rotations(P, n_starts=200, seed=0, tol=1e-10):
     round-off (module docstring), with gravity (g != 0) some do not."""
     from scipy.optimize import fsolve
 
-    from solvers.models.derivatives import field as ffield
-    from solvers.verify.checks.common import divergence_terms
 
     def v(y):
         return ffield(P.model.model, P.p, y)[0]

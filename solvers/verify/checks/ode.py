@@ -40,9 +40,11 @@ few nutation periods; their measured floor is <= 5e-12 (runs of verify), so TOL 
 import numpy as np
 from scipy.integrate import solve_ivp
 
+from solvers.integrate.integrator import integrate
 from solvers.kernels import layout as L
 from solvers.kernels.fields import rhs
-from solvers.models import reduced as rd
+from solvers.kernels.integrals import ENERGY, integral
+from solvers.models import reduced_systems as rd
 from solvers.verify.checks import pointwise
 from solvers.verify.checks.common import N_POINTS, N_SETTINGS, TOL, full_field, implementation
 from solvers.verify.params import draw, random_states
@@ -102,7 +104,7 @@ def flow_jet(P, y, V):
     x = rd.to_reduced(P.p, y)
     F = _reduced_field(P, x)
     push = pointwise.directional(lambda yy: rd.to_reduced(P.p, yy), y, full_field(P, y))
-    consistency = pointwise._rel(F, push)
+    consistency = pointwise.relative_difference(F, push)
     sfun, ds = _ARG[V]
     r0 = rd.rho0(b, 0.5)
 
@@ -178,7 +180,7 @@ def solves_residual(catalogue, case, claim, sol_corrected=False, ode_corrected=F
         r = 1e-2 * (1.0 + abs(s))
         K, dK, _ = taylor(lambda t, P=P, c=c, s=s: sol(P, np.array([s + t, *c])), r)
         f = np.asarray(ode(P, np.array([s, *K])), dtype=complex)
-        worst = max(worst, pointwise._rel(dK, f))
+        worst = max(worst, pointwise.relative_difference(dK, f))
     return worst
 
 
@@ -195,7 +197,7 @@ def check_solves_ode(catalogue, case, claim):
                     f"{'corrected' if o else 'printed'} ODE")
             evidence[name] = solves_residual(catalogue, case, claim, s, o)
         corr = solves_residual(catalogue, case, claim, sid in CORRECTED, oid in CORRECTED)
-    out = pointwise._verdict(res, corr if res > TOL else None,
+    out = pointwise.verdict_of(res, corr if res > TOL else None,
                              what=f"{sid} solves {oid}")
     out.evidence = evidence
     return out
@@ -206,7 +208,6 @@ def check_solves_ode(catalogue, case, claim):
 def _good_run(P, y0, V):
     """A full run from y0 (compiled DOP853) sampled at N_SAMPLES times, or None if it
     meets a singularity or comes close to gamma3 = +-1 (reduced variables undefined)."""
-    from solvers.integrate.integrator import integrate
 
     t = np.linspace(0.0, T_RUN, N_SAMPLES)
     # generated=False: the general field, compiled once for every case, as the section runs
@@ -290,7 +291,7 @@ def check_linear_integrals(catalogue, case, claim):
                 catalogue, case, claim, use_corrected=True, use_formula=False)[0]
     what = (f"constants of {args.formula or args.system} conserved along full runs "
             f"(K(t) vs the solution of {args.system} at s(t))")
-    out = pointwise._verdict(dev, corr, what=what)
+    out = pointwise.verdict_of(dev, corr, what=what)
     if corr is not None and args.formula is None:
         # run.py files a corrected record under check_args.formula only: say it here
         out.message += (f" [correction of {args.system}: "
@@ -328,11 +329,10 @@ def rate_identity_residual(catalogue, case, claim, use_corrected=False, seed=2):
         except (IndexError, ValueError, np.linalg.LinAlgError) as e:
             if other != "energy":
                 raise
-            from solvers.kernels.integrals import ENERGY, integral
             ref = integral(ENERGY, P.model.model, y, P.p)
             note = (f"formula {other!r} cannot evaluate this model's state ({e}); "
                     "compared with the model's compiled energy (eq1.7) instead")
-        worst = max(worst, pointwise._rel(f(P, rate(P, y, V)), ref))
+        worst = max(worst, pointwise.relative_difference(f(P, rate(P, y, V)), ref))
     return worst, note
 
 
@@ -349,7 +349,7 @@ def _extend(name, applies, handler):
     CHECKS[name] = dispatch
 
 
-def _is_jet(catalogue, claim):
+def is_jet_claim(catalogue, claim):
     fid = claim.check_args.formula
     return fid is not None and _variables(catalogue, fid) in JET_VARIABLES
 
@@ -359,7 +359,7 @@ def _jet_check(catalogue, case, claim):
     res = jet_residual(catalogue, case, claim)
     corr = jet_residual(catalogue, case, claim, True) if res > TOL and fid in CORRECTED \
         else None
-    return pointwise._verdict(res, corr, what=f"{fid} holds along the full flow "
+    return pointwise.verdict_of(res, corr, what=f"{fid} holds along the full flow "
                               "(jet from the reduced field)")
 
 
@@ -369,13 +369,13 @@ def _rate_check(catalogue, case, claim):
     corr = None
     if res > TOL and fid in CORRECTED:
         corr = rate_identity_residual(catalogue, case, claim, True)[0]
-    out = pointwise._verdict(res, corr, what=f"{fid} (with the exact ds/dt) == "
+    out = pointwise.verdict_of(res, corr, what=f"{fid} (with the exact ds/dt) == "
                              f"{claim.check_args.against}")
     if note:
         out.message += f" [{note}]"
     return out
 
 
-_extend("reduced_agrees", _is_jet, _jet_check)
+_extend("reduced_agrees", is_jet_claim, _jet_check)
 _extend("identity", lambda cat, claim: claim.check_args.formula in RATE_FORMULAS, _rate_check)
 

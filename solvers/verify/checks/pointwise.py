@@ -3,6 +3,8 @@ identities, and printed systems against the full field."""
 
 import numpy as np
 
+from catalogue.schema import Gyrostat, Potential
+from solvers.models.derivatives import field
 from solvers.verify.checks.common import (
     N_POINTS,
     N_SETTINGS,
@@ -13,12 +15,12 @@ from solvers.verify.checks.common import (
     gradient,
     implementation,
 )
-from solvers.verify.params import draw, random_states
+from solvers.verify.params import draw, merged_conditions, random_states
 from solvers.verify.registry import COMPARISONS, CORRECTED, Outcome, check
 from solvers.verify.variables import SAME_DIMENSION, log_det, to_vars
 
 
-def _points(case, claim, seed):
+def sample_points(case, claim, seed):
     rng = np.random.default_rng(seed)
     for _ in range(N_SETTINGS):
         P = draw(case, claim, rng)
@@ -30,7 +32,7 @@ def _formula_vars(catalogue, fid):
     return catalogue.formula(fid).variables.value
 
 
-def _max_residual(points, residual):
+def max_residual(points, residual):
     worst, where = 0.0, None
     for P, y in points:
         r = residual(P, y)
@@ -41,7 +43,7 @@ def _max_residual(points, residual):
     return worst, where
 
 
-def _verdict(residual, corrected_residual=None, negative=False, what=""):
+def verdict_of(residual, corrected_residual=None, negative=False, what=""):
     if negative:   # the claim says this should NOT hold
         if residual > TOL:
             return Outcome("evidence", residual, f"as the paper says, {what} does not hold "
@@ -69,14 +71,12 @@ def integral_residual(catalogue, case, claim, fid, use_corrected=False, seed=0):
         gr = gradient(G, y)
         return abs(gr @ v) / max(np.linalg.norm(gr) * np.linalg.norm(v), 1e-300)
 
-    return _max_residual(_points(case, claim, seed), residual)[0]
+    return max_residual(sample_points(case, claim, seed), residual)[0]
 
 
 def relaxed(case, claim):
     """The claim with its restrictions on the potential and the gyrostat lifted (None if it
     has none): where a claim needs U = 0 or S = 0, show what happens without."""
-    from catalogue.schema import Gyrostat, Potential
-    from solvers.verify.params import merged_conditions
 
     cond = merged_conditions(case, claim)
     update = {}
@@ -112,7 +112,7 @@ def _integral(catalogue, case, claim, negative):
     corr = None
     if res > TOL and fid in CORRECTED and not negative:
         corr = integral_residual(catalogue, case, claim, fid, use_corrected=True)
-    out = _verdict(res, corr, negative, f"d/dt {fid} = grad F . v = 0")
+    out = verdict_of(res, corr, negative, f"d/dt {fid} = grad F . v = 0")
     return _without_condition(out, case, claim,
                               lambda c: integral_residual(catalogue, case, c, fid))
 
@@ -144,7 +144,7 @@ def measure_residual(catalogue, case, claim, fid, use_corrected=False, seed=1, v
             v = full_field(P, y)
             lnrho = lambda yy: np.log(rho(P, to_vars(V, P, yy))) + log_det(V, P, yy)  # noqa: E731
             dln = float(directional(lnrho, y, v))
-            div, scale = divergence_terms(lambda yy: _complex_field(P, yy), y)
+            div, scale = divergence_terms(lambda yy: complex_field(P, yy), y)
             return abs(dln + div) / max(abs(dln) + scale, 1e-300)
     else:
         sys_id = claim.check_args.system
@@ -160,11 +160,10 @@ def measure_residual(catalogue, case, claim, fid, use_corrected=False, seed=1, v
             div, scale = divergence_terms(lambda xx: f(P, xx), x)
             return abs(dln + div) / max(abs(dln) + scale, 1e-300)
 
-    return _max_residual(_points(case, claim, seed), residual)[0]
+    return max_residual(sample_points(case, claim, seed), residual)[0]
 
 
-def _complex_field(P, y):
-    from solvers.models.derivatives import field
+def complex_field(P, y):
     v, _ = field(P.model.model, P.p, y)
     return v
 
@@ -187,7 +186,7 @@ def _measure(catalogue, case, claim, negative):
         out = Outcome("verified", alt_res, f"div({fid} v) = 0 holds read as a density in "
                       f"{alt} (residual {alt_res:.2e}); in {V} it fails ({res:.2e})")
     else:
-        out = _verdict(res, corr, negative, f"div({fid} v) = 0 in {V}")
+        out = verdict_of(res, corr, negative, f"div({fid} v) = 0 in {V}")
         if alt_res is not None:
             out.message += f"; read in {alt} it fails too ({alt_res:.2e})"
     out.evidence = {"residual_" + V: res, **({"residual_" + alt: alt_res} if alt_res else {})}
@@ -209,7 +208,7 @@ def check_measure_fails(catalogue, case, claim):
 
 # --- identities and printed systems --------------------------------------------------------
 
-def _rel(a, b):
+def relative_difference(a, b):
     a, b = np.atleast_1d(np.asarray(a, dtype=complex)), np.atleast_1d(np.asarray(b, dtype=complex))
     return float(np.max(np.abs(a - b)) / max(np.max(np.abs(a)), np.max(np.abs(b)), 1e-300))
 
@@ -220,20 +219,20 @@ def identity_residual(catalogue, case, claim, use_corrected=False, seed=2):
     pair = COMPARISONS.get((fid, other))
     if pair is not None:       # registered comparison (registry.compares)
         def residual(P, y):
-            return _rel(*pair(P, to_vars(V, P, y), corrected=use_corrected))
-        return _max_residual(_points(case, claim, seed), residual)[0]
+            return relative_difference(*pair(P, to_vars(V, P, y), corrected=use_corrected))
+        return max_residual(sample_points(case, claim, seed), residual)[0]
     f = implementation(fid, use_corrected)
     if other is None:          # the formula returns (lhs, rhs): its own two printed forms
         def residual(P, y):
             lhs, rhs = f(P, to_vars(V, P, y))
-            return _rel(lhs, rhs)
+            return relative_difference(lhs, rhs)
     else:
         g = implementation(other)
         W = _formula_vars(catalogue, other)
 
         def residual(P, y):
-            return _rel(f(P, to_vars(V, P, y)), g(P, to_vars(W, P, y)))
-    return _max_residual(_points(case, claim, seed), residual)[0]
+            return relative_difference(f(P, to_vars(V, P, y)), g(P, to_vars(W, P, y)))
+    return max_residual(sample_points(case, claim, seed), residual)[0]
 
 
 @check("identity")
@@ -242,7 +241,7 @@ def check_identity(catalogue, case, claim):
     corr = None
     if res > TOL and claim.check_args.formula in CORRECTED:
         corr = identity_residual(catalogue, case, claim, use_corrected=True)
-    return _verdict(res, corr, what=f"{claim.check_args.formula} == "
+    return verdict_of(res, corr, what=f"{claim.check_args.formula} == "
                     f"{claim.check_args.against or 'its second form'}")
 
 
@@ -264,9 +263,9 @@ def reduced_residual(catalogue, case, claim, use_corrected=False, seed=3):
         x = np.asarray(to_vars(V, P, y), dtype=float)
         printed = np.asarray(f(P, x), dtype=float)
         want = xdot[1:] / xdot[0] if V in PARAMETRISED else xdot
-        return _rel(printed, want)
+        return relative_difference(printed, want)
 
-    return _max_residual(_points(case, claim, seed), residual)[0]
+    return max_residual(sample_points(case, claim, seed), residual)[0]
 
 
 def transform_residuals(catalogue, case, claim, seed=4):
@@ -283,7 +282,7 @@ def transform_residuals(catalogue, case, claim, seed=4):
                 return x[:3] @ x[:3] if k == 0 else x[:3] @ x[3:6]
             gr = gradient(G, y)
             return abs(gr @ v) / max(np.linalg.norm(gr) * np.linalg.norm(v), 1e-300)
-        return _max_residual(_points(case, claim, seed), residual)[0]
+        return max_residual(sample_points(case, claim, seed), residual)[0]
 
     return rate(0), rate(1)
 
@@ -305,4 +304,4 @@ def check_reduced(catalogue, case, claim):
     corr = None
     if res > TOL and claim.check_args.formula in CORRECTED:
         corr = reduced_residual(catalogue, case, claim, use_corrected=True)
-    return _verdict(res, corr, what=f"{claim.check_args.formula} agrees with the full field")
+    return verdict_of(res, corr, what=f"{claim.check_args.formula} agrees with the full field")

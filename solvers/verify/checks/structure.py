@@ -11,8 +11,8 @@ at the random phase points of pointwise.py, mapped to each formula's own variabl
                          flow over the whole phase space; unchecked (inconclusive) unless both hold
   symmetry               [v, X] = DX v - Dv X = 0 for the printed field X (2.4)
   functionally_dependent the gradients (in the full state) of the formulas are dependent
-  permanent_rotations    dimension of the family of vertical permanent rotations ((2.40),
-                         (2.42)), see check_permanent_rotations
+
+(permanent_rotations, the family of vertical permanent rotations, is in rotations.py.)
 
 Contracts with the formula modules:
   bracket   f(P, x) -> antisymmetric n x n matrix, complex-safe (it is differentiated);
@@ -26,13 +26,11 @@ Residuals are normalised by the size of the terms that cancel, so round-off give
 """
 
 import inspect
-from dataclasses import replace
 
 import numpy as np
 
-from solvers.kernels import layout as L
+from catalogue.numbering import printed
 from solvers.verify.checks.common import (
-    N_SETTINGS,
     TOL,
     H,
     directional,
@@ -40,13 +38,12 @@ from solvers.verify.checks.common import (
     gradient,
     implementation,
 )
-from solvers.verify.checks.pointwise import _complex_field, _max_residual, _points, _verdict
-from solvers.verify.params import Params, draw
+from solvers.verify.checks.pointwise import complex_field, max_residual, sample_points, verdict_of
 from solvers.verify.registry import CORRECTED, Outcome, check
 from solvers.verify.variables import to_vars
 
 
-def _vars(catalogue, fid):
+def state_vars(catalogue, fid):
     return catalogue.formula(fid).variables.value
 
 
@@ -110,19 +107,19 @@ def jacobi_residual_at(J, x):
 
 def _point_residual(catalogue, case, claim, at, seed):
     """max over the claim's random points of at(P, x), x in the bracket's variables."""
-    V = _vars(catalogue, claim.check_args.bracket)
+    V = state_vars(catalogue, claim.check_args.bracket)
 
     def residual(P, y):
         return at(P, np.asarray(to_vars(V, P, y)).real)
-    return _max_residual(_points(case, claim, seed), residual)[0]
+    return max_residual(sample_points(case, claim, seed), residual)[0]
 
 
 def _pushforward_residual(catalogue, claim, P, y, use_corrected):
     """check_args.transform of a jacobi claim, when it names another bracket: the claim's
     tensor must be the push-forward D phi J_t D phi^T of that one (same dimension)."""
     Jt = _impl(claim.check_args.transform, use_corrected)
-    Vt = _vars(catalogue, claim.check_args.transform)
-    Vb = _vars(catalogue, claim.check_args.bracket)
+    Vt = state_vars(catalogue, claim.check_args.transform)
+    Vb = state_vars(catalogue, claim.check_args.bracket)
     J = bracket_fn(catalogue, claim, use_corrected)
     xt = np.asarray(to_vars(Vt, P, y)).real
     xb = np.asarray(to_vars(Vb, P, y)).real
@@ -140,7 +137,7 @@ def jacobi_residual(catalogue, case, claim, use_corrected=False, free=None, seed
                           lambda P, x: jacobi_residual_at(lambda xx: J(P, xx), x), seed)
     t = claim.check_args.transform
     if t is not None and catalogue.formula(t).role.value == "bracket":
-        push = _max_residual(_points(case, claim, seed),
+        push = max_residual(sample_points(case, claim, seed),
                              lambda P, y: _pushforward_residual(catalogue, claim, P, y,
                                                                 use_corrected))[0]
         res = max(res, push)
@@ -156,13 +153,13 @@ def check_jacobi(catalogue, case, claim):
     what = f"Jacobi identity of {claim.check_args.bracket}"
     if claim.check_args.transform:
         what += f" (and push-forward of {claim.check_args.transform})"
-    return _verdict(res, corr, what=what)
+    return verdict_of(res, corr, what=what)
 
 
 @check("jacobi_fails")
 def check_jacobi_fails(catalogue, case, claim):
     res = jacobi_residual(catalogue, case, claim)
-    return _verdict(res, negative=True, what=f"the Jacobi identity of {claim.check_args.bracket}"
+    return verdict_of(res, negative=True, what=f"the Jacobi identity of {claim.check_args.bracket}"
                     " (free function at the formula's default)")
 
 
@@ -170,10 +167,10 @@ def check_jacobi_fails(catalogue, case, claim):
 
 @check("casimir")
 def check_casimir(catalogue, case, claim):
-    Vb = _vars(catalogue, claim.check_args.bracket)
+    Vb = state_vars(catalogue, claim.check_args.bracket)
     J = bracket_fn(catalogue, claim)
     for c in claim.check_args.casimirs:
-        if _vars(catalogue, c) != Vb:
+        if state_vars(catalogue, c) != Vb:
             raise LookupError(f"Casimir {c} is not written in the bracket's variables {Vb}")
     Cs = [implementation(c) for c in claim.check_args.casimirs]
 
@@ -188,7 +185,7 @@ def check_casimir(catalogue, case, claim):
         return worst
 
     res = _point_residual(catalogue, case, claim, at, seed=12)
-    return _verdict(res, what=f"J grad C = 0 for C in {', '.join(claim.check_args.casimirs)}")
+    return verdict_of(res, what=f"J grad C = 0 for C in {', '.join(claim.check_args.casimirs)}")
 
 
 @check("bracket_rank")
@@ -210,7 +207,7 @@ def check_bracket_rank(catalogue, case, claim):
     if res <= TOL and kept[0] <= TOL:
         return Outcome("fails", kept[0], f"rank of {fid} is below {rank}: s_{rank}/s_1 = "
                        f"{kept[0]:.2e}")
-    out = _verdict(res, what=f"rank {rank} of {fid} (s_{rank + 1}/s_1 = 0)")
+    out = verdict_of(res, what=f"rank {rank} of {fid} (s_{rank + 1}/s_1 = 0)")
     if res <= TOL:
         out.message += f"; the kept s_{rank}/s_1 >= {kept[0]:.2e}"
     return out
@@ -223,15 +220,15 @@ def hamiltonian_parts(catalogue, claim, use_corrected=False):
     time multiplier and the map of the state to the bracket's variables (through
     check_args.transform when given); shared by this check and its exact twin."""
     a = claim.check_args
-    Vb = _vars(catalogue, a.bracket)
-    if _vars(catalogue, a.hamiltonian) != Vb:
+    Vb = state_vars(catalogue, a.bracket)
+    if state_vars(catalogue, a.hamiltonian) != Vb:
         raise LookupError(f"{a.hamiltonian} is not written in the variables of {a.bracket}")
     J = bracket_fn(catalogue, claim, use_corrected, free="arbitrary")
     Hf = _impl(a.hamiltonian, use_corrected)
     Nf = _impl(a.multiplier, use_corrected) if a.multiplier else None
     if a.transform is not None:
         T = _impl(a.transform, use_corrected)
-        Vt = _vars(catalogue, a.transform)
+        Vt = state_vars(catalogue, a.transform)
         to_b = lambda P, yy: T(P, to_vars(Vt, P, yy))  # noqa: E731
     else:
         to_b = lambda P, yy: to_vars(Vb, P, yy)  # noqa: E731
@@ -252,18 +249,18 @@ def hamiltonian_residual(catalogue, case, claim, use_corrected=False, seed=14, l
         v = full_field(P, y)
         x = np.asarray(to_b(P, y)).real
         xdot = directional(lambda yy: to_b(P, yy), y, v)
-        N = 1.0 if Nf is None else float(np.real(Nf(P, to_vars(_vars(catalogue, a.multiplier),
+        N = 1.0 if Nf is None else float(np.real(Nf(P, to_vars(state_vars(catalogue, a.multiplier),
                                                                    P, y))))
         lhs = xdot / N
         rhs = np.asarray(J(P, x)).real @ gradient(lambda xx: Hf(P, xx), x)
         return np.linalg.norm(lhs - rhs) / max(np.linalg.norm(lhs), np.linalg.norm(rhs), 1e-300)
 
-    return _max_residual(_points(case, claim, seed), residual)[0]
+    return max_residual(sample_points(case, claim, seed), residual)[0]
 
 
 def _zero_level(catalogue, fid):
     """y -> the point of the zero level of formula fid (linear in M) with the same gamma."""
-    F, V = implementation(fid), _vars(catalogue, fid)
+    F, V = implementation(fid), state_vars(catalogue, fid)
 
     def project(P, y):
         f = lambda yy: F(P, to_vars(V, P, yy))  # noqa: E731
@@ -280,9 +277,8 @@ def check_hamiltonian_field_on_level(catalogue, case, claim):
     that is shown to generate the flow on one level of an integral, not everywhere)."""
     a = claim.check_args
     res = hamiltonian_residual(catalogue, case, claim, level=a.against)
-    out = _verdict(res, what=f"d x/d tau = J grad H with J = {a.bracket}, H = {a.hamiltonian}, "
+    out = verdict_of(res, what=f"d x/d tau = J grad H with J = {a.bracket}, H = {a.hamiltonian}, "
                    f"d tau = N dt (N = {a.multiplier}), on the level {a.against} = 0")
-    from catalogue.numbering import printed
     out.evidence = {"level of": printed(catalogue.formula(a.against).label) or a.against,
                     "flow residual on the level": res}
     return out
@@ -299,7 +295,6 @@ def check_hamiltonian_attempt(catalogue, case, claim):
     flow = hamiltonian_residual(catalogue, case, claim)
     ev = {"Jacobi identity residual": jac, "flow residual": flow, "tolerance": TOL}
     if a.against is not None:     # where the construction does hold: the zero level of F
-        from catalogue.numbering import printed
         ev["flow residual on the level"] = hamiltonian_residual(catalogue, case, claim,
                                                                 level=a.against)
         ev["level of"] = printed(catalogue.formula(a.against).label) or a.against
@@ -325,7 +320,7 @@ def check_hamiltonian_field(catalogue, case, claim):
         what += f", d tau = N dt (N = {a.multiplier})"
     if a.transform:
         what += f", x = {a.transform}(M, gamma)"
-    out = _verdict(res, corr, what=what)
+    out = verdict_of(res, corr, what=what)
     if a.transform and out.verdict == "fails":
         out.message += (f" (this tests the construction through {a.transform}: it refutes "
                         "that pull-back, not a Hamiltonian form with an unprinted bracket)")
@@ -337,7 +332,7 @@ def check_hamiltonian_field(catalogue, case, claim):
 @check("symmetry")
 def check_symmetry(catalogue, case, claim):
     fid = claim.check_args.formula
-    V = _vars(catalogue, fid)
+    V = state_vars(catalogue, fid)
     if V not in ("(M, gamma)", "(M, r1, r2)"):
         raise LookupError(f"symmetry field {fid} is not written in the full state ({V})")
     X = implementation(fid)
@@ -346,12 +341,12 @@ def check_symmetry(catalogue, case, claim):
         v = full_field(P, y)
         Xy = np.asarray(X(P, y)).real
         DXv = directional(lambda yy: X(P, yy), y, v)
-        DvX = directional(lambda yy: _complex_field(P, yy), y, Xy)
+        DvX = directional(lambda yy: complex_field(P, yy), y, Xy)
         return np.linalg.norm(DXv - DvX) / max(np.linalg.norm(DXv) + np.linalg.norm(DvX),
                                                1e-300)
 
-    res = _max_residual(_points(case, claim, 15), residual)[0]
-    return _verdict(res, what=f"[v, {fid}] = 0")
+    res = max_residual(sample_points(case, claim, 15), residual)[0]
+    return verdict_of(res, what=f"[v, {fid}] = 0")
 
 
 # --- functional dependence --------------------------------------------------------------------
@@ -360,7 +355,7 @@ def dependence_residual(catalogue, case, claim, seed=16):
     """Smallest singular value of the unit gradients (in the full state) of the formula and
     `against` (and any casimirs listed): 0 when they are functionally dependent."""
     fids = [claim.check_args.formula, claim.check_args.against, *claim.check_args.casimirs]
-    fns = [(implementation(f), _vars(catalogue, f)) for f in fids]
+    fns = [(implementation(f), state_vars(catalogue, f)) for f in fids]
 
     def residual(P, y):
         G = []
@@ -369,137 +364,12 @@ def dependence_residual(catalogue, case, claim, seed=16):
             G.append(g / max(np.linalg.norm(g), 1e-300))
         return np.linalg.svd(np.array(G), compute_uv=False)[-1]
 
-    return _max_residual(_points(case, claim, seed), residual)[0]
+    return max_residual(sample_points(case, claim, seed), residual)[0]
 
 
 @check("functionally_dependent")
 def check_functionally_dependent(catalogue, case, claim):
     res = dependence_residual(catalogue, case, claim)
     names = [claim.check_args.formula, claim.check_args.against, *claim.check_args.casimirs]
-    return _verdict(res, what=f"dependence of {', '.join(names)} (smallest singular value of "
+    return verdict_of(res, what=f"dependence of {', '.join(names)} (smallest singular value of "
                     "the unit gradients)")
-
-
-# --- vertical permanent rotations ((2.40), (2.42)) --------------------------------------------
-
-def _with_p(P, **slots):
-    p = np.array(P.p)
-    for name, value in slots.items():
-        p[getattr(L, name)] = value
-    p.setflags(write=False)
-    return Params(replace(P.model, p=p))
-
-
-def rotation_terms(P, g):
-    """At gamma = g and omega = Omega g (a vertical rotation, dgamma/dt = 0): dM/dt =
-    Omega^2 A + B, A = (I_Q g) x g from the field at M = I_Q g minus B, B = M_Q (the field at
-    M = 0). Both are orthogonal to g."""
-    IQg = P.contact_inertia(P.r(g)) @ g
-    B = full_field(P, np.concatenate([0.0 * g, g]))[:3]
-    A = full_field(P, np.concatenate([IQg, g]))[:3] - B
-    return A, B
-
-
-def two_parameter_residual(P, rng, n=24):
-    """A vertical permanent rotation through a generic gamma exists iff A || B (then
-    Omega^2 = -(A, B)/|A|^2). A two-parameter family (gamma free on an open set, Omega^2 a
-    function of it) exists iff |A x B| / (|A| |B|) vanishes at random gamma. Returns that
-    residual (max over n gammas), the Omega^2 found, and max(|A|, |B|) (0: every gamma and
-    Omega, a three-parameter set)."""
-    worst, w2, size = 0.0, [], 0.0
-    for _ in range(n):
-        g = rng.standard_normal(3)
-        g /= np.linalg.norm(g)
-        A, B = rotation_terms(P, g)
-        nA, nB = np.linalg.norm(A), np.linalg.norm(B)
-        size = max(size, nA, nB)
-        if nA == 0.0 or nB == 0.0:
-            continue
-        worst = max(worst, np.linalg.norm(np.cross(A, B)) / (nA * nB))
-        w2.append(-(A @ B) / nA**2)
-    return worst, np.array(w2), size
-
-
-def _condition(fid, use_corrected):
-    f = implementation(fid, use_corrected)
-
-    def value(P):
-        out = f(P, None)
-        if isinstance(out, tuple):
-            lhs, rhs = (np.atleast_1d(np.asarray(v, dtype=float)) for v in out)
-            return np.max(abs(lhs - rhs)) / max(np.max(abs(lhs)), np.max(abs(rhs)), 1e-300)
-        return float(out)
-    return value, f
-
-
-def _impose(P, cond, rng):
-    """Parameters satisfying a scalar condition affine in I3: I1, I2 perturbed at random, I3
-    solved for (so that the family is tested beyond the drawn model's own restriction)."""
-    I = P.I * rng.uniform(0.85, 1.15, 3)
-    c0 = cond(_with_p(P, I1=I[0], I2=I[1], I3=0.0))
-    c1 = cond(_with_p(P, I1=I[0], I2=I[1], I3=1.0)) - c0
-    if c1 == 0.0:
-        return None
-    return _with_p(P, I1=I[0], I2=I[1], I3=-c0 / c1)
-
-
-def rotations_outcome(catalogue, case, claim, use_corrected=False, seed=17):
-    """The claim: a two-parameter family of vertical permanent rotations exists when the
-    condition holds, and not when it is violated (generic parameters: one-parameter)."""
-    value, f = _condition(claim.check_args.formula, use_corrected)
-    rng = np.random.default_rng(seed)
-    worst_on, worst_off, notes, ev = 0.0, np.inf, [], {"omega2": [], "g_set": False}
-    for _ in range(N_SETTINGS):
-        P = draw(case, claim, rng)
-        if P.g == 0.0:                 # permanent rotations of a heavy body (see docstring)
-            P = _with_p(P, GRAV=float(rng.uniform(0.5, 2.0)))
-            ev["g_set"] = True
-        if isinstance(f(P, None), tuple):
-            on = P
-            held = value(P)
-            if held > TOL:
-                notes.append(f"drawn parameters violate the condition ({held:.1e})")
-        else:
-            on = _impose(P, value, rng)
-            if on is None:
-                notes.append("condition does not involve I3: not imposed")
-                on = P
-        res, w2, size = two_parameter_residual(on, rng)
-        if size == 0.0:
-            notes.append("every gamma and Omega: a three-parameter set")
-            res = np.inf
-        worst_on = max(worst_on, res)
-        ev["omega2"] += [float(w) for w in w2[:3]]
-        off = _with_p(on, I3=on.I[2] * 1.1 + 0.05)       # the condition violated
-        worst_off = min(worst_off, two_parameter_residual(off, rng)[0])
-    ev["off_condition_residual"] = float(worst_off)
-    return worst_on, worst_off, notes, ev
-
-
-@check("permanent_rotations")
-def check_permanent_rotations(catalogue, case, claim):
-    """Vertical permanent rotations omega = Omega gamma (gamma fixed in the body) are the
-    equilibria of the (M, gamma) field with M = Omega I_Q gamma. With U = 0 they exist at a
-    generic gamma only when I_Q gamma || gamma for all gamma (three-parameter set, e.g.
-    (2.40) with lambda = 1); the families the paper counts are those of a heavy body
-    (U = m g (r, gamma)), so gravity is switched on when the draw has g = 0."""
-    fid = claim.check_args.formula
-    on, off, notes, ev = rotations_outcome(catalogue, case, claim)
-    ok = on <= TOL and off > TOL
-    w = np.array(ev["omega2"])
-    neg = int(np.sum(w < 0))
-    sign = ("Omega^2 > 0 on it: real rotations" if w.size and neg == 0 else
-            f"but Omega^2 < 0 at {neg} of {w.size} sampled points: there the family solves "
-            "the stationary equations with imaginary Omega only (real rotations need "
-            "Omega^2 > 0, for eq2.29 (lambda - 1) g > 0)" if w.size else "")
-    msg = (f"two-parameter family when {fid} holds: |A x B|/(|A||B|) = {on:.2e}; condition "
-           f"violated: {off:.2e}; {sign}" + ("; gravity switched on" if ev["g_set"] else "")
-           + ("; " + "; ".join(sorted(set(notes))) if notes else ""))
-    corr = None
-    if not ok and fid in CORRECTED:
-        c_on, c_off, _, _ = rotations_outcome(catalogue, case, claim, use_corrected=True)
-        corr = c_on if c_off > TOL else max(c_on, 1.0)
-        msg += f"; the project's corrected condition: {c_on:.2e} (violated: {c_off:.2e})"
-    res = on if off > TOL else max(on, 1.0)
-    return Outcome("verified" if ok else "fails", res, msg, evidence=ev,
-                   corrected_residual=corr)

@@ -27,10 +27,11 @@ import zlib
 import numpy as np
 
 from solvers.kernels import layout as L
-from solvers.verify.exact.jet import Jet, NotRational, _Lost, q_str
-from solvers.verify.exact.linalg import exact_linalg
+from solvers.verify.exact.exact_mode import exact_linalg
+from solvers.verify.exact.jet import Jet, Radical, q_str
 from solvers.verify.exact.points import BITS, N_GRID, GridRng, rational_state
-from solvers.verify.exact.radical import Radical, Strict
+from solvers.verify.exact.rational import Lost, NotRational, Strict
+from solvers.verify.exact.symbolic import RF, S, TooBig, mark, release, symbolic
 
 K_POINTS = 3          # points per certificate: the bound below is stated for this k
 PROOF_SECONDS = 4.0   # symbolic budget per record (symbolic.py; then the k-point certificate)
@@ -98,7 +99,6 @@ def residual_vector(res):
 def _draw_point(Pf_draw, rng, tries=50):
     """Parameters and a state; a draw the model rejects (triangle inequality, fit) is
     redrawn, as solvers.verify.params does."""
-    from solvers.verify.exact.symbolic import mark, release
     for _ in range(tries):
         n0 = mark()
         try:
@@ -120,11 +120,11 @@ def _evaluate(residual_fn, P, y):
     dropped unless it is the zero function); if that leaves Q(sqrt r), again with drops
     allowed. Returns (residual list, reasons the degree bound was lost)."""
     for strict in (True, False):
-        _Lost.reasons = []
+        Lost.reasons = []
         Strict.on = strict
         try:
             with exact_linalg():
-                return residual_fn(P, y), list(_Lost.reasons)
+                return residual_fn(P, y), list(Lost.reasons)
         except NotRational:
             if not strict:
                 raise
@@ -141,7 +141,6 @@ def prove(seed_key, Pf_draw, residual_fn, seconds=PROOF_SECONDS):
     part of the residual is the zero function), "nonzero" (a part is a nonzero rational
     function: info = (its numerator's total degree, the tracked bound)), or "no" (info: why
     no proof was attempted to the end)."""
-    from solvers.verify.exact.symbolic import TooBig, symbolic
     rng = GridRng(zlib.crc32(seed_key.encode()))
     try:
         with symbolic(seconds) as _:
@@ -169,12 +168,10 @@ def prove(seed_key, Pf_draw, residual_fn, seconds=PROOF_SECONDS):
 
 
 def _symbols():
-    from solvers.verify.exact.symbolic import S
     return S.values
 
 
 def _rf(v):
-    from solvers.verify.exact.symbolic import RF
     return v if isinstance(v, RF) else RF.of(v)
 
 

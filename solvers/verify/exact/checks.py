@@ -8,8 +8,9 @@ record's `exact` field.
 import numpy as np
 
 from solvers.verify.checks.common import implementation
+from solvers.verify.checks.negative import CANDIDATES
 from solvers.verify.checks.pointwise import ALTERNATE_VARIABLES, PARAMETRISED
-from solvers.verify.exact.certify import directional, plain, residual_vector, seeded
+from solvers.verify.exact.certify import Unsupported, directional, plain, residual_vector, seeded
 from solvers.verify.exact.jet import Jet
 from solvers.verify.exact.model import field
 from solvers.verify.registry import COMPARISONS
@@ -40,7 +41,6 @@ def measure(catalogue, claim, use_corrected, variables=None):
     rho = implementation(fid, use_corrected)
     V = variables or _vars(catalogue, fid)
     if V not in SAME_DIMENSION:
-        from solvers.verify.exact.certify import Unsupported
         raise Unsupported(f"density in reduced variables {V}: the map to them has square "
                           "roots of (1 - gamma3^2)(I1 + m r^2) that no parameter makes square")
 
@@ -113,7 +113,6 @@ def found_density(catalogue, claim, use_corrected, case_id):
     candidate, checks/negative.CANDIDATES: on a sphere, (mu + m r^2)^-1/2 det(E - k J) for
     the body with spherical inertia, (2.31)'s generalisation): its Liouville residual
     d/dt ln rho + div v in (M, gamma), exactly."""
-    from solvers.verify.checks.negative import CANDIDATES
     name, rho = CANDIDATES[case_id][-1]
 
     def res(P, y):

@@ -1,4 +1,5 @@
-"""First-order jets over the rationals: exact values and exact partial derivatives.
+"""First-order jets over the rationals, and the two numbers outside Q that their own
+operations create: exact values and exact partial derivatives.
 
 A `Jet` holds a rational value v and its partials dv/dy_j with respect to the seeded state
 coordinates (forward-mode dual numbers with a vector of infinitesimals). Every operation is
@@ -15,62 +16,38 @@ numerator degree at most half that of the radicand's numerator times denominator
 
 `log` keeps only the derivatives (d ln a = da / a, rational); its value is an unknown
 constant, which may be added to but never multiplied: the checks only use d ln rho.
+
+The jet's sqrt and arccos may leave Q, so the two numbers they return live here too:
+`Angle`, theta = arccos(gamma3), whose cosine, sine and derivatives are rational at our
+points (sin theta = sqrt(1 - gamma3^2) is rational by the Pythagorean choice of gamma,
+points.sphere_point), for the reduced systems printed in theta ((2.16), (2.17), (2.33),
+(3.5)); and `Radical`, a + c sqrt(r) in the field Q(sqrt r), r = R(point), for a radicand
+that no parameter makes a square ((2.24), K3 of (2.5)). In Q(sqrt r) a square root created
+from a rational jet R starts as a = 0, c = 1, C_j = R_j / (2 R); products obey
+(a1 + c1 s)(a2 + c2 s) = (a1 a2 + r c1 c2) + (a1 c2 + c1 a2) s; x = 0 iff a = c = 0. Two
+radicands combine when their ratio is a rational square, and pure roots multiply; anything
+else (a sum over two independent roots, a root of a root) raises NotRational.
 """
 
 from fractions import Fraction
-from numbers import Rational
-from typing import ClassVar
+from functools import total_ordering
 
 import numpy as np
-from flint import fmpq, fmpz
+from flint import fmpq
 
-Q = fmpq
-ZERO = fmpq(0)
-ONE = fmpq(1)
-
-
-class NotRational(ArithmeticError):
-    """The computation left the rationals (square root of a non-square, a transcendental
-    function, an unknown constant used multiplicatively)."""
-
-
-def q_of(x) -> fmpq:
-    """A Python/NumPy number as an exact rational. A float is read as the simplest fraction
-    with denominator <= 10^6 that rounds to it (1/3 written as 1.0/3 in a formula is meant
-    as 1/3), else as the exact binary fraction it is."""
-    if isinstance(x, fmpq) or type(x).__name__ == "RF":
-        return x
-    if isinstance(x, (int, fmpz)):
-        return fmpq(x)
-    if isinstance(x, Rational):
-        return fmpq(int(x.numerator), int(x.denominator))
-    if hasattr(x, "imag") and not isinstance(x, float) and x.imag != 0:
-        raise NotRational("complex number in an exact computation")
-    f = float(x.real if hasattr(x, "real") else x)
-    fr = Fraction(f).limit_denominator(10 ** 6)
-    if float(fr) != f:
-        fr = Fraction(f)
-    return fmpq(fr.numerator, fr.denominator)
-
-
-def _is_square(v: fmpq) -> bool:
-    if type(v).__name__ == "RF":        # symbolic.py: a square as a function
-        return v.sqrt_or_none() is not None
-    return v >= 0 and fmpz(v.p).sqrtrem()[1] == 0 and fmpz(v.q).sqrtrem()[1] == 0
-
-
-def _sqrt_q(v: fmpq) -> fmpq:
-    if type(v).__name__ == "RF":
-        s = v.sqrt_or_none()
-        if s is None:
-            raise NotRational("square root of a rational function that is not a square")
-        return s
-    if v < 0:
-        raise NotRational(f"square root of a negative rational {v}")
-    try:
-        return v.sqrt()
-    except Exception as e:   # flint DomainError: not a square
-        raise NotRational(f"square root of {v}, not a rational square") from e
+from solvers.verify.exact.rational import (
+    ONE,
+    ZERO,
+    NotRational,
+    comb,
+    drop_cancelled_root,
+    is_square,
+    is_zero_const,
+    is_zero_value,
+    lose_degree,
+    q_of,
+    sqrt_q,
+)
 
 
 class Jet:
@@ -110,10 +87,10 @@ class Jet:
 
     # --- arithmetic -------------------------------------------------------------------
     def __add__(self, o):
-        o = _lift(o)
+        o = lift(o)
         if o is NotImplemented:
             return o
-        g = _comb(self.g, ONE, o.g, ONE)
+        g = comb(self.g, ONE, o.g, ONE)
         return Jet(self.v + o.v, g, max(self.n + o.d, o.n + self.d), self.d + o.d,
                    self.unknown or o.unknown)
 
@@ -127,33 +104,33 @@ class Jet:
         return self
 
     def __sub__(self, o):
-        o = _lift(o)
+        o = lift(o)
         return o if o is NotImplemented else self + (-o)
 
     def __rsub__(self, o):
-        o = _lift(o)
+        o = lift(o)
         return o if o is NotImplemented else o + (-self)
 
     def __mul__(self, o):
-        o = _lift(o)
+        o = lift(o)
         if o is NotImplemented:
             return o
-        if _is_zero_const(o) or _is_zero_const(self):
+        if is_zero_const(o) or is_zero_const(self):
             return Jet(ZERO)          # 0 * theta: a formula's broadcast, not a use of theta
-        if (self.unknown and _is_zero_value(o)) or (o.unknown and _is_zero_value(self)):
+        if (self.unknown and is_zero_value(o)) or (o.unknown and is_zero_value(self)):
             # a zero at the point that is not the zero constant, times an unknown value:
             # the product is zero here, but its degree as a function is not tracked
             lose_degree("a value zero at the point multiplied an unknown constant")
             return Jet(ZERO)
         self._known()
         o._known()
-        g = _comb(self.g, o.v, o.g, self.v)
+        g = comb(self.g, o.v, o.g, self.v)
         return Jet(self.v * o.v, g, self.n + o.n, self.d + o.d)
 
     __rmul__ = __mul__
 
     def __truediv__(self, o):
-        o = _lift(o)
+        o = lift(o)
         if o is NotImplemented:
             return o
         self._known()
@@ -165,12 +142,12 @@ class Jet:
         if self.g is not None or o.g is not None:
             # (a/b)' = (a' - (a/b) b') / b
             ib = 1 / o.v
-            g = _comb(self.g, ib, o.g, -v * ib)
+            g = comb(self.g, ib, o.g, -v * ib)
         # common denominator Q_a N_b^2 (see the module docstring)
         return Jet(v, g, self.n + o.d + o.n, self.d + 2 * o.n)
 
     def __rtruediv__(self, o):
-        o = _lift(o)
+        o = lift(o)
         return o if o is NotImplemented else o / self
 
     def __pow__(self, e):
@@ -196,10 +173,9 @@ class Jet:
 
     def sqrt(self):
         self._known()
-        if self.v > 0 and not _is_square(self.v):
-            from solvers.verify.exact.radical import Radical
+        if self.v > 0 and not is_square(self.v):
             return Radical.of(self)
-        s = _sqrt_q(self.v)
+        s = sqrt_q(self.v)
         if s == 0:
             raise ZeroDivisionError("derivative of sqrt at 0")
         g = None if self.g is None else tuple(x / (2 * s) for x in self.g)
@@ -207,7 +183,6 @@ class Jet:
         return Jet(s, g, self.n + self.d, self.d + h)
 
     def arccos(self):
-        from solvers.verify.exact.angle import Angle
         self._known()
         return Angle.arccos_of(self)
 
@@ -243,7 +218,7 @@ class Jet:
 
     def _cmp_value(self, o):
         self._known()
-        o = _lift(o)
+        o = lift(o)
         o._known()
         return self.v, o.v
 
@@ -264,7 +239,7 @@ class Jet:
         return a >= b
 
     def __eq__(self, o):
-        o = _lift(o)
+        o = lift(o)
         if o is NotImplemented:
             return False
         return self.v == o.v
@@ -287,7 +262,7 @@ class Jet:
     def structural_zero(self) -> bool:
         """The zero function, not only zero at the point: value and partials zero with
         numerator degree 0 (a constant), or an RF that is the zero function."""
-        return not self.unknown and _is_zero_value(self) and (
+        return not self.unknown and is_zero_value(self) and (
             self.n == 0 or type(self.v).__name__ == "RF")
 
     def __bool__(self):
@@ -297,7 +272,7 @@ class Jet:
         return f"Jet({self.v}, {self.g}, deg<=({self.n},{self.d}))"
 
 
-def _lift(o):
+def lift(o):
     if isinstance(o, Jet):
         return o
     if isinstance(o, (np.ndarray, list, tuple)) or type(o).__name__ in ("Radical", "T2"):
@@ -308,39 +283,217 @@ def _lift(o):
         return NotImplemented
 
 
-def _is_zero_const(x):
-    """The constant 0 (degree 0, no partials): 0 * anything is 0 as a function too."""
-    return not x.unknown and x.g is None and x.v == 0 and (
-        x.n == 0 or type(x.v).__name__ == "RF")
-
-
-def _is_zero_value(x):
-    return x.v == 0 and (x.g is None or all(y == 0 for y in x.g))
-
-
-class _Lost:
-    """Reasons the degree bound stopped describing the computed function (a zero at the
-    point used as if it were the zero function). certify.run_points reads and resets it:
-    such a record states no probability."""
-    reasons: ClassVar[list[str]] = []
-
-
-def lose_degree(why: str):
-    _Lost.reasons.append(why)
-
-
-def _comb(ga, ca, gb, cb):
-    """ca * ga + cb * gb for partial tuples (None: zero)."""
-    if ga is None and gb is None:
-        return None
-    if ga is None:
-        return tuple(cb * x for x in gb)
-    if gb is None:
-        return tuple(ca * x for x in ga)
-    return tuple(ca * x + cb * y for x, y in zip(ga, gb, strict=True))
-
-
 def q_str(x) -> str:
     """A rational as "p/q" (or "p")."""
     x = x.v if isinstance(x, Jet) else q_of(x)
     return f"{x.p}" if x.q == 1 else f"{x.p}/{x.q}"
+
+
+class Angle(Jet):
+    __slots__ = ("c", "s")
+
+    @staticmethod
+    def arccos_of(u: Jet):
+        if not -1 < u.v < 1:
+            raise NotRational("arccos outside (-1, 1)")
+        s = (1 - u.value() * u.value()).sqrt()          # sin theta >= 0
+        g = None if u.g is None else tuple(-x / _angle_val(s) for x in u.g)
+        # d theta / d y_j = -u_j / sin theta: over the denominators of u (Q_u) and of
+        # sin theta = P_s / Q_s it is -N_j Q_s / (Q_u P_s), degrees (n_u + d_s, d_u + n_s)
+        # (the 1/sin theta counts too)
+        n, d = (u.n + s.d, u.d + s.n) if isinstance(s, Jet) else (u.n, u.d)
+        a = Angle(0, g, n, d, unknown=True)
+        a.c, a.s = u.value(), s
+        return a
+
+    def value(self):
+        a = Angle(0, None, self.n, self.d, unknown=True)
+        a.c, a.s = self.c, self.s
+        return a
+
+    def cos(self):
+        return self._of(self.c, -self.s)        # d cos theta = -sin theta d theta
+
+    def sin(self):
+        return self._of(self.s, self.c)
+
+    def _of(self, f, df):
+        if self.g is None:
+            return f
+        return _angle_with_partials(f, df, self)
+
+    @property
+    def real(self):
+        return self.value()
+
+
+def _angle_val(x):
+    if isinstance(x, Jet):
+        return x.v
+    raise NotRational("sin theta is not rational here")
+
+
+def _angle_with_partials(f, df, theta):
+    """The jet f(theta) whose partials are df * d theta / d y_j; degree bound over the
+    common denominator Q_f Q_df Q_theta."""
+    if not isinstance(f, Jet) or not isinstance(df, Jet):
+        raise NotRational("sin theta is not rational here")
+    n = max(f.n + df.d + theta.d, df.n + theta.n + f.d)
+    return Jet(f.v, tuple(df.v * x for x in theta.g), n, f.d + df.d + theta.d)
+
+
+@total_ordering
+class Radical:
+    __slots__ = ("a", "c", "r")
+
+    def __init__(self, a: Jet, c: Jet, r: Jet):
+        self.a, self.c, self.r = a, c, r      # r: value and degree only
+
+    @staticmethod
+    def of(R: Jet):
+        """sqrt(R) for a rational jet R > 0 that is not a square."""
+        if R.v <= 0:
+            raise NotRational(f"square root of a non-positive rational {R.v}")
+        g = None if R.g is None else tuple(x / (2 * R.v) for x in R.g)
+        return Radical(Jet(0), Jet(1, g, R.n + R.d, R.n + R.d), R.value())
+
+    @property
+    def pure(self):
+        return is_zero_value(self.a)
+
+    def _with(self, o):
+        """o (a Jet or a Radical) over this radicand, or None if it cannot be."""
+        if isinstance(o, Radical):
+            if o.r.v == self.r.v:
+                return o
+            ratio = o.r / self.r
+            if not is_square(ratio.v):
+                return None
+            s = ratio.sqrt()                   # sqrt(r_o) = s sqrt(r_self)
+            return Radical(o.a, o.c * s, self.r)
+        o = lift(o)
+        if o is NotImplemented:
+            return None
+        return Radical(o, Jet(0), self.r)
+
+    # --- arithmetic ---------------------------------------------------------------------
+    def __add__(self, o):
+        w = self._with(o)
+        if w is None:
+            if isinstance(o, (Jet, Radical, int, float)):
+                raise NotRational("a sum over two independent square roots")
+            return NotImplemented
+        return drop_cancelled_root(Radical(self.a + w.a, self.c + w.c, self.r))
+
+    __radd__ = __add__
+
+    def __neg__(self):
+        return Radical(-self.a, -self.c, self.r)
+
+    def __pos__(self):
+        return self
+
+    def __sub__(self, o):
+        return self + (-o)
+
+    def __rsub__(self, o):
+        return (-self) + o
+
+    def __mul__(self, o):
+        w = self._with(o)
+        if w is None:
+            if isinstance(o, Radical) and self.pure and o.pure:
+                return Radical(Jet(0), self.c * o.c, self.r * o.r)
+            if isinstance(o, (Jet, Radical)):
+                raise NotRational("a product over two independent square roots")
+            return NotImplemented
+        a = self.a * w.a + self.r * (self.c * w.c)
+        c = self.a * w.c + self.c * w.a
+        return drop_cancelled_root(Radical(a, c, self.r))
+
+    __rmul__ = __mul__
+
+    def inverse(self):
+        n = self.a * self.a - self.r * (self.c * self.c)      # nonzero: sqrt r irrational
+        return drop_cancelled_root(Radical(self.a / n, -self.c / n, self.r))
+
+    def __truediv__(self, o):
+        if isinstance(o, Radical):
+            if self._with(o) is None and self.pure and o.pure:
+                # c1 sqrt r1 / (c2 sqrt r2) = (c1 / (c2 r2)) sqrt(r1 r2)
+                return Radical(Jet(0), self.c / (o.c * o.r), self.r * o.r)
+            return self * o.inverse()
+        o = lift(o)
+        if o is NotImplemented:
+            return o
+        return Radical(self.a / o, self.c / o, self.r)
+
+    def __rtruediv__(self, o):
+        return self.inverse() * o
+
+    def __pow__(self, e):
+        k = int(e)
+        if k != e:
+            raise NotRational(f"power {e} of an irrational square root")
+        if k == 0:
+            return Jet(1)
+        out = self
+        for _ in range(abs(k) - 1):
+            out = out * self
+        return out if k > 0 else 1 / out
+
+    def sqrt(self):
+        raise NotRational("square root of an irrational square root")
+
+    def log(self):
+        """d ln x = dx / x; rational for a pure root c sqrt(r): C_j / c."""
+        if not self.pure:
+            raise NotRational("log of a + c sqrt(r) with a != 0")
+        c = self.c
+        g = None if c.g is None else tuple(x / c.v for x in c.g)
+        return Jet(0, g, c.n, c.n, unknown=True)
+
+    def sign(self) -> int:
+        a, c, r = self.a.v, self.c.v, self.r.v
+        sa, sc = (a > 0) - (a < 0), (c > 0) - (c < 0)
+        if sa == sc or sc == 0:
+            return sa
+        if sa == 0:
+            return sc
+        return sa if a * a > r * c * c else sc
+
+    def __abs__(self):
+        return -self if self.sign() < 0 else self
+
+    @property
+    def real(self):
+        # as Re of a complex-step number: the value without its infinitesimal part (the
+        # formulas use np.real to hold a quantity constant, e.g. (2.21)'s lambda)
+        return self.value()
+
+    def partial(self, j):
+        return Radical(self.a.partial(j), self.c.partial(j), self.r)
+
+    def value(self):
+        return Radical(self.a.value(), self.c.value(), self.r)
+
+    def parts(self):
+        """(a, c): the number is zero iff both are."""
+        return self.a, self.c
+
+    def _cmp(self, o):
+        return (self - o).sign()
+
+    def __lt__(self, o):
+        return self._cmp(o) < 0
+
+    def __eq__(self, o):
+        return self._cmp(o) == 0
+
+    __hash__ = None
+
+    def __float__(self):
+        raise NotRational("float() of an exact value")
+
+    def __repr__(self):
+        return f"Radical({self.a.v} + {self.c.v} sqrt({self.r.v}))"

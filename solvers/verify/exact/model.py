@@ -11,7 +11,10 @@ function (solvers/kernels/support.py), so no derivative of r is ever approximate
 import numpy as np
 
 from solvers.kernels import layout as L
-from solvers.verify.exact.jet import Jet, NotRational
+from solvers.models.reduced_systems import profile, rev_body, rho0
+from solvers.verify.exact.jet import Jet
+from solvers.verify.exact.linalg import solve
+from solvers.verify.exact.rational import NotRational
 
 E3 = np.eye(3, dtype=int).astype(object)
 
@@ -83,14 +86,12 @@ class ExactParams:
         return np.diag(self.I) + self.m * ((r @ r) * E3 - np.outer(r, r))
 
     def omega(self, M, gamma_or_r):
-        from solvers.verify.exact.linalg import solve
         r = gamma_or_r if self.model.model == L.MODEL_FLAT else self.r(gamma_or_r)
         return solve(self.contact_inertia(r), M)
 
 
 def field(P: ExactParams, y):
     """dy/dt, exact, for MODEL_FULL (M, gamma) and MODEL_FLAT (M, r1, r2)."""
-    from solvers.verify.exact.linalg import solve
     p = P.p
     m, k = P.m, P.k
     S = P.S
@@ -119,11 +120,9 @@ def jet_const(x):
 
 
 def to_reduced(p, y):
-    """(M, gamma) -> (gamma3, K1, K2, K3) of solvers.models.reduced.to_reduced ((2.5) /
+    """(M, gamma) -> (gamma3, K1, K2, K3) of solvers.models.reduced_systems.to_reduced ((2.5) /
     (3.3)), with this module's exact support function in place of the compiled one."""
-    from solvers.models.reduced import _body, profile, rho0
-    from solvers.verify.exact.linalg import solve
-    b = _body(p)
+    b = rev_body(p)
     M, g = np.asarray(y[:3], dtype=object), np.asarray(y[3:6], dtype=object)
     u = g[2]
     r, _ = support(p, g)

@@ -27,9 +27,15 @@ from fractions import Fraction
 
 import numpy as np
 
+import solvers.verify.params as params_mod
+from solvers.errors import InputError
 from solvers.kernels import layout as L
-from solvers.verify.exact.jet import Jet, NotRational, q_of
-from solvers.verify.exact.model import ExactParams
+from solvers.models.bodies import check_state, fill_body, fill_inertia, tangent_fit
+from solvers.models.cases import PARAM_SLOTS, get_case
+from solvers.verify.exact.jet import Jet
+from solvers.verify.exact.model import ExactParams, support
+from solvers.verify.exact.rational import NotRational, q_of
+from solvers.verify.exact.symbolic import S, mark, release, symbol
 
 BITS = 64
 N_GRID = 2 ** BITS
@@ -116,7 +122,6 @@ class GridRng:
     @contextmanager
     def drawing(self):
         """Within: params.build records the exact parameters it is given."""
-        import solvers.verify.params as params_mod
         real = params_mod.build
         self.drawn = []
         uniform = self.uniform
@@ -142,7 +147,6 @@ class GridRng:
 
 def free(x):
     """A drawn free coordinate: degree 1 in z (in symbolic mode, a new symbol z_i)."""
-    from solvers.verify.exact.symbolic import S, symbol
     q = q_of(x)
     return Jet(symbol(q) if S.active else q, None, 1, 0)
 
@@ -151,8 +155,6 @@ def exact_slots(case_id, prm_in, allow_any_inertia):
     """The parameter vector of cases.build, filled exactly from the drawn values by the
     project's own bodies.fill_inertia / fill_body (object arrays of `Drawn`), then handed
     over as plain jets."""
-    from solvers.models.bodies import fill_body, fill_inertia
-    from solvers.models.cases import PARAM_SLOTS, get_case
     case = get_case(case_id)
 
     def drawn(v):
@@ -209,7 +211,6 @@ def rational_gamma(rng: GridRng, pole_margin=0.05, square_sin=True):
     rational (the disk's support (2.15), theta of the axial reductions, K3 of (2.5)); else
     the inverse stereographic projection, whose components have half the degree (the
     symbolic proofs of the other bodies stay smaller)."""
-    from solvers.verify.exact.symbolic import mark, release
     while True:
         n0 = mark()
         if square_sin:
@@ -252,7 +253,6 @@ def exact_params(Pf, gamma, rng: GridRng) -> ExactParams:
     for i, (x, f) in enumerate(zip(p, pf, strict=True)):   # the same model as the float one
         if abs(x.to_float() - f) > 1e-12 * max(1.0, abs(f)):
             raise NotRational(f"exact parameter slot {i} = {x.to_float()!r} != {f!r}")
-    from solvers.verify.exact.symbolic import S
     if S.active:
         _generic_slots(p, prm)
     if gamma is not None and any(pf[i] != 0 for i in (L.B11, L.B22, L.B33)):
@@ -285,7 +285,6 @@ def _generic_slots(p, prm):
     own. The proof is then of the identity for that parameter arbitrary, which implies the
     drawn case, with fewer variables to expand. Slots tied by a relation (I2 = I1, I3 = 2 I1,
     I = mu + lambda m B, k = 2/R) share coordinates and are kept as they are."""
-    from solvers.verify.exact.symbolic import symbol
     used = [_vars(x) for x in p]
     others = [_vars(x) for x in prm.values()]
     for i, vi in enumerate(used):
@@ -310,7 +309,6 @@ def axial_radicand(p, gamma, rng: GridRng):
     and 1 - g3^2 = sin^2 th is already a square): draw q near its float value and solve
     I1 = I2 = q^2 - m r^2 (a relative change ~2^-20; I3 = I1 or I3 = 2 I1 kept where drawn so),
     so that the reduced variables need one irrational root (rho0's) only."""
-    from solvers.verify.exact.model import support
     r, _ = support(p, np.asarray(gamma, dtype=object))
     mr2 = p[L.MASS] * (r @ r)
     q0 = (p[L.I1].to_float() + mr2.to_float()) ** 0.5
@@ -329,9 +327,6 @@ def axial_radicand(p, gamma, rng: GridRng):
 def rational_state(Pf, rng: GridRng):
     """(exact params, exact state values) of one random point; float-validated like
     solvers.verify.params.random_states (pole margin, fit, disk not flat)."""
-    from solvers.errors import InputError
-    from solvers.models.bodies import check_state, tangent_fit
-    from solvers.verify.exact.symbolic import mark, release
     square_sin = Pf.model.case.symmetry == "axial" or Pf.p[L.DISK_D] != 0
     for _ in range(200):
         n0 = mark()

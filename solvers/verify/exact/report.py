@@ -8,6 +8,7 @@ import json
 import sys
 from collections import Counter
 
+from solvers.verify.exact.certifiers import NUMERIC
 from solvers.verify.exact.certify import K_POINTS
 from solvers.verify.exact.points import BITS
 
@@ -40,7 +41,6 @@ def exact_counts(records) -> dict:
 
 def neither_reasons(records) -> dict[str, str]:
     """Why each verified formula record is neither proved nor certified."""
-    from solvers.verify.exact.registry import NUMERIC
     out = {}
     for r in _verified(records):
         k = kind(r)
@@ -49,7 +49,7 @@ def neither_reasons(records) -> dict[str, str]:
         ex = r.get("exact")
         if ex is None:
             why = NUMERIC.get(r["check"]) or "not exactly evaluable at rational points " \
-                "(solvers.verify.exact.why_not gives the error)"
+                "(solvers.verify.exact.certifiers.why_not gives the error)"
         elif ex.get("negative"):
             why = "the exact object certifies a negative statement, not this record's formula"
         else:

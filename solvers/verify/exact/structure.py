@@ -3,7 +3,7 @@ the Jacobi identity of a printed tensor and the Hamiltonian form after a change 
 
 import numpy as np
 
-from solvers.verify.checks.structure import _vars, bracket_fn, hamiltonian_parts
+from solvers.verify.checks.structure import bracket_fn, hamiltonian_parts, state_vars
 from solvers.verify.exact.certify import directional, plain, residual_vector, seeded
 from solvers.verify.exact.jet import Jet
 from solvers.verify.exact.model import field
@@ -17,7 +17,7 @@ def _values(X):
 def jacobi(catalogue, claim, use_corrected):
     """J_il d_l J_jk + J_jl d_l J_ki + J_kl d_l J_ij and J + J^T, all entries."""
     J = bracket_fn(catalogue, claim, use_corrected)
-    V = _vars(catalogue, claim.check_args.bracket)
+    V = state_vars(catalogue, claim.check_args.bracket)
 
     def res(P, y):
         x = _values(to_vars(V, P, plain(y)))
@@ -49,7 +49,7 @@ def hamiltonian(catalogue, claim, use_corrected):
         xdot = directional(X, v)
         x = _values(X)
         N = 1 if Nf is None else Jet.const(
-            Nf(P, to_vars(_vars(catalogue, a.multiplier), P, plain(y)))).value()
+            Nf(P, to_vars(state_vars(catalogue, a.multiplier), P, plain(y)))).value()
         lhs = xdot / N
         Hx = Jet.const(Hf(P, seeded(x)))
         grad = np.array([Hx.partial(j) for j in range(len(x))], dtype=object)

@@ -64,7 +64,7 @@ def chaplygin_time_change(P, x):
     return chaplygin_rho(P, x[3:6])
 
 
-def _g(P, M, gam):
+def g_eq2_25(P, M, gam):
     """g = D (gamma, A M) / (1 - D (gamma, A gamma)) of (2.25) (= D (omega, gamma))."""
     A = _A(P)
     return P.D * (gam @ (A * M)) / (1.0 - P.D * (gam @ (A * gam)))
@@ -77,7 +77,7 @@ def chaplygin_bracket(P, x):
     {gamma_i, gamma_j} = 0."""
     M, g = x[:3], x[3:6]
     irho = 1.0 / chaplygin_rho(P, g)
-    top = irho * eps_dot(M - _g(P, M, g) * g)
+    top = irho * eps_dot(M - g_eq2_25(P, M, g) * g)
     mg = irho * eps_dot(g)
     zero = 0.0 * mg
     return np.block([[top, mg], [mg, zero]])
@@ -104,7 +104,7 @@ def chaplygin_hamiltonian_m(P, x):
     M, g = x[:3], x[3:6]
     A = _A(P)
     AM = A * M
-    return 0.5 * (M @ AM) + 0.5 * _g(P, M, g) * (AM @ g) + _potential(P, g)
+    return 0.5 * (M @ AM) + 0.5 * g_eq2_25(P, M, g) * (AM @ g) + _potential(P, g)
 
 
 def _potential(P, g):

@@ -35,10 +35,13 @@ import functools
 
 import numpy as np
 
-from solvers.models import reduced as rd
+from solvers.models import reduced_systems as rd
 from solvers.models.revolution import profile
+from solvers.verify.formulas.chaplygin import eps_dot, g_eq2_25
 from solvers.verify.formulas.reduced_plane import body, potential
+from solvers.verify.formulas.sphere_bodies import factor_312
 from solvers.verify.registry import formula
+from solvers.verify.variables import chaplygin_rho
 
 
 def _bivector(x, dK):
@@ -153,14 +156,11 @@ def bf_candidate_bracket(P, x):
     plane's bracket, which is Poisson. At k = -1 (Borisov-Fedorov) it is NOT: the Jacobiator
     is of relative size 0.1-0.6, and no conformal factor f(M, gamma) repairs it (the
     Jacobiator is not of the form Y ^ J)."""
-    from solvers.verify.formulas.chaplygin import _g, eps_dot
-    from solvers.verify.formulas.sphere_bodies import factor_312
-    from solvers.verify.variables import chaplygin_rho
 
     k = factor_312(P)
     M, g = x[:3], x[3:6]
     irho = 1.0 / chaplygin_rho(P, g)
-    top = -irho * eps_dot(M - k * _g(P, M, g) * g)
+    top = -irho * eps_dot(M - k * g_eq2_25(P, M, g) * g)
     mg = -k * irho * eps_dot(g)
     return np.block([[top, mg], [mg, 0.0 * mg]])
 
@@ -220,7 +220,6 @@ def bf_level0_bracket(P, x):
     {gamma_i, gamma_j} = 0 (the sign of (2.27); it generates the flow forward in tau),
     pulled back to (M, gamma) through L = K(gamma) M: with A = dx/dy = [[K^-1, -K^-1 C], [0, E]],
     C_ij = (dK/dgamma_j M)_i, the tensor is A Pi(y) A^T. Poisson because it is a pull-back."""
-    from solvers.verify.formulas.chaplygin import eps_dot
 
     M, g = x[:3], x[3:6]
     Kf, dKf = _bf_map()
@@ -243,7 +242,6 @@ def bf_level0_time_change(P, x):
     J = P.I + P.D
     ab = (1.0 - 2.0 * J / np.sum(J)) * g
     JJab = J * ab - P.D * g * (g @ ab)
-    from solvers.verify.variables import chaplygin_rho
     return chaplygin_rho(P, g) * ((P.I * g) @ ab) / (JJab @ ab) + 0.0 * x[0]
 
 

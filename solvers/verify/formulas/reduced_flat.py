@@ -2,7 +2,7 @@
 (u, K1, K2): u = r1^2 + r2^2, K1 = (M, r), K2 = omega3/rho ((3.21)-(3.26), (3.23) .. (3.25)).
 
 R is 1/k with the signed curvature of CONVENTIONS.md (k < 0: outside a fixed ball), the
-reading under which (3.26) holds (solvers/models/reduced.py). Abbreviation:
+reading under which (3.26) holds (solvers/models/reduced_systems.py). Abbreviation:
     sq(u) = sqrt(I3 (I1 + m z^2) + I1 m u) = sqrt(I1 I3 + m (r, I r)) = 1/rho.
 
 Solutions (role `solution`) take x = (u, c1, c2) -- the independent variable and the
@@ -11,7 +11,7 @@ constants -- and return (K1, K2); the particular solution takes x = (u,).
 
 import numpy as np
 
-from solvers.models import reduced as rd
+from solvers.models import reduced_systems as rd
 from solvers.verify.registry import corrected, formula
 
 

@@ -2,8 +2,8 @@
 (2.6) .. (2.12), the linear systems (2.13), (2.32), (2.34), the disk (2.16), (2.17), (2.33)
 and its hypergeometric form, the superposition (2.14) and the quadratic integral of (2.21).
 
-The systems wrap solvers/models/reduced.py (printed and corrected forms, tested against the full
-field in tests/test_reduced.py). Contracts of the roles used here:
+The systems wrap solvers/models/reduced_systems.py (printed and corrected forms, tested
+against the full field in tests/test_reduced.py). Contracts of the roles used here:
 
 * system in (gamma3, K1, K2, K3): f(P, x) = dx/dt (dx/dtau for (2.9), (2.12));
 * system in (gamma3|theta|u, K1, K2): f(P, x) = dK/ds, s the first variable;
@@ -20,7 +20,7 @@ revolution (phi: the support function on the axis, solvers/models/revolution.py)
 
 import numpy as np
 
-from solvers.models import reduced as rd
+from solvers.models import reduced_systems as rd
 from solvers.models.revolution import phi_derivs, profile
 from solvers.verify.registry import corrected, formula
 
@@ -208,7 +208,7 @@ def routh_gyro_linear(P, x):
 def quadratic_condition(P, x):
     """(2.21): lambda(gamma3) = I3 (1 - (f2/f1)') / (m f1 (f1 - f2')); x = (gamma3,)."""
     b = body(P)
-    c1, c2 = rd._coeffs(b, x[0])
+    c1, c2 = rd.linear_coeffs(b, x[0])
     return c1 / c2
 
 

@@ -3,14 +3,15 @@
 (3.5), (3.6)-(3.15) and Kuleshov's (3.8). Contracts as in reduced_plane.py.
 
 k is the signed curvature of CONVENTIONS.md (+1/R0 inside a cavity, -1/R0 outside a ball);
-that is the reading under which (3.4) holds (solvers/models/reduced.py, tests/test_reduced.py).
+that is the reading under which (3.4) holds (solvers/models/reduced_systems.py,
+tests/test_reduced.py).
 rho0 is the first expression of (3.2), (I1 I3 + m (r, I r))^-1/2 (its expanded form there
 carries a misprinted gamma3^2; rho0 of (3.2) is not a formula of this module).
 """
 
 import numpy as np
 
-from solvers.models import reduced as rd
+from solvers.models import reduced_systems as rd
 from solvers.models.revolution import profile
 from solvers.verify.formulas.reduced_plane import body, potential
 from solvers.verify.registry import corrected, formula

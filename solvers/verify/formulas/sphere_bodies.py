@@ -3,7 +3,8 @@
 integral), the balanced nonsymmetric ball (3.10) and the Borisov-Fedorov case (3.11).
 
 k is CONVENTIONS.md's signed curvature (+1/R0 inside a cavity, -1/R0 outside a fixed ball),
-which is the reading under which (3.2)-(3.15) hold (solvers/models/reduced.py); (3.10)'s own k is
+which is the reading under which (3.2)-(3.15) hold (solvers/models/reduced_systems.py);
+(3.10)'s own k is
 the factor R0/(R0 - a) = 1/(1 - k a) of that curvature.
 """
 

@@ -10,7 +10,10 @@ field's Dv v comes from one first-order jet in the direction v. Then
 
 import numpy as np
 
-from solvers.verify.exact.jet import Jet, NotRational, _lift
+from solvers.verify.checks.common import implementation
+from solvers.verify.exact.jet import Angle, Jet, lift
+from solvers.verify.exact.model import field
+from solvers.verify.exact.rational import NotRational
 
 
 class T2:
@@ -23,7 +26,7 @@ class T2:
     def _of(o):
         if isinstance(o, T2):
             return o
-        o = o if type(o).__name__ == "Radical" else _lift(o)
+        o = o if type(o).__name__ == "Radical" else lift(o)
         if o is NotImplemented:
             return None
         return T2(o, Jet(0), Jet(0))
@@ -122,9 +125,6 @@ def flow_series(P, y, field):
 def second_order(catalogue, claim, use_corrected):
     """The terms of the printed second-order equation at (s, w, dw/ds, d2w/ds2) of the
     full flow; their sum is the residual (checks/ode.jet_residual)."""
-    from solvers.verify.checks.common import implementation
-    from solvers.verify.exact.angle import Angle
-    from solvers.verify.exact.model import field
     fid = claim.check_args.formula
     f = implementation(fid, use_corrected)
     V = catalogue.formula(fid).variables.value

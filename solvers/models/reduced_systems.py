@@ -62,7 +62,8 @@ class RevBody:
                    float(p[L.S3]), prof)
 
 
-def _body(b):
+def rev_body(b):
+    """A RevBody, from one or from the parameter vector."""
     return b if isinstance(b, RevBody) else RevBody.from_params(b)
 
 
@@ -89,7 +90,7 @@ def kappa(b, u):
 # --- maps ------------------------------------------------------------------------------
 def to_reduced(p, y):
     """(M, gamma) -> (gamma3, K1, K2, K3), (2.5) (k = 0) / (3.3) (k != 0)."""
-    b = _body(p)
+    b = rev_body(p)
     pv = np.asarray(p, dtype=float)
     M, g = y[:3], y[3:6]
     u = g[2]
@@ -108,7 +109,7 @@ def to_reduced(p, y):
 
 def from_reduced(p, x):
     """(gamma3, K1, K2, K3) -> (M, gamma) with gamma = (sqrt(1-gamma3^2), 0, gamma3)."""
-    b = _body(p)
+    b = rev_body(p)
     u, K1, K2, K3 = x
     sig = np.sqrt(1 - u * u)
     f1, f2 = profile(b.prof, u)[:2]
@@ -132,7 +133,7 @@ def flat_reduced(p, y):
 
 
 # --- the reduced field (2.6) (plane), its energy and bracket ---------------------------
-def _coeffs(b, u):
+def linear_coeffs(b, u):
     """c1 = I3 rho (1 - (f2/f1)'), c2 = m rho f1 (f1 - f2'): (2.13) / (2.8)."""
     f1, f2, f1p, f2p = profile(b.prof, u)[:4]
     rho = rho0(b, u)
@@ -153,7 +154,7 @@ def energy(b, x, U=None):
 
 def bracket(b, x):
     """Poisson tensor of (2.8) in x = (gamma3, K1, K2, K3) (4x4, antisymmetric)."""
-    c1, c2 = _coeffs(b, x[0])
+    c1, c2 = linear_coeffs(b, x[0])
     P = np.zeros((4, 4), dtype=np.result_type(x[0], x[1], float))
     P[0, 3] = 1.0
     P[1, 3] = -c1 * x[2]
@@ -164,13 +165,13 @@ def bracket(b, x):
 # --- linear systems in gamma3 ------------------------------------------------------------
 def eq2_5(b, u, K):
     """Plane: dK1/dg3 = -rho I3 (1 - (f2/f1)') K2, dK2/dg3 = -m rho f1 (f1 - f2') K1."""
-    c1, c2 = _coeffs(b, u)
+    c1, c2 = linear_coeffs(b, u)
     return np.array([-c1 * K[1], -c2 * K[0]])
 
 
 def eq2_20(b, u, K):
     """Plane, gyrostat s: (2.13) with -s and -m rho f1 f2 s."""
-    c1, c2 = _coeffs(b, u)
+    c1, c2 = linear_coeffs(b, u)
     f1, f2 = profile(b.prof, u)[:2]
     return np.array([-c1 * K[1] - b.s, -c2 * K[0] - b.m * rho0(b, u) * f1 * f2 * b.s])
 
@@ -355,7 +356,7 @@ def field_eq2_star1(b, x, dU=0.0):
     f1, f2 = profile(b.prof, u)[:2]
     I1, I3, m = b.I1, b.I3, b.m
     rho, kap = rho0(b, u), kappa(b, u)
-    c1, c2 = _coeffs(b, u)
+    c1, c2 = linear_coeffs(b, u)
     s2 = 1 - u * u
     k3 = (f2 * (f1 * s2 + u * f2) * (m * f1**2 * K1**2 + I3 * K2**2)
           + u * f1**2 * I1 * K1**2 - f1 * (f1 * s2 + 2 * u * f2) * K1 * K2 / rho
@@ -369,7 +370,7 @@ def routh_integrals(p, y):
     """(omega3/rho, (M, r)/R) of the Routh ball: (2.20) with its K1, K2 labels (exchanged
     with respect to (2.5)). omega3/rho = rho (m R^2 g3 (M,g) + I1 M3 + m a R ((M,g) + M3 g3)
     + m a^2 M3): the printed prefactor rho^-1 is a misprint (see routh_integrals_printed)."""
-    b = _body(p)
+    b = rev_body(p)
     R, a = b.prof.c, b.prof.a
     M, g = y[:3], y[3:6]
     Mg = M @ g
@@ -381,7 +382,7 @@ def routh_integrals(p, y):
 
 def routh_integrals_printed(p, y):
     """(2.20) as printed: K1 = rho^-1 (...), which is omega3/rho^3, not an integral."""
-    b = _body(p)
+    b = rev_body(p)
     I = routh_integrals(p, y)
     rho = rho0(b, y[5])
     return np.array([I[0] / rho**2, I[1]])

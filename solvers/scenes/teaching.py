@@ -1,5 +1,9 @@
 """Teaching scenes (catalogue/scenes.yaml): presets for a class, validated once.
 
+The YAML is catalogue data; this loader lives beside the scene planner because a preset's
+`scene` is the planner's declaration and every preset is checked by building its model, so
+the catalogue itself imports no solver.
+
 Each preset is a short explanation for a class, the claim it demonstrates, the paper's
 labels, the run itself as the scene planner's declaration (`scene`: a
 `solvers.scenes.scenes.Scene` with the case, all its parameters, the initial state, t_end, what
@@ -7,22 +11,25 @@ is shown and how many samples / frames), and the checks that show the claim on t
 (`checks`, run by solvers.scenes.scene_checks and tests/test_scenes_catalogue.py). The schema is
 strict (extra="forbid"); `load_scenes()` also builds every model and validates every state.
 
-    from catalogue.scenes import load_scenes
+    from solvers.scenes.teaching import load_scenes
     load_scenes()["rattleback-spin-reversal"].scene.t_end
 """
 
 from __future__ import annotations
 
 from functools import cache
-from pathlib import Path
 from typing import Annotated, Literal
 
 import yaml
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
+from catalogue.load import DATA_DIR
+from solvers.errors import InputError
+from solvers.kernels.integrals import NAMES
+from solvers.models.cases import build, get_case, initial_state
 from solvers.scenes.scenes import Scene as SceneDeclaration
 
-PATH = Path(__file__).resolve().parent / "scenes.yaml"
+PATH = DATA_DIR / "scenes.yaml"
 
 
 class _Strict(BaseModel):
@@ -135,10 +142,6 @@ class Scene(_Strict):
 
     @model_validator(mode="after")
     def _runnable(self):
-        from solvers.errors import InputError
-        from solvers.kernels.integrals import NAMES
-        from solvers.models.cases import build, get_case, initial_state
-
         sc = self.scene
         try:
             case = get_case(sc.case)

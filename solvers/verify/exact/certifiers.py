@@ -1,9 +1,14 @@
 """Which checks have an exact certifier, and why the others stay numeric."""
 
+from solvers.verify.checks.negative import CANDIDATES, case_params
+from solvers.verify.checks.ode import RATE_FORMULAS, is_jet_claim
 from solvers.verify.exact import checks as X
+from solvers.verify.exact import proofs
 from solvers.verify.exact import structure as S
 from solvers.verify.exact.certify import Unsupported, run_points
-from solvers.verify.exact.jet import NotRational
+from solvers.verify.exact.flow_series import second_order  # (2.17), (2.33), (3.5)
+from solvers.verify.exact.rational import NotRational
+from solvers.verify.params import draw
 
 # check name -> (residual builder, negative?)  negative: the claim says it does NOT hold
 CERTIFIERS = {
@@ -46,7 +51,6 @@ _REASONS: dict[str, str] = {}
 
 
 def _candidates():
-    from solvers.verify.checks.negative import CANDIDATES
     return CANDIDATES
 
 
@@ -54,7 +58,6 @@ def _found_density(catalogue, case, claim, key):
     """Item 6: the object that refutes the paper's doubt, certified exactly. `holds` is
     about the found density (it IS invariant), `refutes` says what that means for the
     negative claim."""
-    from solvers.verify.checks.negative import case_params
     res = X.found_density(catalogue, claim, False, case.id)
     try:
         out = run_points(key, lambda rng: case_params(case, claim, rng), res,
@@ -71,13 +74,11 @@ def _found_density(catalogue, case, claim, key):
 
 
 def _rate_formulas():
-    from solvers.verify.checks.ode import RATE_FORMULAS
     return RATE_FORMULAS
 
 
 def _second_order(catalogue, claim):
-    from solvers.verify.checks.ode import _is_jet
-    return _is_jet(catalogue, claim)
+    return is_jet_claim(catalogue, claim)
 
 
 def why_not(claim_id: str) -> str | None:
@@ -93,7 +94,6 @@ def _builder(catalogue, case, claim):
             and args.against == "chaplygin_system":     # as checks/pointwise.check_reduced
         return X.transform, False
     if name == "reduced_agrees" and _second_order(catalogue, claim):
-        from solvers.verify.exact.taylor import second_order  # (2.17), (2.33), (3.5)
         return second_order, False
     if name == "identity" and args.formula in _rate_formulas():
         return X.rate_identity, False
@@ -104,11 +104,9 @@ def _builder(catalogue, case, claim):
 
 def residual_job(catalogue, case, claim, corrected=False):
     """(seed key, parameter draw, residual) of the record, as exact_for runs it; None where
-    no exact test applies. proofs.generate proves these."""
-    from solvers.verify.params import draw
+    no exact test applies. prove_all.generate proves these."""
     key = claim.id + ("/corrected" if corrected else "")
     if claim.check.value == "negative_measure" and case.id in _candidates():
-        from solvers.verify.checks.negative import case_params
         res = X.found_density(catalogue, claim, False, case.id)
         return key, (lambda rng: case_params(case, claim, rng)), res
     build, _ = _builder(catalogue, case, claim)
@@ -122,7 +120,6 @@ def residual_job(catalogue, case, claim, corrected=False):
 
 
 def _stored_proof(catalogue, case, claim, corrected):
-    from solvers.verify.exact import proofs
     return proofs.lookup(claim.id + ("/corrected" if corrected else ""),
                          proofs.fingerprint(catalogue, case, claim, corrected))
 
@@ -131,7 +128,6 @@ def exact_for(catalogue, case, claim, corrected=False):
     """The `exact` field of the record of `claim` (of its project correction if
     `corrected`): None where no exact test applies (reason: why_not(claim.id)). A record
     with a current stored symbolic proof (proofs.py) carries it."""
-    from solvers.verify.params import draw
     key = claim.id + ("/corrected" if corrected else "")
     name = claim.check.value
     args = claim.check_args

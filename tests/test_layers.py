@@ -1,0 +1,73 @@
+"""The layers of the code base, enforced: the import-linter contracts of pyproject.toml
+([tool.importlinter]: the catalogue imports no solver and nothing of the explorer, the
+solvers nothing of the explorer, no circles among the explorer's services), and, over every
+module of solvers/, app/ and catalogue/ read with ast (scripts/import_report.py): no import
+circle, and no underscore name imported from another module."""
+
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "scripts"))
+import import_report as report  # noqa: E402
+
+# Private names still taken across modules inside the kernels and integrators, which are
+# being redesigned apart from this check; any other one fails.
+KERNEL_REDESIGN = {
+    ("solvers.integrate.ensemble", "solvers.integrate.integrator", "_result"),
+    ("solvers.integrate.run_plan", "solvers.integrate.auto", "_rung"),
+    ("solvers.integrate.run_plan", "solvers.integrate.auto", "_tightened"),
+    ("solvers.integrate.taylor_backend", "solvers.kernels.generate", "_sources_stamp"),
+}
+
+
+# Files still over the limit, each being split apart from this check (the kernels, the
+# integrator, the command line); any other file over it fails.
+LONG_ELSEWHERE = {"solvers/integrate/integrator.py", "solvers/kernels/generate.py",
+                  "solvers/kernels/rk.py", "app/cli.py"}
+
+
+def test_no_file_is_over_the_line_limit():
+    long = {path for path, _ in report.long_files()}
+    assert long - LONG_ELSEWHERE == set(), report.long_files()
+
+
+def test_the_import_linter_contracts_are_kept():
+    exe = shutil.which("lint-imports", path=str(Path(sys.executable).parent))
+    if exe is None:
+        pytest.fail("import-linter is a dev dependency (pyproject.toml): install it")
+    out = subprocess.run([exe, "--no-cache"], cwd=ROOT, capture_output=True, text=True,
+                         env={"PYTHONPATH": str(ROOT), "PATH": "/usr/bin:/bin"})
+    assert out.returncode == 0, out.stdout[-3000:] + out.stderr[-2000:]
+    assert " 0 broken" in out.stdout, out.stdout[-3000:]
+
+
+def test_no_import_circle_among_the_modules():
+    imports = report.all_imports()
+    modules = {report.module_name(p) for p in report.project_files()}
+    assert report.circles(report.graph(imports, modules)) == []
+
+
+def test_the_circle_finder_finds_a_circle():
+    edges = {"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}
+    assert report.circles(edges) == [["a", "b", "c"]]
+
+
+def test_no_underscore_name_is_imported_across_modules():
+    found = set(report.underscore_imports(report.all_imports()))
+    assert found - KERNEL_REDESIGN == set()
+
+
+def test_the_underscore_finder_finds_one():
+    imp = report.Import("a.b", "a.c", ("public", "_private", "__version__"), False, 1)
+    assert report.underscore_imports([imp], attributes=False) == [("a.b", "a.c", "_private")]
+
+
+def test_the_catalogue_imports_no_solver_even_inside_a_function():
+    bad = [(i.source, i.target) for i in report.all_imports()
+           if i.source.split(".")[0] == "catalogue" and i.target.split(".")[0] != "catalogue"]
+    assert bad == []
