@@ -125,7 +125,7 @@ def test_the_api_gives_each_field_with_its_sources(client):
             assert all(got["field_sources"].values()), r.id
 
 
-@pytest.mark.xfail(strict=True, reason="target of issue 38 item 4 not met: the stored "
+@pytest.mark.xfail(strict=True, reason="the target of 35 complete keys is not met: the stored "
                    "sources (reference lists read only in their first entries, database "
                    "records) resolve fewer keys; each unresolved entry says what is missing")
 def test_at_least_35_of_the_41_keys_are_complete():

@@ -7,7 +7,7 @@ changes nothing."""
 import numpy as np
 import pytest
 
-from catalogue.scenes import load_scenes
+from solvers.scenes.teaching import load_scenes
 
 SCENES = load_scenes()
 pytestmark = pytest.mark.filterwarnings("ignore::DeprecationWarning")

@@ -18,7 +18,7 @@ def moved(preset, values: dict[str, float]):
     """The preset with `values` (slider name -> value in the slider's units) applied.
     Unknown names, values that are not finite or lie outside a slider's range, and a
     state the case rejects raise InputError; the preset itself never changes."""
-    from catalogue.scenes import Scene
+    from solvers.scenes.teaching import Scene
 
     sliders = {s.name: s for s in preset.sliders}
     if not sliders:
@@ -50,7 +50,7 @@ def moved(preset, values: dict[str, float]):
 def rerun_json(scene_id: str, values: dict[str, float]) -> dict:
     """The moved scene's run declaration and every check of it with its plot (the shape
     of GET /api/scenes/{id}/checks/{k}), in the catalogue's order."""
-    from catalogue.scenes import load_scenes
+    from solvers.scenes.teaching import load_scenes
     from solvers.scenes.scene_checks import run_checks
 
     preset = load_scenes()[scene_id]
