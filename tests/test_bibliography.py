@@ -1,4 +1,4 @@
-"""A resolved bibliography (issue 38, item 4): every complete entry of
+"""A resolved bibliography: every complete entry of
 catalogue/references.yaml takes each of its fields from a named source (the seed itself or a
 checked source that gives that field), an unresolved entry says what is missing, and
 /bibliography shows both. The target of the issue, at least 35 of the 41 keys complete, is
