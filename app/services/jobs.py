@@ -142,41 +142,39 @@ def prepare_scene_check(scene_id: str) -> int:
     return prepare_scene(req) + prepare_kernels(req)
 
 
-def simulate_json(req: dict, max_steps: int) -> bytes:
+def simulate_json(req: dict, max_steps: int, prov: dict | None = None) -> bytes:
     from app.services.payloads import json_bytes
 
-    return json_bytes(_run(req, max_steps), max_steps)
+    return json_bytes(_run(req, max_steps), max_steps, prov)
 
 
-def simulate_arrow(req: dict, max_steps: int) -> bytes:
+def simulate_arrow(req: dict, max_steps: int, prov: dict | None = None) -> bytes:
     """The run as an Arrow IPC stream (app/services/payloads.py)."""
     from app.services.payloads import arrow_bytes
 
-    return arrow_bytes(_run(req, max_steps), max_steps)
-
-
-COLUMNS_JSON = Path(__file__).resolve().parents[1] / "static" / "data" / "columns.json"
+    return arrow_bytes(_run(req, max_steps), max_steps, prov)
 
 
 def csv_header(state_labels: list[str], invariants: list[str]) -> list[str]:
-    """t, the state, then the invariants under their CSV names (static/data/columns.json,
-    shared with the case page's CSV button): unique, so the integral M^2 is `M_squared`
-    beside the component `M2`."""
-    names = {k: v for k, v in json.loads(COLUMNS_JSON.read_text()).items()
-             if not k.startswith("_")}
-    header = ["t", *state_labels]
-    for n in invariants:
-        col = names.get(n, n)
-        while col in header:
-            col += "_integral"
-        header.append(col)
+    """t, the state, then the invariants under their output names (the JSON's keys,
+    solvers/models/observables.py): unique by construction, |M|^2 is `M_squared` beside
+    the component `M2`."""
+    header = ["t", *state_labels, *invariants]
+    if len(set(header)) != len(header):
+        raise ValueError(f"column names repeat: {header}")
     return header
 
 
-def simulate_csv(req: dict, max_steps: int) -> bytes:
-    """One row per sample: t, the state, then every invariant the case carries."""
+def simulate_csv(req: dict, max_steps: int, prov: dict | None = None) -> bytes:
+    """The provenance as "# " lines (app/services/provenance.py), then one row per sample:
+    t, the state, then every invariant the case carries."""
+    from app.services.provenance import stamped
+
     res = _run(req, max_steps)
     buf = io.StringIO()
+    if prov is not None:
+        for line in stamped(prov, res.stats, res.status)["header"]:
+            buf.write(line + "\n")
     w = csv.writer(buf, lineterminator="\n")
     names = list(res.invariants)
     w.writerow(csv_header(list(res.state_labels), names))
