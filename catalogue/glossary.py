@@ -22,6 +22,7 @@ class Entry(BaseModel):
     tex: str               # how the paper writes it (KaTeX)
     kind: Literal["parameter", "state", "integral"]   # integral: an output of a run
     group: Literal["inertia", "shape", "support", "field", "state", "output"]
+    units: str             # its dimension in the consistent units of `Glossary.units`
     meaning: str
     range: str
     paper: list[str]       # the seed's labels; shown as printed numbers
