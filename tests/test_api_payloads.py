@@ -3,7 +3,6 @@ the arrays, Arrow IPC for clients that ask for it, content negotiation, and non-
 numbers (app/services/payloads.py)."""
 
 import csv
-import io
 import json
 import math
 

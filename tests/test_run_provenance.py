@@ -3,7 +3,6 @@ observables.py), and the provenance every answer carries: the CSV's commented he
 its file name with the hash of the run's inputs (app/services/provenance.py)."""
 
 import csv
-import io
 import json
 import re
 from urllib.parse import parse_qs, urlsplit

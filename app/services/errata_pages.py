@@ -232,7 +232,8 @@ def erratum_html(e: dict) -> str:
 
 def convention_html(e: dict) -> str:
     body = (f'<p class="where">The claim: {_claim_link(e)}.</p>{_tex(e.get("printed"))}'
-            f'{_symbols(e, "printed")}<p><strong>Convention:</strong> {escape(e.get("convention") or "")}</p>'
+            f'{_symbols(e, "printed")}<p><strong>Convention:</strong> '
+            f'{escape(e.get("convention") or "")}</p>'
             f"<p>Under this convention the printed form holds: residual "
             f"{_res(e.get('residual_under_convention'))}. Read with the project's convention "
             f"instead, it fails: residual {_res(e.get('residual_printed'))}.</p>")

@@ -10,10 +10,8 @@ from __future__ import annotations
 
 import csv
 import io
-import json
 import math
 import os
-from pathlib import Path
 
 # Worker processes run at a lower CPU priority than the server's event loop, so that on a
 # busy machine (2 cores, 2 workers) the loop still answers /api/health and parses requests

@@ -12,8 +12,8 @@ series, named as in the CSV and the JSON (`t`, the state labels, then the invari
 their output names, `M_squared` for |M|^2 beside the component `M2`:
 solvers/models/observables.py); the rest of the JSON answer (case, params, status,
 message, state_labels, invariants: the invariants' column names, stats, provenance) is in
-the schema's metadata, each value a JSON text under its own key. Floats are IEEE doubles there, so a non-finite value stays
-NaN or inf (Arrow has no need of null for it).
+the schema's metadata, each value a JSON text under its own key. Floats are IEEE doubles
+there, so a non-finite value stays NaN or inf (Arrow has no need of null for it).
 """
 
 from __future__ import annotations
