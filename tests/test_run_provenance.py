@@ -117,7 +117,9 @@ def test_csv_begins_with_the_runs_provenance(client):
     comments, rows = _csv(r.text)
     head = dict(x[2:].split(": ", 1) for x in comments)
     assert head["case"] == "plane/chaplygin-ball"
-    assert head["parameters"] == "I1 = 1.0, I2 = 2.0, I3 = 3.0, R = 1.0, m = 1.0"
+    # every parameter of the run, the defaults filled in
+    assert head["parameters"] == ("I1 = 1.0, I2 = 2.0, I3 = 3.0, m = 1.0, R = 1.0, S1 = 0.0, "
+                                  "S2 = 0.0, S3 = 0.0, g = 0.0, eps = 0.0")
     assert head["method"] == "dop853"
     assert head["tolerances"] == "rtol = 1e-10, atol = 1e-12"
     assert head["t_end"] == "10.0; samples: 11"
@@ -131,6 +133,13 @@ def test_csv_begins_with_the_runs_provenance(client):
     assert [float(x) for x in q["state"][0].split(",")] == BALL["state"]
     assert q["method"] == ["dop853"] and q["samples"] == ["11"]
     assert rows[0][0] == "t" and len(rows) == 12
+    # what each column holds, from the glossary: the component M2, the integral M_squared
+    assert [k.removeprefix("column ") for k in head if k.startswith("column ")] == rows[0]
+    g = load_glossary()
+    for c in rows[0][1:]:
+        assert head[f"column {c}"] == g.get(c).meaning, c
+    assert head["column M_squared"].startswith("The square of the angular momentum")
+    assert head["column M2"].startswith("Component along e2 of the angular momentum")
     # the JSON carries the same header, for the case page's CSV button
     d = client.post("/api/simulate", json=BALL).json()
     assert [x for x in d["provenance"]["header"] if not x.startswith("# date")] == \

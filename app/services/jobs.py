@@ -171,7 +171,7 @@ def simulate_csv(req: dict, max_steps: int, prov: dict | None = None) -> bytes:
     res = _run(req, max_steps)
     buf = io.StringIO()
     if prov is not None:
-        for line in stamped(prov, res.stats, res.status)["header"]:
+        for line in stamped(prov, res)["header"]:
             buf.write(line + "\n")
     w = csv.writer(buf, lineterminator="\n")
     names = list(res.invariants)

@@ -105,7 +105,7 @@ def result_dict(res, max_steps: int, prov: dict | None = None) -> dict:
     out = res.to_json(arrays=True)
     out["stats"] = {**out["stats"], "max_steps": max_steps}
     if prov is not None:
-        out["provenance"] = stamped(prov, out["stats"], res.status)
+        out["provenance"] = stamped(prov, res, out["stats"])
     return out
 
 

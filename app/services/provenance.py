@@ -82,20 +82,43 @@ def of_run(job: dict, base_url: str) -> dict:
             "computed_at": None}
 
 
-def stamped(prov: dict, stats: dict | None = None, status: str | None = None) -> dict:
-    """The provenance once the run has run: the time it finished (UTC, seconds) and the
-    CSV's header lines (`header`), which the case page's CSV button writes as they are."""
+def stamped(prov: dict, res=None, stats: dict | None = None) -> dict:
+    """The provenance once the run `res` (a SimulationResult) has run: the time it
+    finished (UTC, seconds) and the CSV's header lines (`header`), which the case page's
+    CSV button writes as they are, with every parameter of the run (defaults filled in)
+    and what each column holds."""
     now = datetime.now(UTC).replace(microsecond=0).isoformat().replace("+00:00", "Z")
     out = {**prov, "computed_at": now}
-    out["header"] = header_lines(out, stats, status)
+    if res is None:
+        out["header"] = header_lines(out, stats)
+    else:
+        out["header"] = header_lines(out, stats or res.stats, res.status, res.params,
+                                     [*res.state_labels, *res.invariants])
     return out
 
 
-def header_lines(prov: dict, stats: dict | None = None, status: str | None = None) -> list[str]:
+def column_lines(columns: list[str]) -> list[str]:
+    """One "column <name>: what it holds" line per column but t, from the glossary (its
+    state variables and the integrals a run reports, catalogue/glossary.yaml)."""
+    from catalogue.glossary import load_glossary
+    from catalogue.numbering import cite
+
+    g = load_glossary()
+    out = []
+    for c in columns:
+        e = g.get(c)
+        out.append(f"column {c}: {cite(e.meaning) if e else 'see the glossary'}")
+    return out
+
+
+def header_lines(prov: dict, stats: dict | None = None, status: str | None = None,
+                 params: dict | None = None, columns: list[str] | None = None) -> list[str]:
     """The CSV's commented header, one "# key: value" line each (static/js/run_csv.js
-    writes the same lines from the JSON's provenance)."""
+    writes the same lines from the JSON's provenance). The parameters are every one of
+    the run (`params`, defaults filled in) or else those given."""
     inp = prov["inputs"]
-    params = ", ".join(f"{k} = {v!r}" for k, v in inp["params"].items())
+    given = inp["params"] if params is None else {k: float(v) for k, v in params.items()}
+    params = ", ".join(f"{k} = {v!r}" for k, v in given.items())
     method = (stats or {}).get("method", inp["method"])
     lines = [f"case: {prov['case']}",
              f"parameters: {params}",
@@ -112,4 +135,6 @@ def header_lines(prov: dict, stats: dict | None = None, status: str | None = Non
              f"hash: {prov['hash']}"]
     if status and status != "ok":
         lines.append(f"status: {status}")
+    lines.append("column t: time")
+    lines += column_lines([c for c in columns or [] if c != "t"])
     return [f"# {x}" for x in lines]

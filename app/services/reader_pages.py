@@ -136,7 +136,7 @@ def _where(labels: list[str]) -> str:
 def glossary() -> str:
     g = load_glossary()
     rows = []
-    for group in ("inertia", "shape", "support", "field", "state", "output"):
+    for group in ("inertia", "shape", "support", "field", "state"):
         for e in (e for e in g.entries if e.group == group):
             rows.append(
                 f'<tr id="g-{escape(e.symbol)}"><th scope="row">{tex(e.tex)} '
