@@ -1,5 +1,6 @@
 """The glossary (catalogue/glossary.yaml): every parameter and state variable of the cases,
-with its meaning, units, valid range and where in the paper it appears."""
+with its meaning, units, valid range and where in the paper it appears, and every integral
+a run reports under its output name (the JSON's, CSV's and Arrow's)."""
 
 from __future__ import annotations
 
@@ -19,8 +20,9 @@ class Entry(BaseModel):
     model_config = ConfigDict(extra="forbid", frozen=True)
     symbol: str            # the name the API, the CLI and the forms use
     tex: str               # how the paper writes it (KaTeX)
-    kind: Literal["parameter", "state"]
-    group: Literal["inertia", "shape", "support", "field", "state"]
+    kind: Literal["parameter", "state", "integral"]   # integral: an output of a run
+    group: Literal["inertia", "shape", "support", "field", "state", "output"]
+    units: str             # its dimension in the consistent units of `Glossary.units`
     meaning: str
     range: str
     paper: list[str]       # the seed's labels; shown as printed numbers

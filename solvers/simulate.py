@@ -26,6 +26,7 @@ from solvers.errors import InputError
 from solvers.integrate.integrator import integrate, output_times, solve_ivp_reference
 from solvers.kernels.integrals import integral_table
 from solvers.models.cases import Model, build, initial_state
+from solvers.models.observables import Invariants, public_name
 
 SCIPY_METHODS = {"scipy-dop853": "DOP853", "scipy-rk45": "RK45", "scipy-lsoda": "LSODA",
                  "scipy-radau": "Radau"}
@@ -100,8 +101,10 @@ class SimulationResult:
     state : numpy.ndarray, shape (n, len(state_labels))
         The state at the sample times.
     invariants : dict of str to numpy.ndarray
-        Every first integral the case carries at the sample times, "energy" first
-        ("gamma2" is |gamma|^2 for (M, gamma)).
+        Every first integral the case carries at the sample times, "energy" first, under
+        its output name (solvers/models/observables.py PUBLIC_NAMES), the same in JSON, CSV
+        and Arrow: "gamma_squared" is |gamma|^2, "M_squared" is |M|^2 (never "M2", the
+        component). A lookup by the kernels' code name ("M2") finds the same series.
     stats : dict
         How the run went: steps, rejected steps, right-hand-side calls, the method, field
         and kernel that ran, the tolerances, and "drift", the drift of every invariant.
@@ -121,7 +124,7 @@ class SimulationResult:
     >>> res.ok, res.t.shape, res.state.shape, res.state_labels
     (True, (5,), (5, 6), ('M1', 'M2', 'M3', 'g1', 'g2', 'g3'))
     >>> list(res.invariants), res.drift("area") < 1e-10
-    (['energy', 'gamma2', 'area', 'M2'], True)
+    (['energy', 'gamma_squared', 'area', 'M_squared'], True)
     >>> sorted(res.to_json())[:4]
     ['case', 'invariants', 'message', 'params']
     """
@@ -135,6 +138,10 @@ class SimulationResult:
     stats: dict = field(default_factory=dict)
     status: str = "ok"          # ok | singular | budget
     message: str = ""
+
+    def __post_init__(self):
+        # one name per quantity: whatever vocabulary the caller built it with
+        self.invariants = Invariants({public_name(k): v for k, v in self.invariants.items()})
 
     @property
     def ok(self) -> bool:
@@ -404,7 +411,7 @@ def simulate(case: str, params: dict | None, state0, t_end: float, *,
     >>> res = solvers.simulate(spec.id, spec.example, spec.state, t_end=1.0, samples=3)
     >>> res.status, res.state.shape
     ('ok', (3, 6))
-    >>> res.drift("energy") < 1e-10 and res.stats["drift"]["M2"] < 1e-10
+    >>> res.drift("energy") < 1e-10 and res.stats["drift"]["M_squared"] < 1e-10
     True
     >>> solvers.simulate(spec.id, {"m": 1.0}, spec.state, t_end=1.0)
     Traceback (most recent call last):
@@ -472,5 +479,6 @@ def _invariants(model: Model, codes: np.ndarray, Y) -> tuple[dict, dict]:
     out = np.empty((codes.size, len(Y)))
     drift = np.empty(codes.size)
     integral_table(codes, model.model, np.ascontiguousarray(Y), model.p, out, drift)
-    names = model.integral_names
-    return dict(zip(names, out, strict=True)), dict(zip(names, drift.tolist(), strict=True))
+    names = [public_name(n) for n in model.integral_names]
+    return (Invariants(zip(names, out, strict=True)),
+            dict(zip(names, drift.tolist(), strict=True)))

@@ -46,7 +46,7 @@ def test_simulate_project_flag_holds_integrals():
                    ",".join(map(repr, c.state)), "--t-end", "200", "--rtol", "1e-6",
                    "--project", "--json")
     out = json.loads(proc.stdout)
-    for name in ("energy", "gamma2", "M2", "area"):
+    for name in ("energy", "gamma_squared", "M_squared", "area"):
         v = np.array(out["invariants"][name])
         assert np.max(np.abs(v - v[0])) / abs(v[0]) < 1e-14, name
 

@@ -155,7 +155,7 @@ def test_chaplygin_ball_points_keep_h_over_g():
     spec = MapSpec(energy=1.0, points=200, rtol=1e-12, atol=1e-14)
     res = poincare("plane/chaplygin-ball", BALL, spec, trajectories=3, seed=1)
     for tr, sp in zip(res.trajectories, res.integral_spread(), strict=True):
-        assert sp["H/G"] < 1e-9 and sp["M2"] < 1e-9 and sp["area"] < 1e-9
+        assert sp["H/G"] < 1e-9 and sp["M_squared"] < 1e-9 and sp["area"] < 1e-9
         assert np.ptp(tr.points[:, 2]) > 1.0              # l moves: a curve, not a point
 
 

@@ -14,12 +14,27 @@ class AttributionPublic(BaseModel):
     reference_title: str | None = None
 
 
+class ParamBounds(BaseModel):
+    min: float = Field(description="the lower bound the model's validation checks")
+    min_inclusive: bool = Field(description="true: min itself is valid (>=); false: > min")
+
+
 class ParamPublic(BaseModel):
     name: str
     required: bool
     default: float | None = Field(None, description="default of an optional parameter "
                                   "(null for I2: equal to I1)")
     example: float | None = None
+    meaning: str = Field("", description="what the parameter is (the glossary's entry)")
+    units: str = Field("", description="its dimension in any consistent units "
+                       "(units_convention of GET /api/cases/{id}), e.g. mass × length²")
+    range: str = Field("", description="the values the model accepts, in words, with the "
+                       "conditions between parameters (triangle inequality, fit)")
+    bounds: ParamBounds | None = Field(None, description="the lower bound as data, as the "
+                                       "model's validation checks it; null: any real "
+                                       "number but for the conditions `range` states")
+    paper_numbers: list[str] = Field(default_factory=list, description="the printed "
+                                     "numbers of the paper's equations that use it")
 
 
 class RunnablePublic(BaseModel):
@@ -31,6 +46,7 @@ class RunnablePublic(BaseModel):
     state_labels: list[str]
     fixed_k: str | None = None
     invariants_when: list[dict[str, Any]] = Field(default_factory=list)
+    units_convention: str = Field("", description="the units every parameter is in")
 
 
 class CaseHead(BaseModel):
@@ -51,6 +67,9 @@ class CaseHead(BaseModel):
 
 class CaseSummary(CaseHead):
     claims: int
+    params: list[ParamPublic] = Field(default_factory=list, description="what POST "
+                                      "/api/simulate takes for the case: each parameter's "
+                                      "meaning, units and valid range")
 
 
 class CellPublic(BaseModel):

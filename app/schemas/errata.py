@@ -2,6 +2,8 @@ from typing import Any
 
 from pydantic import BaseModel, Field
 
+from app.schemas.verify import SymbolRef
+
 
 class _Entry(BaseModel):
     claim: str = Field(description="the claim (record id) in the catalogue; figure/<key> for a "
@@ -28,6 +30,10 @@ class _Entry(BaseModel):
     exact: dict[str, Any] | None = Field(None, description="exact certificate or witness "
                                          "in rational arithmetic, when one applies")
     reproduce: str = Field(description="the command that reproduces the record")
+    symbols: dict[str, list[SymbolRef]] = Field(
+        default_factory=dict, description="the symbols of each typeset formula of the row "
+        "(printed: the display as printed; claim: the claim as printed, where another "
+        "display; corrected: the project's corrected form), each with its entry on /notation")
 
 
 class ErratumPublic(_Entry):

@@ -138,6 +138,23 @@ class SceneRequest(SimulateRequest):
     frames: int = Field(200, ge=2, le=MAX_FRAMES)
 
 
+class RunProvenance(BaseModel):
+    """Where the run's data came from (app/services/provenance.py)."""
+    case: str
+    inputs: dict[str, Any] = Field(description="the inputs that decide the numbers: case, "
+                                   "params (every one, defaults filled in), state, t_end, "
+                                   "samples, method, rtol, atol, step, project, precision, "
+                                   "field, allow_any_inertia")
+    version: str = Field(description="the package version that ran it")
+    hash: str = Field(description="the first 8 hex digits of the SHA-256 of the inputs as "
+                      "canonical JSON (sorted keys, no spaces)")
+    file_stem: str = Field(description="the download's file name without extension: case, "
+                           "t_end and hash, e.g. plane_chaplygin-ball_t100_3f2a9c1b")
+    permalink: str = Field(description="the case page's address that runs it again")
+    computed_at: str | None = Field(description="when the run finished, UTC (ISO 8601)")
+    header: list[str] = Field(description="the CSV's commented header, one '# ' line each")
+
+
 class SimulateResponse(BaseModel):
     case: str
     params: dict[str, float]
@@ -149,7 +166,10 @@ class SimulateResponse(BaseModel):
     t: list[float]
     state: list[list[float]] = Field(description="one row per sample, columns state_labels")
     invariants: dict[str, list[float | None]] = Field(
-        description="name -> values aligned with t ('energy' always)")
+        description="name -> values aligned with t ('energy' always). The names are the "
+        "same in the CSV's and the Arrow stream's columns: gamma_squared is |gamma|^2, "
+        "M_squared is |M|^2 (M2 is only ever the state's component), M_plus_S_squared is "
+        "|M + S|^2; the glossary (/glossary) says what each one is")
     stats: dict[str, Any] = Field(description="steps, rejected, rhs_calls, wall_s, method, "
                                   "rtol, atol, projected, samples, drift (max relative "
                                   "drift of every invariant), max_steps; taylor: "
@@ -157,6 +177,7 @@ class SimulateResponse(BaseModel):
                                   "its integrator: compile_s), integrator_cache (memory, "
                                   "disk or null), load_s; auto: the method chosen, why and "
                                   "the front point, compiled_runs")
+    provenance: RunProvenance | None = None
 
 
 class ValidatePublic(BaseModel):

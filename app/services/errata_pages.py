@@ -7,6 +7,10 @@ that fails only through a misprinted one it uses (kind inherited) is a row, not 
 misprint, and so is a misprinted display that several cases use (one row per case). The
 index names each display once, with a link to each of its rows.
 
+Every typeset formula of a row lists its symbols, each a link to its definition on
+/notation, as on the case pages (`with_symbols`: the rows of /api/errata, /api/conventions
+and /api/findings carry the lists, the page's script draws them under each formula).
+
 Exports: /errata.csv (one line per row) and /errata.bib (the paper's entry, then one @misc
 per misprint: the explorer's erratum, with the printed and the corrected form).
 """
@@ -63,6 +67,45 @@ def counts_sentence(errata: list[dict]) -> str:
     inh = n["inherited"]
     return (f"{words}, and {inh} inherited row{'' if inh == 1 else 's'} that "
             f"repeat{'s' if inh == 1 else ''} one")
+
+
+# ---- the symbols of a row's formulas, each linked to /notation
+
+
+def formulas_of(e: dict) -> list[tuple[str, str]]:
+    """A row's typeset formulas as (role, TeX): "printed", the display as printed (the
+    corrected display's, for a misprint); "claim", the claim as printed where that is
+    another display; "corrected", the project's corrected form. A finding about a figure
+    quotes its caption, no formula."""
+    if e.get("claim", "").startswith("figure/"):
+        return []
+    shown = e.get("corrected_printed") or e.get("printed")
+    out = [("printed", shown)] if shown else []
+    if e.get("corrected_printed") and e.get("printed") and e["printed"] != shown:
+        out.append(("claim", e["printed"]))
+    if e.get("corrected_tex"):
+        out.append(("corrected", e["corrected_tex"]))
+    return out
+
+
+def with_symbols(rows: list[dict]) -> list[dict]:
+    """The rows, each with `symbols`: role -> the symbols of that formula, each with its
+    entry on /notation (views.symbol_refs)."""
+    from app.services.views import symbol_refs
+
+    return [{**e, "symbols": {role: symbol_refs(tex) for role, tex in formulas_of(e)}}
+            for e in rows]
+
+
+def _symbols(e: dict, role: str) -> str:
+    """The symbols of one of the row's formulas, as the case pages list them."""
+    from app.services.ssr import symbol_link
+
+    refs = (e.get("symbols") or {}).get(role) or []
+    if not refs:
+        return ""
+    return ('<p class="symbols"><span class="symlabel">Symbols:</span> '
+            + " ".join(symbol_link(s) for s in refs) + "</p>")
 
 
 # ---- the index: each display once, with a link to each of its rows
@@ -158,6 +201,15 @@ def _row(e: dict, badge: str, disp: str, change: str, res: str, body: str) -> st
             "</div></details>")
 
 
+def _claim_form(e: dict) -> str:
+    """The claim as printed, where it is another display than the corrected one."""
+    if not any(role == "claim" for role, _ in formulas_of(e)):
+        return ""
+    return (f'<details class="claimform"><summary>the claim as printed at '
+            f'{escape(e.get("place") or "")}</summary>{_tex(e.get("printed"))}'
+            f'{_symbols(e, "claim")}</details>')
+
+
 def erratum_html(e: dict) -> str:
     badge = ('<span class="ek inherited">↳ inherited</span>' if e.get("kind") == "inherited"
              else '<span class="ek misprint">✗ misprint</span>')
@@ -169,10 +221,11 @@ def erratum_html(e: dict) -> str:
             f"that fails as printed stands at {escape(e.get('number') or e.get('where') or '')}"
             f": {_claim_link(e)}.</p>"
             f"<h4>Printed {escape(disp)} (TeX)</h4>"
-            f"{_tex(e.get('corrected_printed') or e.get('printed'))}"
+            f"{_tex(e.get('corrected_printed') or e.get('printed'))}{_symbols(e, 'printed')}"
             f"<p>residual of the claim as printed {_res(e.get('residual_printed'))} (fails)</p>"
             f"<h4>Corrected (the project, TeX)</h4>{_tex(e.get('corrected_tex'))}"
-            f"<p>residual {_res(e.get('residual_corrected'))}</p>"
+            f"{_symbols(e, 'corrected')}"
+            f"<p>residual {_res(e.get('residual_corrected'))}</p>{_claim_form(e)}"
             f'<p class="note"><strong>What changes:</strong> {escape(e.get("change") or "")}'
             f"</p>{inherits}")
     res = f"{_res(e.get('residual_printed'))} → {_res(e.get('residual_corrected'))}"
@@ -181,7 +234,8 @@ def erratum_html(e: dict) -> str:
 
 def convention_html(e: dict) -> str:
     body = (f'<p class="where">The claim: {_claim_link(e)}.</p>{_tex(e.get("printed"))}'
-            f'<p><strong>Convention:</strong> {escape(e.get("convention") or "")}</p>'
+            f'{_symbols(e, "printed")}<p><strong>Convention:</strong> '
+            f'{escape(e.get("convention") or "")}</p>'
             f"<p>Under this convention the printed form holds: residual "
             f"{_res(e.get('residual_under_convention'))}. Read with the project's convention "
             f"instead, it fails: residual {_res(e.get('residual_printed'))}.</p>")
@@ -197,7 +251,7 @@ FINDING_WORDS = {"refuted-conjecture": "✗ refuted conjecture", "refuted": "✗
 def finding_html(e: dict) -> str:
     word = FINDING_WORDS.get(e.get("kind") or "", e.get("kind") or "")
     body = (f'<p class="where">The paper ({escape(e.get("where") or e.get("place") or "")}), '
-            f"{_claim_link(e)}:</p>{_tex(e.get('printed'))}"
+            f"{_claim_link(e)}:</p>{_tex(e.get('printed'))}{_symbols(e, 'printed')}"
             f'<p><strong>Found:</strong> {escape(e.get("finding") or "")}</p>')
     return _row(e, f'<span class="ek {escape(e.get("kind") or "")}">{escape(word)}</span>',
                 e.get("place") or "", e.get("title") or "", escape(word), body)
@@ -225,7 +279,9 @@ def status_sentence(errata: list[dict], conventions: list[dict], findings: list[
 
 def errata_context(errata: list[dict], conventions: list[dict], findings: list[dict],
                    state: str = "done", done: int = 0, total: int = 0) -> dict:
-    """The server-drawn parts of errata.html: its status, index, counts and rows."""
+    """The server-drawn parts of errata.html: its status, index, counts and rows, each
+    formula with its symbols linked to /notation."""
+    errata, conventions, findings = (with_symbols(x) for x in (errata, conventions, findings))
     n = counts(errata)
     status = status_sentence(errata, conventions, findings, state, done, total)
     return {

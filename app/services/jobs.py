@@ -100,19 +100,25 @@ def prepare_scene_check(scene_id: str) -> int:
     return prepare_scene(req) + prepare_kernels(req)
 
 
-def simulate_json(req: dict, max_steps: int) -> bytes:
-    return json_bytes(run_request(req, max_steps), max_steps)
+def simulate_json(req: dict, max_steps: int, prov: dict | None = None) -> bytes:
+    return json_bytes(run_request(req, max_steps), max_steps, prov)
 
 
-def simulate_arrow(req: dict, max_steps: int) -> bytes:
+def simulate_arrow(req: dict, max_steps: int, prov: dict | None = None) -> bytes:
     """The run as an Arrow IPC stream (app/services/payloads.py)."""
-    return arrow_bytes(run_request(req, max_steps), max_steps)
+    return arrow_bytes(run_request(req, max_steps), max_steps, prov)
 
 
-def simulate_csv(req: dict, max_steps: int) -> bytes:
-    """One row per sample: t, the state, then every invariant the case carries."""
+def simulate_csv(req: dict, max_steps: int, prov: dict | None = None) -> bytes:
+    """The provenance as "# " lines (app/services/provenance.py), then one row per sample:
+    t, the state, then every invariant the case carries."""
+    from app.services.provenance import stamped
+
     res = run_request(req, max_steps)
     buf = io.StringIO()
+    if prov is not None:
+        for line in stamped(prov, res)["header"]:
+            buf.write(line + "\n")
     w = csv.writer(buf, lineterminator="\n")
     names = list(res.invariants)
     w.writerow(csv_header(list(res.state_labels), names))

@@ -115,7 +115,8 @@ def page() -> str:
             'the project\'s <a href="/guide/conventions/">conventions</a>. One symbol can '
             "have several definitions, by section (A, k, λ, K): each is listed. The "
             'parameters and state variables you can set are also in the <a href="/glossary">'
-            "glossary</a>. Each formula on a case page links its symbols here.</p>"
+            'glossary</a>. Each formula on a case page and on <a href="/errata">the errata'
+            "</a> links its symbols here.</p>"
             f'<nav class="symindex" aria-label="Symbols">{index}</nav>'
             + "".join(_entry_html(e) for e in n.entries))
     return layout("Notation", body, "/notation")

@@ -8,19 +8,18 @@ JSON stays strict: a non-finite number is `null`, as before (orjson writes NaN a
 +-inf as null, in arrays and scalars alike).
 
 Arrow (`application/vnd.apache.arrow.stream`, one record batch): one float64 column per
-series, named as in the CSV (app/static/data/columns.json: `t`, the state labels, then
-the invariants under unique names, `M_squared` for the integral M^2 beside the component
-`M2`); the rest of the JSON answer (case, params, status, message, state_labels,
-invariants: column -> invariant name, stats) is in the schema's metadata, each value a
-JSON text under its own key. Floats are IEEE doubles there, so a non-finite value stays
-NaN or inf (Arrow has no need of null for it).
+series, named as in the CSV and the JSON (`t`, the state labels, then the invariants under
+their output names, `M_squared` for |M|^2 beside the component `M2`:
+solvers/models/observables.py); the rest of the JSON answer (case, params, status,
+message, state_labels, invariants: the invariants' column names, stats, provenance) is in
+the schema's metadata, each value a JSON text under its own key. Floats are IEEE doubles
+there, so a non-finite value stays NaN or inf (Arrow has no need of null for it).
 """
 
 from __future__ import annotations
 
 import json
 import math
-from pathlib import Path
 
 import numpy as np
 import orjson
@@ -32,7 +31,6 @@ ARROW = "application/vnd.apache.arrow.stream"
 CSV = "text/csv"
 OFFERED = (JSON, ARROW, CSV)      # in order of preference when the client has none
 _OPTS = orjson.OPT_SERIALIZE_NUMPY | orjson.OPT_NON_STR_KEYS
-COLUMNS_JSON = Path(__file__).resolve().parents[1] / "static" / "data" / "columns.json"
 
 
 def _ranges(accept: str):
@@ -98,17 +96,12 @@ def finite(x):
 
 
 def csv_header(state_labels: list[str], invariants: list[str]) -> list[str]:
-    """t, the state, then the invariants under their CSV names (static/data/columns.json,
-    shared with the case page's CSV button): unique, so the integral M^2 is `M_squared`
-    beside the component `M2`."""
-    names = {k: v for k, v in json.loads(COLUMNS_JSON.read_text()).items()
-             if not k.startswith("_")}
-    header = ["t", *state_labels]
-    for n in invariants:
-        col = names.get(n, n)
-        while col in header:
-            col += "_integral"
-        header.append(col)
+    """t, the state, then the invariants under their output names (the JSON's keys,
+    solvers/models/observables.py): unique by construction, |M|^2 is `M_squared` beside
+    the component `M2`."""
+    header = ["t", *state_labels, *invariants]
+    if len(set(header)) != len(header):
+        raise ValueError(f"column names repeat: {header}")
     return header
 
 
@@ -124,22 +117,27 @@ def _plain(x):
     return x
 
 
-def result_dict(res, max_steps: int) -> dict:
-    """The JSON answer of a run (SimulateResponse), arrays left as numpy arrays."""
+def result_dict(res, max_steps: int, prov: dict | None = None) -> dict:
+    """The JSON answer of a run (SimulateResponse), arrays left as numpy arrays; `prov`:
+    the run's provenance (app/services/provenance.py), stamped with the time it ran."""
+    from app.services.provenance import stamped
+
     out = res.to_json(arrays=True)
     out["stats"] = {**out["stats"], "max_steps": max_steps}
+    if prov is not None:
+        out["provenance"] = stamped(prov, res, out["stats"])
     return out
 
 
-def json_bytes(res, max_steps: int) -> bytes:
-    return dumps(result_dict(res, max_steps))
+def json_bytes(res, max_steps: int, prov: dict | None = None) -> bytes:
+    return dumps(result_dict(res, max_steps, prov))
 
 
-def arrow_bytes(res, max_steps: int) -> bytes:
+def arrow_bytes(res, max_steps: int, prov: dict | None = None) -> bytes:
     # imported here: pyarrow's imports take a noticeable time and only this answer needs it
     import pyarrow as pa
 
-    out = result_dict(res, max_steps)
+    out = result_dict(res, max_steps, prov)
     labels = list(res.state_labels)
     names = list(res.invariants)
     header = csv_header(labels, names)
@@ -148,8 +146,8 @@ def arrow_bytes(res, max_steps: int) -> bytes:
     cols += [np.ascontiguousarray(state[:, j]) for j in range(len(labels))]
     cols += [np.asarray(res.invariants[n], dtype=np.float64) for n in names]
     meta = {k: dumps(out[k]) for k in ("case", "params", "status", "message", "state_labels",
-                                        "stats")}
-    meta["invariants"] = dumps(dict(zip(header[1 + len(labels):], names, strict=True)))
+                                        "stats", "provenance") if k in out}
+    meta["invariants"] = dumps(names)
     batch = pa.record_batch([pa.array(c, type=pa.float64()) for c in cols], names=header)
     batch = batch.replace_schema_metadata(meta)
     sink = pa.BufferOutputStream()

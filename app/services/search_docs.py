@@ -104,7 +104,10 @@ def scene_docs() -> list[dict]:
 
 def glossary_docs() -> list[dict]:
     docs = []
-    for e in load_glossary().entries:
+    # the parameters and state variables; the names of a run's outputs (kind integral) are
+    # not indexed: their claims are, with where the paper has them, and ten rows more
+    # about integrals would shift the weight of the word for every other result
+    for e in (e for e in load_glossary().entries if e.kind != "integral"):
         numbers = " ".join(printed(x) or "" for x in e.paper)
         docs.append({"type": "glossary", "id": e.symbol,
                      "title": f"{e.symbol}: {cite(e.meaning)}", "url": f"/glossary#g-{e.symbol}",

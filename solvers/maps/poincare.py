@@ -41,6 +41,7 @@ from solvers.maps.map_spec import (
     omega_norm,
 )
 from solvers.models.cases import Model, build, check_derived, initial_state
+from solvers.models.observables import public_name
 
 
 def _status(res) -> str:
@@ -343,7 +344,8 @@ class PoincareResult:
         "no-return"), `message`, and `check` (the missed-crossing check: "missed",
         "extra", "unresolved_intervals", ...).
     integral_names : tuple of str
-        The first integrals the case carries, "energy" first.
+        The first integrals the case carries, "energy" first, under the names of a run's
+        outputs (solvers/models/observables.py: "M_squared" is |M|^2).
 
     Examples
     --------
@@ -352,7 +354,7 @@ class PoincareResult:
     >>> res = solvers.poincare("plane/chaplygin-ball", ball, solvers.MapSpec(energy=1.0,
     ...                        points=4), trajectories=1)
     >>> res.integral_names
-    ('energy', 'gamma2', 'area', 'M2')
+    ('energy', 'gamma_squared', 'area', 'M_squared')
     >>> (tr,) = res.trajectories
     >>> tr.status, tr.points.shape, tr.check["missed"]
     ('ok', (4, 3), 0)
@@ -400,7 +402,7 @@ def integral_spread(model: Model, tr: MapTrajectory) -> dict[str, float]:
         for name in model.integral_names:
             v = np.empty(len(Y))
             integral_series(NAMES.index(name), model.model, Y, model.p, v)
-            d[name] = float(np.ptp(v) / max(abs(float(np.mean(v))), 1e-300))
+            d[public_name(name)] = float(np.ptp(v) / max(abs(float(np.mean(v))), 1e-300))
         d["H/G"] = float(np.ptp(tr.points[:, 1]))
     return d
 
@@ -492,5 +494,5 @@ def poincare(case: str, params: dict | None, spec: MapSpec, *, trajectories: int
                         states=states, seed=seed)
     spec = resolve_kernel(model, spec, len(starts))
     out = trace_checked_all(model, starts, spec, workers=workers, progress=progress)
-    names = tuple(n for n in model.integral_names)
+    names = tuple(public_name(n) for n in model.integral_names)
     return PoincareResult(case, model.params, spec, out, names)

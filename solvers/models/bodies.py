@@ -25,6 +25,37 @@ def _positive(params, *names):
             raise InputError(f"{n} = {params[n]!r}: must be positive")
 
 
+# The lower bounds fill_body checks, per body kind: one table for the check and for what
+# GET /api/cases publishes as each parameter's range (param_bounds).
+POSITIVE = {"ball": ("R",), "routh": ("R",), "disk": ("R",), "ellipsoid": ("b1", "b2", "b3"),
+            "revolution": ("b1", "b3"), "general": ("b1", "b2", "b3"),
+            "rattleback": ("b1", "b2", "b3"), "flat": ()}
+NON_NEGATIVE = {"revolution": ("c",), "general": ("c",)}
+
+
+def param_bounds(kind: str, symmetry: str) -> dict[str, dict]:
+    """The parameters of a body that have a lower bound, as checked by fill_body and
+    fill_inertia: name -> {"min": 0.0, "min_inclusive": bool}. The conditions between
+    parameters (the triangle inequality, mu + lambda m b_i > 0, the fit of the body to
+    the support) are said in words by the glossary's `range`."""
+    pos = ["m", *POSITIVE.get(kind, ())]
+    if symmetry == "spherical":
+        pos.append("mu")
+    elif symmetry == "axial":             # I2 must equal I1 (fill_inertia), no bound of its own
+        pos += ["I1", "I3"]
+    elif kind != "ellipsoid":
+        pos += ["I1", "I2", "I3"]
+    out = {n: {"min": 0.0, "min_inclusive": False} for n in pos}
+    out.update({n: {"min": 0.0, "min_inclusive": True} for n in NON_NEGATIVE.get(kind, ())})
+    return out
+
+
+def _non_negative(params, *names):
+    for n in names:
+        if params[n] < 0:
+            raise InputError(f"{n} = {params[n]!r}: the rounding radius must be >= 0")
+
+
 def _set_inertia(p, I1, I2, I3):
     p[L.I1], p[L.I2], p[L.I3] = I1, I2, I3
 
@@ -40,45 +71,37 @@ def rattleback_B(b1, b2, b3, delta):
 
 def fill_body(kind, prm, p):
     """Write body `kind` with named parameters `prm` into p; return the model code."""
+    if kind not in POSITIVE:
+        raise InputError(f"unknown body kind {kind!r}")
+    _positive(prm, *POSITIVE[kind])
+    _non_negative(prm, *NON_NEGATIVE.get(kind, ()))
     if kind == "ball":                    # r = R gamma + a (2.28); a = 0: Chaplygin ball
-        _positive(prm, "R")
         p[L.BALL_C] = prm["R"]
         p[L.A1:L.A3 + 1] = [prm.get("a1", 0.0), prm.get("a2", 0.0), prm.get("a3", 0.0)]
     elif kind == "routh":                 # f1 = R, f2 = R gamma3 + a (2.18)
-        _positive(prm, "R")
         p[L.BALL_C] = prm["R"]
         p[L.A3] = prm["a"]
     elif kind == "disk":                  # f1 = R / sqrt(1 - gamma3^2), f2 = a (2.15)
-        _positive(prm, "R")
         p[L.DISK_D] = prm["R"]
         p[L.A3] = prm["a"]
     elif kind == "ellipsoid":             # r = B gamma / sqrt(B gamma.gamma) (2.39)
-        _positive(prm, "b1", "b2", "b3")
         p[L.B11], p[L.B22], p[L.B33] = prm["b1"], prm["b2"], prm["b3"]
     elif kind == "revolution":            # ellipsoid of revolution + ball of radius c
-        _positive(prm, "b1", "b3")
-        if prm["c"] < 0:
-            raise InputError(f"c = {prm['c']!r}: the rounding radius must be >= 0")
         p[L.B11] = p[L.B22] = prm["b1"]
         p[L.B33] = prm["b3"]
         p[L.BALL_C] = prm["c"]
         p[L.A3] = prm["a"]
     elif kind == "general":               # ellipsoid + ball, any centre-of-mass offset
-        _positive(prm, "b1", "b2", "b3")
-        if prm["c"] < 0:
-            raise InputError(f"c = {prm['c']!r}: the rounding radius must be >= 0")
         p[L.B11], p[L.B22], p[L.B33] = prm["b1"], prm["b2"], prm["b3"]
         p[L.BALL_C] = prm["c"]
         p[L.A1:L.A3 + 1] = [prm["a1"], prm["a2"], prm["a3"]]
     elif kind == "rattleback":            # Celtic stone: ellipsoid turned against the inertia
-        _positive(prm, "b1", "b2", "b3")  # axes by delta about e3, centre at a e3 from G
+        # axes by delta about e3, centre at a e3 from G
         p[L.B11:L.B23 + 1] = rattleback_B(prm["b1"], prm["b2"], prm["b3"], prm["delta"])
         p[L.A3] = prm["a"]
-    elif kind == "flat":                  # r = (r1, r2, z), gamma = e3 ((3.16)-(3.17))
+    else:                                 # flat: r = (r1, r2, z), gamma = e3 ((3.16)-(3.17))
         p[L.FLAT_Z] = prm.get("z", 0.0)
         return L.MODEL_FLAT
-    else:
-        raise InputError(f"unknown body kind {kind!r}")
     return L.MODEL_FULL
 
 

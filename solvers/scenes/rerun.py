@@ -50,8 +50,8 @@ def moved(preset, values: dict[str, float]):
 def rerun_json(scene_id: str, values: dict[str, float]) -> dict:
     """The moved scene's run declaration and every check of it with its plot (the shape
     of GET /api/scenes/{id}/checks/{k}), in the catalogue's order."""
-    from solvers.scenes.teaching import load_scenes
     from solvers.scenes.scene_checks import run_checks
+    from solvers.scenes.teaching import load_scenes
 
     preset = load_scenes()[scene_id]
     scene = moved(preset, values)

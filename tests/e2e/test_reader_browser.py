@@ -34,9 +34,11 @@ def test_a_runs_permalink_reproduces_it(page, server, context):
     assert page.locator("#permalink").get_attribute("href") == url
     first = last_state(page)
     # the CSV of the run: unique column names, M2 the component and M_squared the integral
+    # (after the provenance's "# " lines: tests/e2e/test_run_csv_browser.py)
     with page.expect_download() as dl:
         page.click("#dl-csv")
-    rows = list(csv.reader(io.StringIO(Path(dl.value.path()).read_text())))
+    text = Path(dl.value.path()).read_text()
+    rows = list(csv.reader(x for x in text.splitlines() if not x.startswith("#")))
     assert len(set(rows[0])) == len(rows[0]) and {"M2", "M_squared"} <= set(rows[0])
     assert len(rows) == 1 + 151 and float(rows[-1][0]) == 7.5
     # the link opened in a new page runs the same run again

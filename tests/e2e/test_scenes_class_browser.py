@@ -22,7 +22,7 @@ import numpy as np
 import pytest
 from playwright.sync_api import expect
 
-from catalogue.scenes import load_scenes
+from solvers.scenes.teaching import load_scenes
 
 SCENES = load_scenes()
 SHOTS = Path(os.environ.get("ROLLING_SCENE_SHOTS", "/work/wt/shots/scenes"))

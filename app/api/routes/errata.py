@@ -10,6 +10,7 @@ from fastapi import APIRouter
 
 from app.api.deps import SettingsDep, VerdictsDep
 from app.schemas.errata import ConventionPublic, ErratumPublic, FindingPublic
+from app.services.errata_pages import with_symbols
 from catalogue.load import load_catalogue
 
 router = APIRouter(tags=["errata"])
@@ -26,7 +27,7 @@ async def get_errata(store: VerdictsDep) -> list[dict]:
     the exact witness when there is one and the command that reproduces it."""
     from solvers.verify import errata
 
-    return errata.errata(store_records(store), load_catalogue())
+    return with_symbols(errata.errata(store_records(store), load_catalogue()))
 
 
 @router.get("/conventions", response_model=list[ConventionPublic])
@@ -35,7 +36,7 @@ async def get_conventions(store: VerdictsDep) -> list[dict]:
     Poisson bracket), with the convention and the residuals under it and under ours."""
     from solvers.verify import errata
 
-    return errata.conventions(store_records(store), load_catalogue())
+    return with_symbols(errata.conventions(store_records(store), load_catalogue()))
 
 
 @router.get("/findings", response_model=list[FindingPublic])
@@ -47,8 +48,8 @@ async def get_findings(store: VerdictsDep, settings: SettingsDep) -> list[dict]:
     from solvers.verify import errata
 
     cat = load_catalogue()
-    return errata.findings(store_records(store), cat) + figure_findings_of(
-        settings.static_dir / "data" / "paper_figures.json")
+    return with_symbols(errata.findings(store_records(store), cat) + figure_findings_of(
+        settings.static_dir / "data" / "paper_figures.json"))
 
 
 def figure_findings_of(path: Path) -> list[dict]:

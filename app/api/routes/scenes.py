@@ -145,8 +145,8 @@ async def scene_rerun(scene_id: str, req: RerunRequest, request: Request, pool: 
     (solvers/scenes/rerun.py): what /scenes draws after a slider changes."""
     from app.services import kernel_prepare
     from app.services.jobs import dumps, prepare_scene_check
-    from solvers.scenes.teaching import load_scenes
     from solvers.scenes.rerun import moved, rerun_json
+    from solvers.scenes.teaching import load_scenes
 
     s = load_scenes().get(scene_id)
     if s is None:

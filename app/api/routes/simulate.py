@@ -5,7 +5,6 @@ A run is validated first (in a thread: building the model is cheap and a bad inp
 budget and the deadline of the settings, and cancelled if the client goes away.
 """
 
-import re
 from typing import Literal
 
 import anyio
@@ -31,7 +30,7 @@ from app.schemas.simulate import (
     SimulateResponse,
     ValidatePublic,
 )
-from app.services import jobs, kernel_prepare, payloads
+from app.services import jobs, kernel_prepare, payloads, provenance
 from catalogue.plain_words import invariant_name
 from solvers.errors import InputError
 
@@ -100,10 +99,6 @@ def _job(resolved: dict) -> dict:
     return {k: v for k, v in resolved.items() if not k.startswith("_")}
 
 
-def _filename(case: str, ext: str) -> str:
-    return re.sub(r"[^A-Za-z0-9-]+", "_", case) + f".{ext}"
-
-
 _RUN_CONTENT = {
     "application/json": {},   # the SimulateResponse schema (response_model)
     payloads.ARROW: {"schema": {"type": "string", "format": "binary",
@@ -114,10 +109,12 @@ _RUN_DESCRIPTION = (
     "the run, in the type the Accept header prefers: application/json (the default, also "
     "for */*: the object below; a non-finite number is null), "
     "application/vnd.apache.arrow.stream (an Arrow IPC stream of one record batch: a "
-    "float64 column per series named as in the CSV, t, the state, the invariants under "
-    "unique names such as M_squared; the other fields of the JSON object, each a JSON "
-    "text, in the schema metadata under case, params, status, message, state_labels, "
-    "invariants (column -> invariant) and stats), or text/csv (as format=csv)")
+    "float64 column per series named as in the JSON and the CSV, t, the state, the "
+    "invariants under their output names such as M_squared; the other fields of the JSON "
+    "object, each a JSON text, in the schema metadata under case, params, status, message, "
+    "state_labels, invariants (their column names), stats and provenance), or text/csv (as "
+    "format=csv: the provenance as '# ' lines, then a header row and one row per sample; "
+    "the file name carries a hash of the run's inputs)")
 
 
 @router.post("/simulate", dependencies=[JSON_ONLY],
@@ -140,14 +137,17 @@ async def simulate(req: SimulateRequest, request: Request, pool: PoolDep,
         media = {"csv": payloads.CSV, "arrow": payloads.ARROW}.get(format, payloads.JSON)
     resolved = await _resolved(req, settings)
     job = _job(resolved)
+    # the address of the case page that reproduces the run: the configured public one,
+    # else the one this request was made to
+    prov = provenance.of_run(job, settings.public_url or str(request.base_url))
     await _prepare(request, pool, settings, resolved, job)
     fn = {payloads.CSV: jobs.simulate_csv, payloads.ARROW: jobs.simulate_arrow}.get(
         media, jobs.simulate_json)
     body = await cancel_on_disconnect(request, lambda: pool.run(
-        fn, job, settings.max_steps, deadline=settings.deadline_s))
+        fn, job, settings.max_steps, prov, deadline=settings.deadline_s))
     if media == payloads.CSV:
         return Response(body, media_type="text/csv; charset=utf-8", headers={
-            "Content-Disposition": f'attachment; filename="{_filename(req.case, "csv")}"',
+            "Content-Disposition": f'attachment; filename="{prov["file_stem"]}.csv"',
             "Vary": "Accept"})
     return Response(body, media_type=media, headers={"Vary": "Accept"})
 
@@ -158,10 +158,12 @@ async def simulate(req: SimulateRequest, request: Request, pool: PoolDep,
 async def validate(req: SimulateRequest, settings: SettingsDep) -> dict:
     """Check a run without running it (the explorer calls this as you type): 200 with the
     parameters it would use, or 422 naming the field, the value and why."""
+    from solvers.models.observables import public_name
+
     resolved = await _resolved(req, settings)
     model = resolved["_model"]
     return {"ok": True, "params": model.params, "state_labels": list(model.state_labels),
-            "invariants": list(model.integral_names),
+            "invariants": [public_name(n) for n in model.integral_names],
             "invariants_text": [invariant_name(n) for n in model.integral_names]}
 
 

@@ -5,7 +5,7 @@
 import { api, ApiError, download, escapeHtml, fmt } from "./api.js";
 import { plotDrift, plotGamma, plotState } from "./plots.js";
 import { applyRunQuery, runQuery, setQuery } from "./permalink.js";
-import { csvOf } from "./run_csv.js";
+import { csvOf, fileStem as runFileStem } from "./run_csv.js";
 import { estimate } from "./estimate.js";
 import { kernelSentence, runLabel } from "./kernels.js";
 import { Scene } from "./scene.js";
@@ -316,7 +316,7 @@ async function showPlots(res) {
 }
 
 function fileStem() {
-  return `${C.id.replace(/\//g, "_")}_t${lastRun.request.t_end}`;
+  return runFileStem(lastRun.result, C.id, lastRun.request.t_end);
 }
 
 async function runScene() {
@@ -407,7 +407,7 @@ async function main() {
   $("reset").addEventListener("click", resetForm);
   $("cancel").addEventListener("click", () => running && running.abort());
   $("reverify").addEventListener("click", reverify);
-  $("dl-csv").addEventListener("click", async () => download(`${fileStem()}.csv`, await csvOf(lastRun.result), "text/csv"));
+  $("dl-csv").addEventListener("click", async () => download(`${fileStem()}.csv`, csvOf(lastRun.result), "text/csv"));
   $("dl-json").addEventListener("click", () => download(`${fileStem()}.json`,
     JSON.stringify({ request: lastRun.request, ...lastRun.result }, null, 1), "application/json"));
   $("scene-btn").addEventListener("click", runScene);

@@ -8,6 +8,10 @@
 import { claimAnchor } from "./anchor.js";
 import { api, escapeHtml } from "./api.js";
 import { mathHtml, printedHtml } from "./latex.js";
+import { symbolsHtml } from "./notation.js";
+
+// the symbols of one of a row's formulas, each a link to /notation (errata_pages.with_symbols)
+const syms = (e, role) => symbolsHtml((e.symbols || {})[role]);
 
 function katexReady() {
   return new Promise((resolve) => {
@@ -73,7 +77,7 @@ function erratumHtml(e) {
   const inherits = e.kind === "inherited" && e.inherits
     ? `<p>Inherited: this formula uses <a href="#e-${escapeHtml(e.inherits)}">a misprinted one</a> and fails only through it.</p>` : "";
   const corrected = e.corrected_tex
-    ? `<div class="printed corrected" tabindex="0">${mathHtml(e.corrected_tex, true)}</div>` : "";
+    ? `<div class="printed corrected" tabindex="0">${mathHtml(e.corrected_tex, true)}</div>${syms(e, "corrected")}` : "";
   return `<details class="erow" id="${escapeHtml(e.anchor)}" data-section="${escapeHtml(sectionOf(e))}">` +
     `<summary><span class="disp">${kindBadge(e)} <strong>${escapeHtml(e.corrected_display || e.place)}</strong></span>` +
     `<span class="case">${claimAt}${caseLink(e)}</span>` +
@@ -86,13 +90,13 @@ function erratumHtml(e) {
     `${e.section_title ? `, section ${escapeHtml(sectionOf(e))}, “${escapeHtml(e.section_title)}”` : ""}. ` +
     `The claim that fails as printed stands at ${escapeHtml(e.number || e.where || e.place)}: ${claimLink(e)}.</p>` +
     `<div class="pair"><div><h4>Printed ${escapeHtml(e.corrected_display || "")}</h4>` +
-    `<div class="printed" tabindex="0">${printedHtml(e.corrected_printed || e.printed)}</div>` +
+    `<div class="printed" tabindex="0">${printedHtml(e.corrected_printed || e.printed)}</div>${syms(e, "printed")}` +
     `<p>residual of the claim as printed ${res(e.residual_printed)} (fails)</p></div>` +
     `<div><h4>Corrected (the project)</h4>${corrected}` +
     `<p>residual ${res(e.residual_corrected)} (${e.corrected_verdict === "verified" ? "holds" : escapeHtml(e.corrected_verdict || "")})</p></div></div>` +
     (e.corrected_printed && e.corrected_printed !== e.printed
       ? `<details class="claimform"><summary>the claim as printed at ${escapeHtml(e.place)}</summary>` +
-        `<div class="printed" tabindex="0">${printedHtml(e.printed)}</div></details>` : "") +
+        `<div class="printed" tabindex="0">${printedHtml(e.printed)}</div>${syms(e, "claim")}</details>` : "") +
     `<p class="note"><strong>What changes:</strong> ${escapeHtml(e.change || "")}</p>` +
     `<details class="claimform"><summary>the note registered with the correction</summary><p>${escapeHtml(e.corrected)}</p></details>${inherits}` +
     exactHtml(e.exact, "printed form") + exactHtml(e.corrected_exact, "corrected form") +
@@ -109,7 +113,7 @@ function conventionHtml(e) {
     `<span class="res"><span title="residual under the convention">${res(e.residual_under_convention)}</span> · ` +
     `<span title="residual read with the project's convention">${res(e.residual_printed)}</span></span></summary>` +
     `<div class="ebody">${rowLink(e.anchor)} <p class="where">The claim: ${claimLink(e)}.</p>` +
-    `<div class="printed" tabindex="0">${printedHtml(e.printed)}</div>` +
+    `<div class="printed" tabindex="0">${printedHtml(e.printed)}</div>${syms(e, "printed")}` +
     `<p><strong>Convention:</strong> ${escapeHtml(e.convention || "")}</p>` +
     `<p>Under this convention the printed form holds: residual ${res(e.residual_under_convention)}. ` +
     `Read with the project's convention instead, it fails: residual ${res(e.residual_printed)}.</p>` +
@@ -137,7 +141,7 @@ function findingHtml(e) {
   const leans = e.leans ? `, leans ${escapeHtml(e.leans)}` : "";
   const stmt = e.claim.startsWith("figure/")
     ? `<blockquote class="caption">${escapeHtml(e.printed)}</blockquote>`
-    : `<div class="printed" tabindex="0">${printedHtml(e.printed)}</div>`;
+    : `<div class="printed" tabindex="0">${printedHtml(e.printed)}</div>${syms(e, "printed")}`;
   const inconclusive = e.kind === "inconclusive"
     ? "<p>A check ran and could not decide: this is numerical evidence, not a proof; it weighs against the printed statement without refuting it.</p>" : "";
   return `<details class="erow fnd" id="${escapeHtml(e.anchor)}" data-section="${escapeHtml(sectionOf(e))}">` +

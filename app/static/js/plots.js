@@ -21,7 +21,7 @@ const FONT = { family: "system-ui, -apple-system, Segoe UI, Roboto, sans-serif",
 const COLORS = ["#1f5f99", "#c2571a", "#2a8a3e", "#8e3ea8", "#b8860b", "#0f7f8a", "#c21c2c"];
 const PRETTY = { g1: "γ₁", g2: "γ₂", g3: "γ₃", M1: "M₁", M2: "M₂", M3: "M₃", r1: "r₁", r2: "r₂" };
 const INVARIANT_NAMES = {
-  energy: "energy H", gamma2: "γ²", area: "(M, γ)", M2: "M²", gyro_M2: "(M+S)²",
+  energy: "energy H", gamma_squared: "γ²", area: "(M, γ)", M_squared: "M²", M_plus_S_squared: "(M+S)²",
   gyro_area: "(M+S, γ)", unbalanced_F: "unbalanced-ball integral", jellett: "Jellett",
   routh: "Routh", borisov_fedorov: "Borisov–Fedorov",
 };
