@@ -1,0 +1,152 @@
+"""The tables of bench/auto_starts.py and the choice data it writes, from its raw figures
+(one job: reading the raw runs; auto_starts.py runs them)."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+from auto_front import at_error
+
+REF_MARGIN = 10.0     # a start is judged at level E where the reference's bound <= E / 10
+DATA = Path(__file__).resolve().parents[1] / "solvers" / "integrate" / "data" / "auto_choice.json"
+CHOICE_LEVELS = tuple(10.0 ** (-k / 2) for k in range(8, 29))     # 1e-4 ... 1e-14
+METHODS = ("dop853", "vern9", "taylor")
+TARGETS = {"wall_median": 1.3, "wall_worst": 2.0, "cpu_median": 1.8, "heyoka_median": 1.2}
+
+
+def _q(xs, f):
+    xs = [x for x in xs if x is not None and math.isfinite(x)]
+    return float(f(xs)) if xs else math.nan
+
+
+def _judged(rows, E):
+    return [r for r in rows if r["ref_bound"] <= E / REF_MARGIN]
+
+
+def _auto(row, E):
+    return next(r for r in row["runs"] if r["kind"] == "auto" and r["tol"] == E)
+
+
+def level_summary(rows, E) -> dict:
+    judged = _judged(rows, E)
+    ach, est, wall, cpu, rhs, hey, returned = [], [], [], [], [], [], {}
+    met_missed = none_reach = 0
+    for row in judged:
+        a = _auto(row, E)
+        ach.append(a["error"] / E)
+        returned[a["returned"]] = returned.get(a["returned"], 0) + 1
+        if a["met"] and a["error"] > E:
+            met_missed += 1
+        if a["estimate"] is not None and a["error"] > 0:
+            est.append(a["estimate"] / a["error"])
+        m = a.get("matched")
+        if not m:
+            continue
+        w = [m[k]["wall_s"] for k in METHODS if m[k]["wall_s"] is not None]
+        c = [m[k]["cpu_s"] for k in METHODS if m[k]["cpu_s"] is not None]
+        h = [m[k]["rhs_calls"] for k in ("dop853", "vern9") if m[k]["rhs_calls"] is not None]
+        if not w:
+            none_reach += 1
+            continue
+        wall.append(a["wall_s"] / min(w))
+        cpu.append(a["cpu_s"] / min(c))
+        if h:
+            rhs.append(a["rhs_calls"] / min(h))
+        if m["taylor"]["wall_s"] is not None:
+            hey.append(a["wall_s"] / m["taylor"]["wall_s"])
+    n = len(judged)
+    return {"judged": n, "not_judged": len(rows) - n,
+            "covered": sum(x <= 1.0 for x in ach), "met_but_missed": met_missed,
+            "achieved_median": _q(ach, np.median), "achieved_worst": _q(ach, max),
+            "est_median": _q(est, np.median), "est_min": _q(est, min), "est_max": _q(est, max),
+            "wall_median": _q(wall, np.median), "wall_worst": _q(wall, max),
+            "cpu_median": _q(cpu, np.median), "cpu_worst": _q(cpu, max),
+            "rhs_median": _q(rhs, np.median), "heyoka_median": _q(hey, np.median),
+            "none_reach": none_reach, "returned": returned}
+
+
+def summary_lines(raw) -> list[str]:
+    levels = raw["levels"]
+    out = ["", "auto / the cheapest single run of any method at auto's achieved error "
+           "(wall, CPU: median and worst start), rhs calls / the cheapest Runge-Kutta "
+           "single's, wall / heyoka-lean's (taylor single, double); coverage = achieved <= E "
+           "over the judged starts; estimate / achieved (median [min, max]); 'met but "
+           "missed' = stats.auto.met with achieved > E"]
+    tot = {E: [0, 0, 0, 0] for E in levels}     # covered, judged, not judged, met-but-missed
+    fails = []
+    for cid, case in raw["cases"].items():
+        out.append(f"\n== {cid}  T = {case['T']:g}")
+        for E in levels:
+            s = level_summary(case["rows"], E)
+            t = tot[E]
+            t[0] += s["covered"]
+            t[1] += s["judged"]
+            t[2] += s["not_judged"]
+            t[3] += s["met_but_missed"]
+            out.append(
+                f"  E {E:.0e}: covered {s['covered']}/{s['judged']}"
+                f" (not judged {s['not_judged']}), met but missed {s['met_but_missed']};"
+                f" achieved/E median {s['achieved_median']:.2g} worst {s['achieved_worst']:.2g};"
+                f" estimate/achieved {s['est_median']:.2g} [{s['est_min']:.2g}, "
+                f"{s['est_max']:.2g}] | wall {s['wall_median']:.2f} worst {s['wall_worst']:.2f},"
+                f" CPU {s['cpu_median']:.2f} worst {s['cpu_worst']:.2f}, rhs calls "
+                f"{s['rhs_median']:.2f}, / heyoka-lean {s['heyoka_median']:.2f}"
+                + (f"; no single reaches auto's error on {s['none_reach']}"
+                   if s["none_reach"] else "")
+                + f" | returned {s['returned']}")
+            for k, lim in TARGETS.items():
+                if not s[k] <= lim:
+                    fails.append(f"{cid} {E:.0e} {k} {s[k]:.2f} > {lim}")
+    out.append("")
+    for E, (k, n, nj, mm) in tot.items():
+        out.append(f"all cases, E {E:.0e}: auto within the request on {k}/{n} = "
+                   f"{k / max(n, 1):.0%} of the judged runs ({nj} not judged); met but "
+                   f"missed {mm}")
+    out.append(f"targets ({', '.join(f'{k} <= {v}' for k, v in TARGETS.items())}) missed on "
+               f"{len(fails)} of {len(raw['cases']) * len(levels) * len(TARGETS)} "
+               "(case, level, target)" + (":" if fails else ""))
+    out += [f"  {f}" for f in fails]
+    if "total_s" in raw:
+        le = raw["load_end"]
+        out.append(f"total {raw['total_s']:.0f} s; load average at the end {le[0]:.2f}")
+    return out
+
+
+def _sig(x):
+    return None if x is None or not math.isfinite(x) else float(f"{x:.4g}")
+
+
+def choice_table(rows) -> list[dict]:
+    """Per level of CHOICE_LEVELS: each judged start's time at that error on each method's
+    front (interpolated, None where it does not reach it) and the loosest tolerance of the
+    method whose error is <= the level (None: no tolerance of the grid)."""
+    out = []
+    for L in CHOICE_LEVELS:
+        judged = _judged(rows, L)
+        wall = {m: [] for m in METHODS}
+        loosest = {m: [] for m in METHODS}
+        for row in judged:
+            for m in METHODS:
+                runs = [r for r in row["runs"] if r["kind"] == "single" and r["method"] == m
+                        and r["ok"] and math.isfinite(r["error"]) and r["error"] > 0]
+                wall[m].append(_sig(at_error([(r["error"], r["wall_s"]) for r in runs], L)))
+                good = [r["tol"] for r in runs if r["error"] <= L]
+                loosest[m].append(_sig(max(good)) if good else None)
+        out.append({"level": _sig(L), "judged": len(judged), "wall_s": wall,
+                    "loosest_tol": loosest})
+    return out
+
+
+def write_choice_data(raw) -> str:
+    data = {"format": 1, "generator": "python bench/auto_starts.py --write-data",
+            "seed": raw["seed"], "starts": raw["starts"], "methods": list(METHODS),
+            "note": "per case and level: each judged start's wall time (s) at that error on "
+                    "each method's front and the loosest tolerance reaching it (taylor: "
+                    "heyoka on the lean generated field in double)",
+            "cases": {cid: {"T": case["T"], "levels": choice_table(case["rows"])}
+                      for cid, case in raw["cases"].items()}}
+    DATA.write_text(json.dumps(data, separators=(",", ":")) + "\n")
+    return str(DATA)
