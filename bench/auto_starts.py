@@ -57,7 +57,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from auto_front import at_error
-from auto_starts_table import summary_lines, write_choice_data
+from auto_starts_table import summary_lines, write_choice_case
 
 OUT = Path(__file__).with_name("results")
 SAMPLES = 101
@@ -76,33 +76,29 @@ def _call(fn):
     return r, time.perf_counter() - t0, time.process_time() - c0
 
 
-def run_start(case_id, prm, T, y0, Yref, repeats, levels, warm=False):
-    """Every single and every auto call of one start, interleaved, best of `repeats`;
-    warm: one untimed pass first (the case's first start: compiles and disk loads)."""
+def timed_jobs(case_id, prm, T, y0, Yref, jobs, repeats, warm=False):
+    """The calls of one start, interleaved (each repeat runs every job once), best of
+    `repeats` in wall and CPU; warm: one untimed pass first (compiles, disk loads)."""
     from solvers.integrate.auto import error_between
     from solvers.simulate import simulate
 
-    def single(m, tol):
+    def call(kind, m, tol):
+        if kind == "auto":
+            return simulate(case_id, prm, list(y0), T, method="auto", rtol=tol, atol=tol,
+                            samples=SAMPLES)
         kw = {"precision": "double"} if m == "taylor" else {}
         return simulate(case_id, prm, list(y0), T, method=m, rtol=tol, atol=tol,
                         samples=SAMPLES, **kw)
 
-    def auto(E):
-        return simulate(case_id, prm, list(y0), T, method="auto", rtol=E, atol=E,
-                        samples=SAMPLES)
-
-    jobs = [("single", m, tol) for m in METHODS
-            for tol in (TAYLOR_TOLS if m == "taylor" else RK_TOLS)]
-    jobs += [("auto", "auto", E) for E in levels]
-    for kind, m, tol in jobs if warm else ():
-        single(m, tol) if kind == "single" else auto(tol)
+    for job in jobs if warm else ():
+        call(*job)
     best = {}
     for _ in range(repeats):
         for job in jobs:
-            kind, m, tol = job
-            r, wall, cpu = _call(lambda: single(m, tol) if kind == "single" else auto(tol))
+            r, wall, cpu = _call(lambda job=job: call(*job))
             b = best.get(job)
             if b is None:
+                kind, m, tol = job
                 ok = r.ok and len(r.state) == len(Yref)
                 b = best[job] = {
                     "kind": kind, "method": m, "tol": tol, "ok": ok,
@@ -113,9 +109,10 @@ def run_start(case_id, prm, T, y0, Yref, repeats, levels, warm=False):
                     b.update({"returned": r.stats["method"], "returned_tol": r.stats["rtol"],
                               "precision": r.stats.get("precision"), "met": a["met"],
                               "estimate": r.stats["error_estimate"], "runs": a["runs"],
-                              "rhs_calls": int(a["rhs_calls_total"])})
+                              "rhs_calls": int(a["rhs_calls_total"]),
+                              "choice": {k: a[k] for k in ("method", "tol")}})
             b["wall_s"], b["cpu_s"] = min(b["wall_s"], wall), min(b["cpu_s"], cpu)
-    return list(best.values())
+    return best
 
 
 def matched_costs(runs, achieved):
@@ -130,7 +127,26 @@ def matched_costs(runs, achieved):
     return out
 
 
-def run_case(case, n_starts, rng, repeats, levels, say):
+def bracket(singles, achieved):
+    """Per method the two single runs whose errors bracket `achieved` (the ones the
+    interpolation at that error reads)."""
+    out = []
+    for m in METHODS:
+        ok = sorted((r for r in singles.values() if r["method"] == m and r["ok"]
+                     and math.isfinite(r["error"])), key=lambda r: r["tol"])
+        below = [r for r in ok if r["error"] <= achieved]
+        above = [r for r in ok if r["error"] > achieved]
+        if below:
+            out.append(("single", m, max(below, key=lambda r: r["tol"])["tol"]))
+        if above:
+            out.append(("single", m, min(above, key=lambda r: r["tol"])["tol"]))
+    return out
+
+
+def run_case(case, n_starts, rng, repeats, levels, say, on_fronts=None):
+    """Phase 1: every start's singles (its fronts); on_fronts(case_id, T, rows) then (the
+    choice data auto reads from then on); phase 2: auto at each level on every start, the
+    singles that bracket its achieved error timed again beside it."""
     from limit import random_starts
 
     from solvers.integrate.auto import error_between
@@ -147,19 +163,38 @@ def run_case(case, n_starts, rng, repeats, levels, say):
                  compact_mode=True)
     ref_check = Taylor(model.model, model.p, starts[0], tol=REF_CHECK_TOL, fp="longdouble",
                        compact_mode=True)
-    rows = []
+    singles_jobs = [("single", m, tol) for m in METHODS
+                    for tol in (TAYLOR_TOLS if m == "taylor" else RK_TOLS)]
+    rows, refs = [], []
     for i, y0 in enumerate(starts):
         Yref, _, _, _, ok = ref.run(y0, t)
         Ychk, _, _, _, ok2 = ref_check.run(y0, t)
         bound = error_between(Ychk, Yref) if ok and ok2 else math.inf
-        runs = run_start(case.id, prm, T, y0, Yref, repeats, levels, warm=i == 0)
-        for r in runs:
-            if r["kind"] == "auto":
-                r["matched"] = matched_costs(runs, r["error"]) if r["ok"] else None
-        rows.append({"y0": [float(v) for v in y0], "ref_bound": bound, "runs": runs})
-        say(f"  {case.id} start {i + 1}/{len(starts)}: reference bound {bound:.1e}; auto "
-            + ", ".join(f"{r['tol']:.0e} -> {r['error']:.1e} ({r['returned']})"
-                        for r in runs if r["kind"] == "auto"))
+        singles = timed_jobs(case.id, prm, T, y0, Yref, singles_jobs, repeats, warm=i == 0)
+        rows.append({"y0": [float(v) for v in y0], "ref_bound": bound,
+                     "runs": list(singles.values())})
+        refs.append((Yref, singles))
+        say(f"  {case.id} start {i + 1}/{len(starts)}: fronts measured, reference bound "
+            f"{bound:.1e}")
+    if on_fronts is not None:
+        on_fronts(case.id, T, rows)
+    for i, (y0, row, (Yref, singles)) in enumerate(zip(starts, rows, refs, strict=True)):
+        autos = timed_jobs(case.id, prm, T, y0, Yref, [("auto", "auto", E) for E in levels],
+                           1, warm=i == 0)
+        again = sorted({j for a in autos.values() if a["ok"]
+                        for j in bracket(singles, a["error"])})
+        jobs = [*autos, *again]
+        best = timed_jobs(case.id, prm, T, y0, Yref, jobs, repeats)
+        for j in again:      # side by side with auto: these timings replace phase 1's
+            singles[j] = best[j]
+        runs = list(singles.values())
+        for E in levels:
+            a = best[("auto", "auto", E)]
+            a["matched"] = matched_costs(runs, a["error"]) if a["ok"] else None
+        row["runs"] = runs + [best[("auto", "auto", E)] for E in levels]
+        say(f"  {case.id} start {i + 1}/{len(starts)}: auto "
+            + ", ".join(f"{E:.0e} -> {best[('auto', 'auto', E)]['error']:.1e} "
+                        f"({best[('auto', 'auto', E)]['returned']})" for E in levels))
     return {"T": T, "params": prm, "rows": rows}
 
 
@@ -177,6 +212,7 @@ def main(argv=None):
     ap.add_argument("--tag", default="", help="suffix of the output files")
     args = ap.parse_args(argv)
     whole = args.starts == 20 and not args.cases and args.seed == SEED
+    stem = ("auto_starts" + ("" if whole else "_partial")) + args.tag
     lines = []
 
     def say(s=""):
@@ -208,27 +244,28 @@ def main(argv=None):
         for case in CASES:
             if only and case.id not in only:
                 from limit import random_starts
+
                 from solvers.models.cases import registry
 
                 spec = registry()[case.id]     # draw its starts all the same
                 random_starts(case.id, {**spec.example, **case.overrides}, args.starts, rng)
                 continue
-            raw["cases"][case.id] = run_case(case, args.starts, rng, args.repeats, levels, say)
+            raw["cases"][case.id] = run_case(
+                case, args.starts, rng, args.repeats, levels, say,
+                on_fronts=write_choice_case if args.write_data and whole else None)
+            OUT.mkdir(exist_ok=True)     # after each case: a stopped run keeps its cases
+            (OUT / f"{stem}_raw.json").write_text(json.dumps(raw, default=float))
         raw["total_s"] = time.perf_counter() - t0
         raw["load_end"] = os.getloadavg()
     for line in summary_lines(raw):
         say(line)
-    stem = "auto_starts" + ("" if whole else "_partial") + args.tag
     OUT.mkdir(exist_ok=True)
     if not args.from_raw:
         (OUT / f"{stem}_raw.json").write_text(json.dumps(raw, default=float))
     (OUT / f"{stem}.txt").write_text("\n".join(lines) + "\n")
-    if args.write_data:
-        if not whole:
-            say("--write-data: not a whole run (20 starts, every case, seed 19): no data "
-                "written")
-            return 1
-        say(f"choice data written: {write_choice_data(raw)}")
+    if args.write_data and not whole:
+        say("--write-data: not a whole run (20 starts, every case, seed 19): no data written")
+        return 1
     return 0
 
 

@@ -109,6 +109,7 @@ def summary_lines(raw) -> list[str]:
                f"{len(fails)} of {len(raw['cases']) * len(levels) * len(TARGETS)} "
                "(case, level, target)" + (":" if fails else ""))
     out += [f"  {f}" for f in fails]
+    out += alpha_lines(raw)
     if "total_s" in raw:
         le = raw["load_end"]
         out.append(f"total {raw['total_s']:.0f} s; load average at the end {le[0]:.2f}")
@@ -126,27 +127,82 @@ def choice_table(rows) -> list[dict]:
     out = []
     for L in CHOICE_LEVELS:
         judged = _judged(rows, L)
-        wall = {m: [] for m in METHODS}
+        cost = {m: [] for m in METHODS}
         loosest = {m: [] for m in METHODS}
         for row in judged:
             for m in METHODS:
                 runs = [r for r in row["runs"] if r["kind"] == "single" and r["method"] == m
                         and r["ok"] and math.isfinite(r["error"]) and r["error"] > 0]
-                wall[m].append(_sig(at_error([(r["error"], r["wall_s"]) for r in runs], L)))
+                cost[m].append(_sig(at_error([(r["error"], r["cpu_s"]) for r in runs], L)))
                 good = [r["tol"] for r in runs if r["error"] <= L]
                 loosest[m].append(_sig(max(good)) if good else None)
-        out.append({"level": _sig(L), "judged": len(judged), "wall_s": wall,
+        out.append({"level": _sig(L), "judged": len(judged), "cpu_s": cost,
                     "loosest_tol": loosest})
     return out
 
 
-def write_choice_data(raw) -> str:
+def write_choice_case(case_id, T, rows) -> str:
+    """Write one case's choice data into DATA (the other cases' entries kept) and make
+    auto read it from now on."""
+    from solvers.integrate import auto_choice
+
     data = {"format": 1, "generator": "python bench/auto_starts.py --write-data",
-            "seed": raw["seed"], "starts": raw["starts"], "methods": list(METHODS),
-            "note": "per case and level: each judged start's wall time (s) at that error on "
-                    "each method's front and the loosest tolerance reaching it (taylor: "
-                    "heyoka on the lean generated field in double)",
-            "cases": {cid: {"T": case["T"], "levels": choice_table(case["rows"])}
-                      for cid, case in raw["cases"].items()}}
+            "seed": 19, "starts": len(rows), "methods": list(METHODS),
+            "note": "per case and level: each judged start's CPU time (s) at that error on "
+                    "each method's front (interpolated) and the loosest tolerance reaching "
+                    "it (taylor: heyoka on the lean generated field in double)",
+            "cases": {}}
+    if DATA.exists():
+        old = json.loads(DATA.read_text())
+        if old.get("format") == 1 and old.get("seed") == 19:
+            data["cases"] = old["cases"]
+    data["cases"][case_id] = {"T": T, "levels": choice_table(rows)}
     DATA.write_text(json.dumps(data, separators=(",", ":")) + "\n")
+    auto_choice.load.cache_clear()
     return str(DATA)
+
+
+def slopes(raw, method, check_max_tol=1e-5) -> list[float]:
+    """The measured growth exponent of each start's error with tol between a run and the
+    run auto would check it with (solvers/integrate/auto.py: 10^1.5 looser for the pairs,
+    two orders lower for Taylor; tols by auto.effective_tol), where both errors are above
+    ten times the reference's bound and the check's tol is <= check_max_tol."""
+    from solvers.integrate import auto
+
+    out = []
+    for case in raw["cases"].values():
+        for row in case["rows"]:
+            runs = {r["tol"]: r for r in row["runs"]
+                    if r["kind"] == "single" and r["method"] == method and r["ok"]}
+            for tol, r in runs.items():
+                rung = {"method": method, "tol": tol, "precision": "double"}
+                chk = auto._looser(rung, 1000.0)
+                c = next((x for t, x in runs.items() if math.isclose(t, chk["tol"],
+                                                                     rel_tol=1e-6)), None)
+                e_r, e_c = auto.effective_tol(rung), auto.effective_tol(chk)
+                if (c is None or e_c <= e_r or e_c > check_max_tol
+                        or min(r["error"], c["error"]) <= 10 * row["ref_bound"]):
+                    continue
+                out.append(math.log(c["error"] / r["error"]) / math.log(e_c / e_r))
+    return out
+
+
+def alpha_lines(raw) -> list[str]:
+    from solvers.integrate import auto
+
+    if not hasattr(auto, "effective_tol"):     # an auto without the looser check
+        return []
+    out = ["", "the error's growth exponent with tol between a run and auto's check of it "
+           "(looser; both errors above 10x the reference bound): quantiles over every start "
+           "and tol; auto.ALPHA is the exponent auto assumes (an estimate is above the error "
+           "where the exponent is >= ALPHA)"]
+    for m in METHODS:
+        s = sorted(slopes(raw, m))
+        if not s:
+            continue
+        qs = [s[int(f * (len(s) - 1))] for f in (0.01, 0.05, 0.1, 0.5)]
+        below = sum(x < auto.ALPHA[m] for x in s)
+        out.append(f"  {m:7s} n {len(s)}: 1% {qs[0]:.2f}, 5% {qs[1]:.2f}, 10% {qs[2]:.2f}, "
+                   f"median {qs[3]:.2f}; below ALPHA {auto.ALPHA[m]}: {below} "
+                   f"({below / len(s):.0%})")
+    return out

@@ -95,7 +95,8 @@ def _fake_runner(calls, c=100.0, fail_below=0.0):
         calls.append((rung["method"], rung["tol"], rung["precision"], budget))
         t = np.linspace(0.0, 1.0, 3)
         ok = rung["tol"] >= fail_below
-        return SimpleNamespace(t=t if ok else t[:1], y=np.full((3, 2), c * auto.effective_tol(rung)),
+        y = np.full((3, 2), c * auto.effective_tol(rung))
+        return SimpleNamespace(t=t if ok else t[:1], y=y,
                                success=ok, steps=10, rhs_calls=100, wall_s=0.0,
                                message="" if ok else "singular")
     return runner

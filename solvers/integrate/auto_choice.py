@@ -4,9 +4,10 @@ tolerance, for a case and a requested error.
 The data is bench/auto_starts.py's (solvers/integrate/data/auto_choice.json, written by
 `python bench/auto_starts.py --write-data`): for each of the six work-precision cases, over
 the 20 random starts of the many-start benchmark (bench/limit.py random_starts, seed 19),
-and for each error level 10^-4 ... 10^-14 (half decades), each start's time at that error
-on the front of dop853, vern9 and the Taylor backend in double (interpolated between
-tolerances), and the loosest tolerance of each method whose run reached that error.
+and for each error level 10^-4 ... 10^-14 (half decades), each start's CPU time at that
+error on the front of dop853, vern9 and the Taylor backend in double (interpolated between
+tolerances; CPU rather than wall time: on a shared machine it is the steadier of the two),
+and the loosest tolerance of each method whose run reached that error.
 Nothing here is typed by hand: the crossover where the Taylor backend starts to win is
 where its time is the least on most starts.
 
@@ -66,7 +67,7 @@ def _quantile_tol(tols: list, cover: float) -> float | None:
     vals = sorted((t if t is not None else 0.0) for t in tols)
     if not vals:
         return None
-    v = vals[int(math.floor((1.0 - cover) * len(vals) + 1e-9))]
+    v = vals[math.floor((1.0 - cover) * len(vals) + 1e-9)]
     return v if v > 0 else None
 
 
@@ -88,7 +89,7 @@ def first_choice(case_id: str, rtol: float, allowed) -> dict | None:
     judged = 0
     for e in entries:
         for i in range(e["judged"]):
-            w = {m: e["wall_s"][m][i] for m in methods if e["wall_s"][m][i] is not None}
+            w = {m: e["cpu_s"][m][i] for m in methods if e["cpu_s"][m][i] is not None}
             if not w:
                 continue
             judged += 1

@@ -34,7 +34,8 @@ def rungs(case_id: str, model, method: str, rtol: float, t_end: float, *,
         return [{"method": TAYLOR, "tol": snap_tol(rtol), "precision": prec}]
     if method != "auto":
         return [{"method": method, "tol": rtol, "precision": None}]
-    from solvers.integrate.auto import choose, plan as auto_plan
+    from solvers.integrate.auto import choose
+    from solvers.integrate.auto import plan as auto_plan
 
     choice = choose(case_id, model.model, rtol, t_end, project, step, precision)
     out = auto_plan(choice, t_end)
