@@ -111,13 +111,14 @@ def test_the_returned_run_is_the_tighter_and_its_estimate_is_above_its_error():
     calls = []
     res, info = auto.run_checked(_choice("dop853", 1e-9, 1e-6), _fake_runner(calls), 1.0,
                                  1000)
-    # one pair: the run at 1e-9 and its check 10^1.5 looser, side by side, budgets split
-    assert sorted(t for _, t, _, _ in calls) == pytest.approx([1e-9, 10 ** -7.5])
+    # one pair: the run at 1e-9 and its check CHECK_LOOSER looser, side by side, budgets split
+    loose = 1e-9 * auto.CHECK_LOOSER
+    assert sorted(t for _, t, _, _ in calls) == pytest.approx([1e-9, loose])
     assert sorted(b for *_, b in calls) == [400, 600]
     assert info["met"] and info["runs"] == 2 and info["returned"]["tol"] == 1e-9
     assert res.y[0, 0] == 100 * 1e-9
-    k = auto.scale("dop853", 1e-9, 10 ** -7.5)
-    diff = 100 * (10 ** -7.5 - 1e-9)
+    k = auto.scale("dop853", 1e-9, loose)
+    diff = 100 * (loose - 1e-9)
     assert info["error_estimate"] == pytest.approx(diff * k, rel=1e-9)
     # error ~ tol here (alpha = 1): the estimate with alpha < 1 is above the true error
     assert info["error_estimate"] > 100 * 1e-9
@@ -128,18 +129,19 @@ def test_a_miss_tightens_and_a_looser_run_before_is_the_check():
     res, info = auto.run_checked(_choice("vern9", 1e-6, 1e-8), _fake_runner(calls), 1.0,
                                  1000)
     tols = [t for _, t, _, _ in calls]
-    # 10^1.5 looser than 1e-6 is beyond CHECK_MAX_TOL: the first check is as much tighter,
-    # and the estimate is of the returned 1e-6 run, 100 (1e-6 - 10^-7.5) / (1 - rho)
-    assert sorted(tols[:2]) == pytest.approx([10 ** -7.5, 1e-6])
+    # CHECK_LOOSER looser than 1e-6 is beyond CHECK_MAX_TOL: the first check is as much
+    # tighter, and the estimate is of the returned 1e-6 run, 100 (1e-6 - tight) / (1 - rho)
+    tight = 1e-6 / auto.CHECK_LOOSER
+    assert sorted(tols[:2]) == pytest.approx([tight, 1e-6])
     e0 = info["rounds"][0]["error_estimate"]
     assert info["rounds"][0]["tol"] == 1e-6 and e0 == pytest.approx(
-        100 * (1e-6 - 10 ** -7.5) * auto.scale("vern9", 1e-6, 10 ** -7.5))
+        100 * (1e-6 - tight) * auto.scale("vern9", 1e-6, tight))
     assert len(info["rounds"]) == 2 and info["runs"] == 3 and info["met"]
     # e0 wants a tol (e0 / (AIM E))^(1/alpha) tighter; its check is the earlier run
-    # closest to it and looser: the 10^-7.5 one
+    # closest to it and looser: the tight one
     want = 1e-6 / max((e0 / (auto.AIM * 1e-8)) ** (1 / auto.ALPHA["vern9"]), auto.MIN_TIGHTEN)
     assert tols[2] == pytest.approx(want) and info["returned"]["tol"] == tols[2]
-    assert "3.16e-08" in info["rounds"][1]["check"]
+    assert f"{tight:.3g}" in info["rounds"][1]["check"]
     assert 100 * tols[2] < info["error_estimate"] <= 1e-8
     assert sum(b for *_, b in calls[:2]) <= 1000 and calls[2][3] == 1000 - 20
     assert res.y[0, 0] == 100 * tols[2]
@@ -182,7 +184,8 @@ def test_without_taylor_it_stops_at_the_floor_and_says_so():
     res, info = auto.run_checked(_choice("dop853", 1e-12, 1e-8), _fake_runner(calls, 1e8),
                                  1.0, 1000)
     # 1e-12 misses (error 1e-4); the tighter run stops at RK_MIN_RUN, checked by 1e-12
-    assert sorted(t for _, t, _, _ in calls) == pytest.approx([1e-14, 1e-12, 10 ** -10.5])
+    assert sorted(t for _, t, _, _ in calls) == pytest.approx(
+        [1e-14, 1e-12, 1e-12 * auto.CHECK_LOOSER])
     assert not info["met"] and info["returned"]["tol"] == 1e-14
     assert res.y[0, 0] == 1e8 * 1e-14
     assert "as tight as auto runs" in info["error_estimate_method"]

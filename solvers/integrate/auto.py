@@ -41,14 +41,18 @@ from solvers.integrate import auto_choice
 from solvers.integrate import workprecision as wp
 
 CANDIDATES = (*wp.PLAIN, wp.TAYLOR)
-CHECK_LOOSER = 10.0 ** 1.5      # a Runge-Kutta check run's tol over the returned run's
+CHECK_LOOSER = 10.0 ** 2.5      # a Runge-Kutta check run's tol over the returned run's
 TAYLOR_CHECK_ORDERS = 2         # a Taylor check run is this many orders lower
 MIN_TIGHTEN = 10.0 ** 0.5       # a tighter round is at least this much tighter
 CHECK_MAX_TOL = 1e-5            # no looser check than this: errors there are not a power of tol
-# the exponent of the error's growth with tol, taken low (module doc): q/(q+1) for the
-# pairs' orders (8, 9) lowered a little; the Taylor backend's order steps with tol, so
-# its exponent is taken lower still (measured: bench/auto_starts.py, docs/performance.md)
-ALPHA = {"dop853": 0.85, "vern9": 0.85, wp.TAYLOR: 0.8}
+# the exponent of the error's growth with tol, taken low (module doc): below q/(q+1) for
+# the pairs' orders (8, 9); the Taylor backend's error is far less regular in its order's
+# tol, so its exponent is taken lower still (the measured exponents: bench/auto_starts.py)
+ALPHA = {"dop853": 0.85, "vern9": 0.85, wp.TAYLOR: 0.6}
+# within FLOOR_MARGIN of its precision's round-off floor (taylor_backend.floor) a Taylor
+# run's error is round-off as much as truncation and does not shrink with tol: there the
+# estimate is the difference itself (factor 1), not its extrapolation
+FLOOR_MARGIN = 100.0
 MAX_ROUNDS = 3
 AIM = 0.5                       # a tightened run aims at this fraction of the request
 RK_MIN_TOL = 1e-16              # simulate's smallest rtol
@@ -276,7 +280,7 @@ def _pair(runner, a: dict, budget_a: int, b: dict, budget_b: int):
     return ra, box["res"]
 
 
-def _estimate(res, rung, ref, ref_rung):
+def _estimate(res, rung, ref, ref_rung, t_end):
     """(estimate of res's error, how) from the check run ref; (None, why) without one."""
     if not ref.success or len(ref.t) != len(res.t):
         return None, f"the check run of {_describe(ref_rung)} stopped early ({ref.message})"
@@ -284,6 +288,12 @@ def _estimate(res, rung, ref, ref_rung):
     k = scale(rung["method"], e_run, e_ref)
     if not np.isfinite(k):
         return None, f"the check run of {_describe(ref_rung)} runs the same order"
+    near_floor = False
+    if rung["method"] == wp.TAYLOR:
+        from solvers.integrate.taylor_backend import floor
+
+        near_floor = e_run < FLOOR_MARGIN * floor(rung["precision"] or "double", t_end)
+        k = max(k, 1.0) if near_floor else k
     est = error_between(res.y[:len(res.t)], ref.y[:len(ref.t)]) * k
     side = "looser" if e_ref > e_run else "tighter"
     ratio = max(e_ref, e_run) / min(e_ref, e_run)
@@ -292,7 +302,9 @@ def _estimate(res, rung, ref, ref_rung):
                  f"{side}" + (", by the Taylor orders' tolerances"
                               if rung["method"] == wp.TAYLOR else "")
                  + f") times {k:.3g} (error ~ tol^{ALPHA[rung['method']]}, the exponent "
-                 "taken low); the difference: max over the output times of |y - y_check| / "
+                 "taken low" + ("; near the round-off floor: the difference itself"
+                                if near_floor else "")
+                 + "); the difference: max over the output times of |y - y_check| / "
                  "max(1, max |y_check|)")
 
 
@@ -333,7 +345,7 @@ def run_checked(choice: dict, runner, t_end: float, max_steps: int, taylor_ok: b
         if not res.success:
             return res, chk, None, f"the run of {_describe(want)} stopped early ({res.message})"
         done.append((want, res))
-        est, how = _estimate(res, want, ref, chk)
+        est, how = _estimate(res, want, ref, chk, t_end)
         return res, chk, est, how
 
     rung = plan(choice, t_end)[0]

@@ -13,8 +13,9 @@ where its time is the least on most starts.
 
 The choice for a request of error E: the level L, the largest of the grid <= E * AIM_FIRST
 (auto's estimate is conservative, so the run aims below E to pass it the first time);
-among the methods allowed, the one cheapest at L on most starts (ties: the lower median
-time); its tolerance: the one that reached L on COVER of the starts (the lower
+among the methods allowed that reach L on COVER of the starts (else those that reach it on
+most), the one cheapest at L on most starts (ties: the lower median time); its
+tolerance: the one that reached L on COVER of the starts (the lower
 (1 - COVER)-quantile of the starts' loosest tolerances; a start that no tolerance of the grid
 brought to L counts below every tolerance). The other starts are left to auto's check,
 which tightens (auto.run_checked). A case the benchmark did not measure is chosen for
@@ -102,7 +103,14 @@ def first_choice(case_id: str, rtol: float, allowed) -> dict | None:
     def median(xs):
         xs = sorted(xs)
         return xs[len(xs) // 2] if xs else math.inf
-    method = max(methods, key=lambda m: (wins[m], -median(walls[m])))
+    # a method that reaches the level on COVER of the starts first (else the ones that
+    # reach it on most), then the most wins among those
+    reach = {m: sum(t is not None for e in entries for t in e["loosest_tol"][m][:e["judged"]])
+             for m in methods}
+    n_all = sum(e["judged"] for e in entries)
+    eligible = [m for m in methods if reach[m] >= COVER * n_all] or \
+        [m for m in methods if reach[m] == max(reach.values())]
+    method = max(eligible, key=lambda m: (wins[m], -median(walls[m])))
     tols = [t for e in entries for t in e["loosest_tol"][method][:e["judged"]]]
     tol = _quantile_tol(tols, COVER)
     if tol is None:
