@@ -32,8 +32,10 @@ to its double floor (taylor_backend.floor), and says so when that is not enough.
 
 from __future__ import annotations
 
+import os
 import threading
 from collections import Counter
+from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
@@ -59,6 +61,7 @@ RK_MIN_TOL = 1e-16              # simulate's smallest rtol
 RK_MIN_RUN = 1e-14              # the tightest Runge-Kutta run auto returns
 EXTENDED_BELOW = 1e-14          # only requests at or below this may run in long double
 CHECK_SHARE = 0.4               # the looser check run's share of the step budget
+PARALLEL_MIN_S = 0.005          # a run expected to take less runs its check after it, not beside
 TAYLOR_MIN_TOL = 10.0 ** -18.5
 
 
@@ -134,8 +137,10 @@ def choose(case_id: str, model: int, rtol: float, t_end: float, project: bool = 
         allowed.remove(wp.TAYLOR)
         notes.append("taylor left out: heyoka is not installed")
     pick = auto_choice.first_choice(case_id, rtol, allowed)
+    expected = None
     if pick is not None:
         method, tol, front_prec, reason = pick["method"], pick["tol"], None, pick["reason"]
+        expected = pick["expected_s"]
     else:
         method, tol, front_prec, reason = _one_start_front(case_id, rtol, allowed)
     if method is None and wp.TAYLOR in allowed:
@@ -150,7 +155,10 @@ def choose(case_id: str, model: int, rtol: float, t_end: float, project: bool = 
         precision = front_prec
     return {"method": method, "precision": precision if method == wp.TAYLOR else None,
             "tol": max(tol, RK_MIN_TOL), "compensated": False, "requested_rtol": rtol,
-            "reason": "; ".join([reason, *notes]), "taylor_allowed": wp.TAYLOR in allowed}
+            "reason": "; ".join([reason, *notes]), "taylor_allowed": wp.TAYLOR in allowed,
+            # the run's CPU time on the measured starts (median), None where not measured:
+            # run_checked runs the check beside the run only where that is worth a thread
+            "expected_s": expected}
 
 
 # --- the runs: one returned, one looser beside it, tighter ones only if the estimate misses
@@ -260,24 +268,30 @@ def _describe(r: dict) -> str:
             + (f" in {r['precision']}" if r["precision"] else ""))
 
 
-def _pair(runner, a: dict, budget_a: int, b: dict, budget_b: int):
-    """Run a here and b on a second thread at the same time; both results."""
-    box = {}
+_pool: list = []
+_pool_lock = threading.Lock()
 
-    def other():
-        try:
-            box["res"] = runner(b, budget_b)
-        except BaseException as e:      # re-raised in the caller's thread below
-            box["err"] = e
-    th = threading.Thread(target=other, name="auto-check", daemon=True)
-    th.start()
+
+def _checker():
+    """The process's threads for check runs (started once: a thread's start costs as
+    much as a short run)."""
+    with _pool_lock:
+        if not _pool:
+            _pool.append(ThreadPoolExecutor(max_workers=max(os.cpu_count() or 1, 2),
+                                            thread_name_prefix="auto-check"))
+        return _pool[0]
+
+
+def _pair(runner, a: dict, budget_a: int, b: dict, budget_b: int, parallel: bool = True):
+    """Run a and b, b on a second thread at the same time where parallel; both results."""
+    if not parallel:
+        return runner(a, budget_a), runner(b, budget_b)
+    fut = _checker().submit(runner, b, budget_b)
     try:
         ra = runner(a, budget_a)
     finally:
-        th.join()
-    if "err" in box:
-        raise box["err"]
-    return ra, box["res"]
+        rb = fut.result()      # waits for it (and re-raises its error) either way
+    return ra, rb
 
 
 def _estimate(res, rung, ref, ref_rung, t_end):
@@ -338,7 +352,8 @@ def run_checked(choice: dict, runner, t_end: float, max_steps: int, taylor_ok: b
         else:
             chk = _looser(want, t_end)
             b = max(int(budget * CHECK_SHARE), 1)
-            res, ref = _pair(runner, want, max(budget - b, 1), chk, b)
+            res, ref = _pair(runner, want, max(budget - b, 1), chk, b,
+                             parallel=(choice.get("expected_s") or np.inf) >= PARALLEL_MIN_S)
             runs.extend([res, ref])
             if ref.success:
                 done.append((chk, ref))

@@ -73,7 +73,8 @@ def _quantile_tol(tols: list, cover: float) -> float | None:
 
 
 def first_choice(case_id: str, rtol: float, allowed) -> dict | None:
-    """{"method", "tol", "level", "wins", "judged", "reason"}, or None where the data
+    """{"method", "tol", "level", "wins", "judged", "expected_s" (the method's median CPU
+    time at the level), "reason"}, or None where the data
     has no level at or below rtol * AIM_FIRST (or no data) for the allowed methods."""
     data = load()
     if data is None:
@@ -119,6 +120,7 @@ def first_choice(case_id: str, rtol: float, allowed) -> dict | None:
             return None
         tol = min(reached)
     return {"method": method, "tol": tol, "level": level, "wins": wins, "judged": judged,
+            "expected_s": median(walls[method]) if walls[method] else None,
             "reason": (f"cheapest at error {level:.1e} (the request {rtol:.0e} x {AIM_FIRST}) "
                        f"on {wins[method]} of {judged} starts ({basis}; wins {wins}): "
                        f"{method} at tol {tol:.3g}, the tolerance that reached that error on "
