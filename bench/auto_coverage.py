@@ -7,7 +7,7 @@ and requested errors E = 1e-6, 1e-10, 1e-12:
 
   auto      simulate(method="auto", rtol=E, atol=E, samples=101): the returned run, its
             error_estimate (solvers/integrate/auto.py: an upper estimate by extrapolation
-            from a check run of the same method 10^1.5 times looser, run beside it on a
+            from a check run of the same method 10^2.5 times looser, run beside it on a
             second thread; tightened until the estimate is <= E, at most MAX_ROUNDS runs)
   first     auto's first choice alone (auto.choose(): the method and tolerance auto
             runs before its estimate), run as auto runs it

@@ -4,17 +4,20 @@ achieved error, its coverage of the request, and the per-case choice data auto r
 For each of the six work-precision cases (bench/work_precision.py: parameters and T) and
 the 20 random starts of the many-start benchmark (bench/limit.py random_starts, seed 19,
 one generator across the cases in their order, as bench/auto_coverage.py and
-limit.py's many-start mode draw them), side by side in one process:
+limit.py's many-start mode draw them), in one process, per case in two phases:
 
-  singles   simulate(method=m, rtol=atol=tol) for m = dop853 and vern9 at tolerances
-            10^-5 ... 10^-14 (half decades) and m = taylor (heyoka on the lean generated
-            field, solvers/integrate/taylor_backend.py, double) at 10^-6 ... 10^-14.5:
-            each start's work-precision front of every method
-  auto      simulate(method="auto", rtol=atol=E) for E = 1e-6, 1e-8, 1e-10, 1e-12
+  1 singles  simulate(method=m, rtol=atol=tol) for m = dop853 and vern9 at tolerances
+             10^-5 ... 10^-14 (half decades) and m = taylor (heyoka on the lean generated
+             field, solvers/integrate/taylor_backend.py, double) at 10^-6 ... 10^-14.5:
+             each start's work-precision front of every method. With --write-data the
+             case's choice data is written from them (below), and auto reads it from then on
+  2 auto     simulate(method="auto", rtol=atol=E) for E = 1e-6, 1e-8, 1e-10, 1e-12, and
+             beside it (interleaved) the singles whose errors bracket auto's achieved
+             error, timed again: the timings the comparison at matched error reads
 
 Every call is timed whole (wall: perf_counter; CPU: process_time, all threads), best of
-REPEATS, the calls interleaved (each repeat runs every single and every auto once), and
-its rhs calls counted (a Taylor run counts its steps). The error of a run: max over the 101
+REPEATS, the calls interleaved (each repeat runs every job once), its rhs calls counted (a
+Taylor run counts its steps; auto: every run it made). The error of a run: max over the 101
 output times of |y - y_ref|_inf / max(1, max |y_ref|_inf) (auto.error_between), the
 reference heyoka in long double at tol 1e-19 on the general expression system; its own
 error is bounded by a second long double run at 1e-18, and a start is judged at level E
@@ -25,21 +28,22 @@ against the cheapest single run of any method at auto's own achieved error (each
 time interpolated log-log on that start's Pareto front, bench/auto_front.py at_error; none
 where no single run reaches it): wall and CPU ratios (median, worst), rhs calls over the
 cheapest Runge-Kutta single's at the same error, and wall over the taylor single's
-(heyoka-lean). Speed is measured here, never asserted in a test.
+(heyoka-lean). Then the measured exponents of the error's growth with tol (what auto's
+estimate assumes) and auto's first choice per level (the crossover where taylor begins).
+Speed is measured here, never asserted in a test.
 
-The choice data (--write-data, whole runs only): for each case and each level 10^-4 ...
-10^-14 (half decades) the method whose front is cheapest at that error on most starts
-(crossover: where taylor starts to win), and the tolerance of that method that reaches
-the level on COVER of the starts (the starts' loosest tolerance with error <= level, its
-lower COVER-quantile) -> solvers/integrate/data/auto_choice.json, read by
-solvers/integrate/auto.py.
+The choice data (--write-data, on the benchmark's starts only: 20, seed 19; a run of some
+--cases writes those cases' entries): for each case and each level 10^-4 ... 10^-14 (half
+decades), each judged start's CPU time at that error on each method's front and the
+loosest tolerance of each method that reached it -> solvers/integrate/data/
+auto_choice.json; solvers/integrate/auto_choice.py picks the method and tolerance from it.
 
     nice -n 10 PYTHONPATH=$PWD .venv/bin/python bench/auto_starts.py [--starts N]
         [--repeats R] [--cases a,b] [--write-data] [--seed S]
         -> bench/results/auto_starts.txt (and auto_starts_raw.json, every run's figures;
            a partial run -- --starts, --cases or another seed -- writes *_partial.*)
-    PYTHONPATH=$PWD .venv/bin/python bench/auto_starts.py --from-raw FILE [--write-data]
-        the tables (and the data) again from a raw file, nothing run
+    PYTHONPATH=$PWD .venv/bin/python bench/auto_starts.py --from-raw FILE [FILE ...]
+        the tables again from raw files (their cases merged), nothing run
 """
 
 from __future__ import annotations
@@ -207,12 +211,19 @@ def main(argv=None):
     ap.add_argument("--levels", help="comma-separated requested errors (default "
                     + ", ".join(f"{E:.0e}" for E in LEVELS) + ")")
     ap.add_argument("--write-data", action="store_true",
-                    help="write solvers/integrate/data/auto_choice.json (whole runs only)")
-    ap.add_argument("--from-raw", help="a raw JSON of an earlier run: tables only")
+                    help="write the cases' entries of solvers/integrate/data/auto_choice.json "
+                    "(20 starts, seed 19 only)")
+    ap.add_argument("--from-raw", nargs="+",
+                    help="raw JSONs of earlier runs (their cases merged): tables only")
     ap.add_argument("--tag", default="", help="suffix of the output files")
     args = ap.parse_args(argv)
     whole = args.starts == 20 and not args.cases and args.seed == SEED
+    # the many-start benchmark's starts (a case's are the same in a run of some cases)
+    data_ok = args.starts == 20 and args.seed == SEED
     stem = ("auto_starts" + ("" if whole else "_partial")) + args.tag
+    if args.write_data and not data_ok:
+        print("--write-data: only on the many-start benchmark's starts (20, seed 19)")
+        return 1
     lines = []
 
     def say(s=""):
@@ -220,8 +231,17 @@ def main(argv=None):
         lines.append(s)
 
     if args.from_raw:
-        raw = json.loads(Path(args.from_raw).read_text())
-        whole = raw["whole"]
+        from work_precision import CASES
+
+        parts = [json.loads(Path(f).read_text()) for f in args.from_raw]
+        raw = {**parts[0], "cases": {}}
+        got = {cid: c for part in parts for cid, c in part["cases"].items()}
+        raw["cases"] = {c.id: got[c.id] for c in CASES if c.id in got}
+        raw["head"] = [line for part in parts for line in part["head"]]
+        raw["whole"] = whole = len(raw["cases"]) == len(CASES) and all(
+            p["starts"] == 20 and p["seed"] == SEED for p in parts)
+        if len(parts) > 1:
+            raw.pop("total_s", None)
         for line in raw["head"]:
             say(line)
     else:
@@ -252,7 +272,7 @@ def main(argv=None):
                 continue
             raw["cases"][case.id] = run_case(
                 case, args.starts, rng, args.repeats, levels, say,
-                on_fronts=write_choice_case if args.write_data and whole else None)
+                on_fronts=write_choice_case if args.write_data and data_ok else None)
             OUT.mkdir(exist_ok=True)     # after each case: a stopped run keeps its cases
             (OUT / f"{stem}_raw.json").write_text(json.dumps(raw, default=float))
         raw["total_s"] = time.perf_counter() - t0
@@ -262,10 +282,9 @@ def main(argv=None):
     OUT.mkdir(exist_ok=True)
     if not args.from_raw:
         (OUT / f"{stem}_raw.json").write_text(json.dumps(raw, default=float))
+    else:
+        stem = ("auto_starts" + ("" if whole else "_partial")) + args.tag
     (OUT / f"{stem}.txt").write_text("\n".join(lines) + "\n")
-    if args.write_data and not whole:
-        say("--write-data: not a whole run (20 starts, every case, seed 19): no data written")
-        return 1
     return 0
 
 

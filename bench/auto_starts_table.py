@@ -109,7 +109,7 @@ def summary_lines(raw) -> list[str]:
                f"{len(fails)} of {len(raw['cases']) * len(levels) * len(TARGETS)} "
                "(case, level, target)" + (":" if fails else ""))
     out += [f"  {f}" for f in fails]
-    out += alpha_lines(raw)
+    out += alpha_lines(raw) + crossover_lines(raw)
     if "total_s" in raw:
         le = raw["load_end"]
         out.append(f"total {raw['total_s']:.0f} s; load average at the end {le[0]:.2f}")
@@ -205,4 +205,29 @@ def alpha_lines(raw) -> list[str]:
         out.append(f"  {m:7s} n {len(s)}: 1% {qs[0]:.2f}, 5% {qs[1]:.2f}, 10% {qs[2]:.2f}, "
                    f"median {qs[3]:.2f}; below ALPHA {auto.ALPHA[m]}: {below} "
                    f"({below / len(s):.0%})")
+    return out
+
+
+def crossover_lines(raw) -> list[str]:
+    """Per case, the method auto's first choice takes at each level of the choice data
+    (auto_choice.first_choice on the data file as it stands), and where taylor begins."""
+    try:
+        from solvers.integrate import auto, auto_choice
+    except ImportError:
+        return []
+    if auto_choice.load() is None:
+        return []
+    out = ["", "auto's first choice per level of the choice data (requests at twice the "
+           "level: auto aims at half), and the crossover: the loosest level taylor is chosen"]
+    for cid in raw["cases"]:
+        picks = []
+        for L in CHOICE_LEVELS:
+            p = auto_choice.first_choice(cid, 2 * L, auto.CANDIDATES)
+            picks.append((L, p["method"] if p else None, p["tol"] if p else None))
+        first_taylor = next((L for L, m, _ in picks if m == "taylor"), None)
+        out.append(f"  {cid}: " + ", ".join(f"{L:.0e} {m or '-'}" + (f" {t:.0e}" if t else "")
+                                           for L, m, t in picks)
+                   + f" | taylor from {first_taylor:.0e}" if first_taylor else
+                   f"  {cid}: " + ", ".join(f"{L:.0e} {m or '-'}" for L, m, _ in picks)
+                   + " | taylor never chosen")
     return out

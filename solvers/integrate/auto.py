@@ -12,8 +12,10 @@ the request needs. Projection has no Taylor form, so with project = true only do
 vern9 compete; without heyoka the Taylor candidate is left out, and the reason says so.
 
 The error estimate (run_checked): the run returned is the TIGHTER of two runs of the same
-method; the other runs CHECK_LOOSER looser, on a second thread at the same time (the
-numba kernels are nogil, heyoka's propagation runs in C++). For a method whose global error
+method; the other runs CHECK_LOOSER looser, on a second thread at the same time where the
+run is expected to take PARALLEL_MIN_S or more (the numba kernels are nogil and heyoka's
+propagation releases the GIL too: a Python loop on another thread keeps its pace beside
+it). For a method whose global error
 goes as tol^alpha, the two errors are e and e * F^alpha (F = CHECK_LOOSER), so their
 difference d (the benchmark's measure, error_between) gives e = d * rho / (1 - rho) with
 rho = F^-alpha. alpha is taken LOWER than the error's measured growth with tol
