@@ -234,3 +234,18 @@ def test_simulate_met_agrees_with_its_estimate_and_stays_in_double(E):
                         and r.stats["error_estimate"] <= E)
     assert r.stats.get("precision") in (None, "double")
     assert all(x["precision"] in (None, "double") for x in a["rounds"])
+
+
+def test_a_front_point_in_long_double_is_not_taken_above_1e_14(monkeypatch):
+    """Where the one-start front (no many-start data) names a long double Taylor run for a
+    request above 1e-14, auto still runs double."""
+    from solvers.integrate import auto_choice
+
+    monkeypatch.setattr(auto_choice, "first_choice", lambda *a, **k: None)
+    monkeypatch.setattr(auto, "_one_start_front",
+                        lambda *a: ("taylor", 1e-13, "long double", "a front point"))
+    c = auto.choose(BALL, 1, 1e-12, 1000.0)
+    assert c["method"] == "taylor" and c["precision"] is None
+    assert auto.plan(c, 1000.0)[0]["precision"] == "double"
+    c = auto.choose(BALL, 1, 1e-15, 1000.0)
+    assert c["precision"] == "long double"

@@ -153,8 +153,8 @@ def choose(case_id: str, model: int, rtol: float, t_end: float, project: bool = 
         method, tol = "vern9", rtol
         reason = (f"no measured run reaches error {rtol:.0e}; vern9, the most accurate "
                   "in-house pair (double precision limits it)")
-    if method == wp.TAYLOR and precision is None:
-        precision = front_prec
+    if method == wp.TAYLOR and precision is None and rtol <= EXTENDED_BELOW:
+        precision = front_prec      # above EXTENDED_BELOW: double (_rung), whatever the front
     return {"method": method, "precision": precision if method == wp.TAYLOR else None,
             "tol": max(tol, RK_MIN_TOL), "compensated": False, "requested_rtol": rtol,
             "reason": "; ".join([reason, *notes]), "taylor_allowed": wp.TAYLOR in allowed,
