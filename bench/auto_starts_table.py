@@ -158,7 +158,7 @@ def write_choice_case(case_id, T, rows) -> str:
             data["cases"] = old["cases"]
     data["cases"][case_id] = {"T": T, "levels": choice_table(rows)}
     DATA.write_text(json.dumps(data, separators=(",", ":")) + "\n")
-    auto_choice.load.cache_clear()
+    auto_choice.reload()
     return str(DATA)
 
 

@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import json
 import math
-from functools import cache
+from functools import cache, lru_cache
 from pathlib import Path
 
 DATA = Path(__file__).resolve().parent / "data" / "auto_choice.json"
@@ -74,8 +74,21 @@ def _quantile_tol(tols: list, cover: float) -> float | None:
 
 def first_choice(case_id: str, rtol: float, allowed) -> dict | None:
     """{"method", "tol", "level", "wins", "judged", "expected_s" (the method's median CPU
-    time at the level), "reason"}, or None where the data
-    has no level at or below rtol * AIM_FIRST (or no data) for the allowed methods."""
+    time at the level), "reason"}, or None where the data has no level at or below
+    rtol * AIM_FIRST (or no data) for the allowed methods. Cached per request: a short
+    run costs no more than reading the data would."""
+    pick = _first_choice(case_id, float(rtol), tuple(allowed))
+    return None if pick is None else dict(pick)
+
+
+def reload() -> None:
+    """Read the data file again (the bench calls this after writing it)."""
+    load.cache_clear()
+    _first_choice.cache_clear()
+
+
+@lru_cache(maxsize=256)
+def _first_choice(case_id: str, rtol: float, allowed: tuple) -> dict | None:
     data = load()
     if data is None:
         return None
