@@ -57,6 +57,9 @@ ALPHA = {"dop853": 0.85, "vern9": 0.85, wp.TAYLOR: 0.6}
 # run's error is round-off as much as truncation and does not shrink with tol: there the
 # estimate is the difference itself (factor 1), not its extrapolation
 FLOOR_MARGIN = 100.0
+# no estimate is below ROUNDING times that floor (eps sqrt(T), the round-off the precision
+# rule takes a run of length T to carry): an extrapolated difference does not see it
+ROUNDING = 10.0
 MAX_ROUNDS = 3
 AIM = 0.5                       # a tightened run aims at this fraction of the request
 RK_MIN_TOL = 1e-16              # simulate's smallest rtol
@@ -304,13 +307,13 @@ def _estimate(res, rung, ref, ref_rung, t_end):
     k = scale(rung["method"], e_run, e_ref)
     if not np.isfinite(k):
         return None, f"the check run of {_describe(ref_rung)} runs the same order"
-    near_floor = False
-    if rung["method"] == wp.TAYLOR:
-        from solvers.integrate.taylor_backend import floor
+    from solvers.integrate.taylor_backend import floor
 
-        near_floor = e_run < FLOOR_MARGIN * floor(rung["precision"] or "double", t_end)
-        k = max(k, 1.0) if near_floor else k
-    est = error_between(res.y[:len(res.t)], ref.y[:len(ref.t)]) * k
+    rounding = floor(rung["precision"] or "double", t_end)
+    near_floor = rung["method"] == wp.TAYLOR and e_run < FLOOR_MARGIN * rounding
+    k = max(k, 1.0) if near_floor else k
+    # the difference of two runs does not see the round-off both carry: never below it
+    est = max(error_between(res.y[:len(res.t)], ref.y[:len(ref.t)]) * k, ROUNDING * rounding)
     side = "looser" if e_ref > e_run else "tighter"
     ratio = max(e_ref, e_run) / min(e_ref, e_run)
     return est, (f"{'upper estimate by extrapolation' if side == 'looser' else 'estimate'}: "
