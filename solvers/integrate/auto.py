@@ -279,12 +279,12 @@ _pool_lock = threading.Lock()
 
 def _checker():
     """The process's threads for check runs (started once: a thread's start costs as
-    much as a short run)."""
+    much as a short run; a forked child starts its own: threads do not cross a fork)."""
     with _pool_lock:
-        if not _pool:
-            _pool.append(ThreadPoolExecutor(max_workers=max(os.cpu_count() or 1, 2),
-                                            thread_name_prefix="auto-check"))
-        return _pool[0]
+        if not _pool or _pool[0][0] != os.getpid():
+            _pool[:] = [(os.getpid(), ThreadPoolExecutor(
+                max_workers=max(os.cpu_count() or 1, 2), thread_name_prefix="auto-check"))]
+        return _pool[0][1]
 
 
 def _pair(runner, a: dict, budget_a: int, b: dict, budget_b: int, parallel: bool = True):
