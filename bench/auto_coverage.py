@@ -6,11 +6,11 @@ random starts from bench/limit.py's generator (random_starts: M in a random dire
 and requested errors E = 1e-6, 1e-10, 1e-12:
 
   auto      simulate(method="auto", rtol=E, atol=E, samples=101): the returned run, its
-            error_estimate (solvers/integrate/auto.py: the difference from a check run 10^1.5
-            times tighter, tightened until the estimate is <= E, at most MAX_ROUNDS rounds; below
-            the Runge-Kutta floor on the Taylor backend in long double)
-  first     the front's first choice alone (auto.choose(): the method and tolerance auto
-            ran before it checked itself), run as auto runs it (compensated sums)
+            error_estimate (solvers/integrate/auto.py: an upper estimate by extrapolation
+            from a check run of the same method 10^2.5 times looser, run beside it on a
+            second thread; tightened until the estimate is <= E, at most MAX_ROUNDS runs)
+  first     auto's first choice alone (auto.choose(): the method and tolerance auto
+            runs before its estimate), run as auto runs it
 
 Achieved error: max over the 101 output times of |y - y_ref|_inf / max(1, max |y_ref|_inf)
 (work_precision.py's measure, the one auto reads rtol as), the reference heyoka's Taylor

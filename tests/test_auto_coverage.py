@@ -1,7 +1,8 @@
 """A cheap smoke run of bench/auto_coverage.py's measurement: on a couple of random starts
 (bench/limit.py's generator, |M| spread over two decades) auto's returned run is within the
 requested error against an independent reference (heyoka in long double on the general
-expression system), and its estimate is within a factor 2 of the achieved error."""
+expression system), and its estimate, an upper estimate by extrapolation, is above the
+achieved error and within a factor 30 of it."""
 
 import sys
 from pathlib import Path
@@ -37,4 +38,4 @@ def test_auto_meets_the_request_on_random_starts(case):
         achieved = error_between(r.state, Yref)
         assert r.ok and r.stats["auto"]["met"]
         assert achieved <= E, (y0, achieved, r.stats["error_estimate"])
-        assert 0.5 < r.stats["error_estimate"] / achieved < 2.0
+        assert achieved <= r.stats["error_estimate"] <= 30 * achieved

@@ -92,19 +92,18 @@ def test_default_method_falls_back():
     assert wp.default_method("plane/chaplygin-ball") in wp.PLAIN
 
 
-def test_simulate_auto_picks_from_the_front_at_the_requested_error():
+def test_simulate_auto_picks_from_the_fronts_at_the_requested_error():
     """auto is chosen per case and tolerance (solvers/integrate/auto.py; it was the case's
-    default method regardless of rtol before issue 12)."""
-    from solvers.integrate import auto
+    default method regardless of rtol before issue 12), from the fronts measured over many
+    starts (solvers/integrate/auto_choice.py)."""
+    from solvers.integrate import auto, auto_choice
     from solvers.simulate import simulate
 
     c = registry()["plane/ellipsoid"]
     r = simulate("plane/ellipsoid", c.example, c.state, 10.0, method="auto", samples=11)
-    runs = [x for x in wp.load_results()["runs"] if x["case"] == "plane/ellipsoid"
-            and x["method"] in auto.CANDIDATES]
-    best = wp.cost_at(runs, 1e-10)                       # simulate's default rtol
-    assert r.ok and r.stats["method"] == best["method"]
-    assert r.stats["auto"]["front_point"]["wall_s"] == best["wall_s"]
+    pick = auto_choice.first_choice("plane/ellipsoid", 1e-10, auto.CANDIDATES)  # the default rtol
+    assert r.ok and r.stats["auto"]["method"] == pick["method"]
+    assert r.stats["auto"]["tol"] == pick["tol"]
 
 
 def test_batch_equals_one_by_one_on_two_threads():

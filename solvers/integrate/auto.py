@@ -1,40 +1,73 @@
-"""`method="auto"`: the method to run, chosen from the measured work-precision front per
-case and per tolerance, across the in-house kernels and the Taylor backend.
+"""`method="auto"`: a method and tolerance chosen from fronts measured over many starts,
+run once, with an estimate of that run's own global error bought by a second, looser run.
 
-The measurements are bench/work_precision.py's (solvers/integrate/data/work_precision.json):
-for each benchmark case, runs of dop853 and vern9 (compensated summation, rtol = atol)
-and `taylor` (heyoka on the lean generated field, solvers/integrate/taylor_backend.py, in
-double and long double) at tolerances 1e-4 ... 1e-16, each with its error against a
-long-double reference and its wall time. auto reads the requested rtol as the error
-wanted (the benchmark's error is relative to max(1, |y_ref|)).
+The choice (choose): solvers/integrate/auto_choice.py reads bench/auto_starts.py's data
+(the fronts of dop853, vern9 and the Taylor backend over the 20 starts of the many-start
+benchmark, per case): the method cheapest at the request's error on most starts, at the
+tolerance that reached it on most starts. Where the data has no level for the request
+(below 10^-14) or is missing, the one-start front of bench/work_precision.py
+(solvers/integrate/data/work_precision.json) decides as before: its cheapest measured run
+of error <= the request (workprecision.cost_at), else the Taylor backend in the precision
+the request needs. Projection has no Taylor form, so with project = true only dop853 and
+vern9 compete; without heyoka the Taylor candidate is left out, and the reason says so.
 
-For each candidate, its cheapest measured run whose error is <= that level
-(workprecision.cost_at; the tolerances are half a decade apart from 10^-8.5 to 10^-10.5,
-then a quarter decade apart, the Taylor backend's own grid, to 10^-13.75);
-the cheapest candidate wins and runs as the benchmark ran it: that run's tolerance
-(rtol = atol; compensated summation for dop853 / vern9; the run's precision for taylor).
-No interpolation: a log-log interpolation of the tolerance was tried and missed the error
-several times over (a Taylor method's error is not a smooth power of tol, its order steps with
-it), so auto keeps to tolerances that were measured to deliver. The
-benchmark's run is 1000 time units (100 for the unbalanced ball): a longer run of the
-same case accumulates more error, a shorter one less.
+The error estimate (run_checked): the run returned is the TIGHTER of two runs of the same
+method; the other runs CHECK_LOOSER looser, on a second thread at the same time where the
+run is expected to take PARALLEL_MIN_S or more (the numba kernels are nogil and heyoka's
+propagation releases the GIL too: a Python loop on another thread keeps its pace beside
+it). For a method whose global error
+goes as tol^alpha, the two errors are e and e * F^alpha (F = CHECK_LOOSER), so their
+difference d (the benchmark's measure, error_between) gives e = d * rho / (1 - rho) with
+rho = F^-alpha. alpha is taken LOWER than the error's measured growth with tol
+(ALPHA: below the q/(q+1) of a method of order q, bench/auto_starts.py's fronts), which
+makes the estimate larger than the error: an upper estimate by extrapolation, not a bound.
+A run whose estimate exceeds the request is followed by a tighter one (error ~ tol^alpha,
+aiming at AIM of the request) checked against the run before it, which is looser by the
+same argument, at most MAX_ROUNDS runs of the returned kind; the run returned is always
+the last one that has an estimate.
 
-A case the benchmark did not measure takes the method that wins the level on most of the
-measured cases, at the requested rtol. A level no measured run reaches (e.g. 1e-16 over
-T = 1000) goes to the Taylor backend, whose rule (taylor_backend.choose_precision) picks
-long double or quad. Projection has no Taylor form, so with project = true only dop853
-and vern9 compete. Without heyoka the Taylor candidate is left out, and the reason says so.
+A Runge-Kutta pair is not run tighter than RK_MIN_RUN (round-off, not the tolerance, sets
+its error there): a tighter run goes to the Taylor backend. A request above
+EXTENDED_BELOW never runs in extended precision: the Taylor backend stays in double, down
+to its double floor (taylor_backend.floor), and says so when that is not enough.
 """
 
 from __future__ import annotations
 
+import os
+import threading
 from collections import Counter
+from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
+from solvers.integrate import auto_choice
 from solvers.integrate import workprecision as wp
 
 CANDIDATES = (*wp.PLAIN, wp.TAYLOR)
+CHECK_LOOSER = 10.0 ** 2.5      # a Runge-Kutta check run's tol over the returned run's
+TAYLOR_CHECK_ORDERS = 2         # a Taylor check run is this many orders lower
+MIN_TIGHTEN = 10.0 ** 0.5       # a tighter round is at least this much tighter
+CHECK_MAX_TOL = 1e-5            # no looser check than this: errors there are not a power of tol
+# the exponent of the error's growth with tol, taken low (module doc): below q/(q+1) for
+# the pairs' orders (8, 9); the Taylor backend's error is far less regular in its order's
+# tol, so its exponent is taken lower still (the measured exponents: bench/auto_starts.py)
+ALPHA = {"dop853": 0.85, "vern9": 0.85, wp.TAYLOR: 0.6}
+# within FLOOR_MARGIN of its precision's round-off floor (taylor_backend.floor) a Taylor
+# run's error is round-off as much as truncation and does not shrink with tol: there the
+# estimate is the difference itself (factor 1), not its extrapolation
+FLOOR_MARGIN = 100.0
+# no estimate is below ROUNDING times that floor (eps sqrt(T), the round-off the precision
+# rule takes a run of length T to carry): an extrapolated difference does not see it
+ROUNDING = 10.0
+MAX_ROUNDS = 3
+AIM = 0.5                       # a tightened run aims at this fraction of the request
+RK_MIN_TOL = 1e-16              # simulate's smallest rtol
+RK_MIN_RUN = 1e-14              # the tightest Runge-Kutta run auto returns
+EXTENDED_BELOW = 1e-14          # only requests at or below this may run in long double
+CHECK_SHARE = 0.4               # the looser check run's share of the step budget
+PARALLEL_MIN_S = 0.005          # a run expected to take less runs its check after it, not beside
+TAYLOR_MIN_TOL = 10.0 ** -18.5
 
 
 def _taylor_available() -> bool:
@@ -65,11 +98,39 @@ def _winner(runs: list[dict], case_id: str, level: float, allowed) -> dict | Non
     return best
 
 
+def _one_start_front(case_id, rtol, allowed):
+    """The method and tol of the one-start front (work_precision.json), or (None, ...)."""
+    from solvers.integrate.taylor_backend import snap_tol
+
+    try:
+        data = wp.load_results()
+    except FileNotFoundError:
+        data = {"runs": [], "cases": []}
+    runs, measured = data["runs"], {c["id"] for c in data["cases"]}
+    if case_id in measured:
+        front = _winner(runs, case_id, rtol, allowed)
+        if front is None:
+            return None, None, None, None
+        tol = min(snap_tol(front["tol"]), 0.1)
+        return (front["method"], tol, front.get("precision"),
+                f"cheapest at error {rtol:.0e} on the measured front of {case_id} (one "
+                f"start): {front['method']} at tol {tol:.3g}, error {front['error']:.1e}")
+    wins = Counter()
+    for cid in sorted(measured):
+        w = _winner(runs, cid, rtol, allowed)
+        if w is not None:
+            wins[w["method"]] += 1
+    if not wins:
+        return None, None, None, None
+    m = wins.most_common(1)[0][0]
+    return m, rtol, None, (f"{case_id} is not measured: the method cheapest at {rtol:.0e} "
+                           f"on most measured cases ({dict(wins)})")
+
+
 def choose(case_id: str, model: int, rtol: float, t_end: float, project: bool = False,
            step=None, precision: str | None = None) -> dict:
     """{"method", "precision", "tol", "compensated", "requested_rtol", "reason",
-    "front_point"}: what auto runs, with which tolerance, and why."""
-    from solvers.integrate.taylor_backend import snap_tol
+    "taylor_allowed"}: what auto runs first, with which tolerance, and why."""
     from solvers.kernels.generate import GENERATED_MODELS
 
     allowed = list(CANDIDATES)
@@ -80,77 +141,32 @@ def choose(case_id: str, model: int, rtol: float, t_end: float, project: bool = 
     elif not _taylor_available():
         allowed.remove(wp.TAYLOR)
         notes.append("taylor left out: heyoka is not installed")
-    try:
-        data = wp.load_results()
-    except FileNotFoundError:
-        data = {"runs": [], "cases": []}
-    runs = data["runs"]
-    measured = {c["id"] for c in data["cases"]}
-    front = None
-    if case_id in measured:
-        front = _winner(runs, case_id, rtol, allowed)
-        basis = f"the measured front of {case_id}"
-        method = front["method"] if front else None
+    pick = auto_choice.first_choice(case_id, rtol, allowed)
+    expected = None
+    if pick is not None:
+        method, tol, front_prec, reason = pick["method"], pick["tol"], None, pick["reason"]
+        expected = pick["expected_s"]
     else:
-        wins = Counter()
-        for cid in sorted(measured):
-            w = _winner(runs, cid, rtol, allowed)
-            if w is not None:
-                wins[w["method"]] += 1
-        method = wins.most_common(1)[0][0] if wins else None
-        basis = (f"{case_id} is not measured: the method cheapest at this level on most "
-                 f"measured cases ({dict(wins)})")
-    if method is not None:
-        reason = f"cheapest at error {rtol:.0e} on {basis}"
-    elif wp.TAYLOR in allowed:
-        method = wp.TAYLOR
+        method, tol, front_prec, reason = _one_start_front(case_id, rtol, allowed)
+    if method is None and wp.TAYLOR in allowed:
+        method, tol = wp.TAYLOR, rtol
         reason = (f"no measured run reaches error {rtol:.0e}; the Taylor backend in the "
                   "precision the request needs")
-    else:
-        method = "vern9"
+    elif method is None:
+        method, tol = "vern9", rtol
         reason = (f"no measured run reaches error {rtol:.0e}; vern9, the most accurate "
                   "in-house pair (double precision limits it)")
-    tol = rtol
-    if front is not None:
-        tol = min(snap_tol(front["tol"]), 0.1)
-        reason += (f": {front['method']} at tol {tol:.3g}"
-                   + (f" in {front['precision']}" if front.get("precision") else "")
-                   + f", error {front['error']:.1e} in {front['wall_s'] * 1e3:.3g} ms on "
-                   "the benchmark")
-        if method == wp.TAYLOR and precision is None:
-            precision = front.get("precision")
-    tol = max(tol, 1e-16)
+    if method == wp.TAYLOR and precision is None and rtol <= EXTENDED_BELOW:
+        precision = front_prec      # above EXTENDED_BELOW: double (_rung), whatever the front
     return {"method": method, "precision": precision if method == wp.TAYLOR else None,
-            "tol": tol, "compensated": front is not None and method in wp.PLAIN,
-            "requested_rtol": rtol, "reason": "; ".join([reason, *notes]),
-            "front_point": front, "taylor_allowed": wp.TAYLOR in allowed}
+            "tol": max(tol, RK_MIN_TOL), "compensated": False, "requested_rtol": rtol,
+            "reason": "; ".join([reason, *notes]), "taylor_allowed": wp.TAYLOR in allowed,
+            # the run's CPU time on the measured starts (median), None where not measured:
+            # run_checked runs the check beside the run only where that is worth a thread
+            "expected_s": expected}
 
 
-# --- the estimate of this run's error, and tightening until it meets the request ----------
-# The front is measured on one start per case; on other starts the chosen tolerance can miss
-# the requested error several times over (bench/auto_coverage.py). So auto checks its own
-# run: it runs the
-# same method once more at a tolerance CHECK_FACTOR tighter and reports the difference of
-# the two (the benchmark's error measure, error_between) as the estimated global error of
-# the run it returns. With error roughly proportional to tol, the check run's own error is
-# ~1/30 of the returned run's, so the difference estimates the returned run's error to a
-# few per cent. If the estimate exceeds the request, the tolerance is tightened (error ~ tol
-# again, aiming at half the request) and checked again, at most MAX_ROUNDS rounds, all runs
-# together within the request's max_steps. Measured: bench/auto_coverage.py.
-# The Runge-Kutta pairs run in double: below RK_MIN_TOL their round-off, not the tolerance,
-# sets the error (bench/auto_coverage.py: vern9 at tol 1e-16 missed 1e-12 by more than an
-# order of magnitude on the disk, and its check run at the same floor could not tell). A tighter
-# run than that goes to the Taylor backend in extended precision where it can run (a
-# generated field, no projection, heyoka installed), as choose() does for levels beyond the
-# front; there the check run may go to TAYLOR_MIN_TOL in long double.
-CHECK_FACTOR = 10.0 ** 1.5      # six quarter decades: keeps the tolerances on the front's grid
-MAX_ROUNDS = 4
-AIM = 0.5                       # a tightened tolerance aims at this fraction of the request
-RK_MIN_TOL = 1e-16              # simulate's smallest rtol
-RK_MIN_RUN = RK_MIN_TOL * CHECK_FACTOR   # the tightest RK run that still has a tighter check
-TAYLOR_MIN_TOL = 10.0 ** -18.5
-
-
+# --- the runs: one returned, one looser beside it, tighter ones only if the estimate misses
 def error_between(Y, Yref) -> float:
     """max over the output times of |Y - Yref|_inf / max(1, max |Yref|_inf): the error
     measure of bench/work_precision.py, the one auto reads the requested rtol as."""
@@ -165,13 +181,17 @@ def _snap(tol: float, floor: float) -> float:
 
 
 def _rung(method: str, tol: float, precision: str | None, compensated: bool,
-          t_end: float) -> dict:
+          t_end: float, extended: bool = True) -> dict:
     """One run auto may make. A Taylor run below its precision's floor widens precision
-    (taylor_backend.choose_precision) up to long double (quad only if chosen before: it
-    costs far more: software arithmetic), never narrows it."""
+    (taylor_backend.choose_precision) up to long double, never narrows it; with
+    extended = False (a request above EXTENDED_BELOW) it stays in double, at no tighter
+    tol than double's floor."""
     if method == wp.TAYLOR:
-        from solvers.integrate.taylor_backend import PRECISIONS, choose_precision
+        from solvers.integrate.taylor_backend import PRECISIONS, choose_precision, floor
 
+        if not extended and precision in (None, "double"):
+            return {"method": method, "precision": "double", "compensated": False,
+                    "tol": _snap(max(tol, floor("double", t_end)), TAYLOR_MIN_TOL)}
         need = choose_precision(tol, t_end)
         if need == "quad" and precision != "quad":
             need = "long double"
@@ -179,17 +199,73 @@ def _rung(method: str, tol: float, precision: str | None, compensated: bool,
             precision = need
         return {"method": method, "tol": _snap(tol, TAYLOR_MIN_TOL), "precision": precision,
                 "compensated": False}
-    return {"method": method, "tol": _snap(tol, RK_MIN_TOL), "precision": None,
+    return {"method": method, "tol": max(tol, RK_MIN_TOL), "precision": None,
             "compensated": compensated}
 
 
-def _tightened(rung: dict, tol: float, t_end: float, taylor_ok: bool) -> dict:
-    """The run at `tol`: the same method, or the Taylor backend where a Runge-Kutta pair
-    could not be checked at that tol (RK_MIN_RUN)."""
+def _tighter(rung: dict, tol: float, t_end: float, taylor_ok: bool, extended: bool) -> dict:
+    """The run at `tol`: the same method, or the Taylor backend below RK_MIN_RUN."""
     if rung["method"] != wp.TAYLOR and tol < RK_MIN_RUN * (1 - 1e-9):
         if taylor_ok:
-            return _rung(wp.TAYLOR, tol, None, False, t_end)
-    return _rung(rung["method"], tol, rung["precision"], rung["compensated"], t_end)
+            return _rung(wp.TAYLOR, tol, None, False, t_end, extended)
+        tol = RK_MIN_RUN
+    return _rung(rung["method"], tol, rung["precision"], rung["compensated"], t_end, extended)
+
+
+def taylor_order(tol: float) -> int:
+    """The order heyoka's adaptive Taylor integrator picks for tol: ceil(-ln(tol)/2 + 1)
+    (Jorba & Zou). Its step follows from the series' radius of convergence, not from tol,
+    so two tols of one order run the same steps to the same result: the tol that matters
+    is the order's, exp(-2 (order - 1)) (effective_tol)."""
+    return int(np.ceil(-np.log(tol) / 2.0 + 1.0 - 1e-12))
+
+
+def effective_tol(rung: dict, res=None) -> float:
+    """The tolerance a run's error scales with: its tol; a Taylor run's order's."""
+    if rung["method"] != wp.TAYLOR:
+        return rung["tol"]
+    order = getattr(res, "extra", {}).get("taylor_order") if res is not None else None
+    return float(np.exp(-2.0 * ((order or taylor_order(rung["tol"])) - 1)))
+
+
+def _tol_of_order(order: int) -> float:
+    """The loosest tol of the quarter-decade grid whose order is `order`."""
+    return _snap(float(np.exp(-2.0 * (order - 2))) * (1 - 1e-9), TAYLOR_MIN_TOL)
+
+
+def _looser(rung: dict, t_end: float) -> dict:
+    """The check run of `rung`: the same method and precision, CHECK_LOOSER looser (a
+    Taylor run: TAYLOR_CHECK_ORDERS orders lower, a tol e^(2 x orders) looser); where
+    that is looser than CHECK_MAX_TOL (errors there are not yet a power of tol), as much
+    TIGHTER instead."""
+    if rung["method"] == wp.TAYLOR:
+        p = taylor_order(rung["tol"])
+        loose = {**rung, "tol": _tol_of_order(max(p - TAYLOR_CHECK_ORDERS, 2))}
+        tight = {**rung, "tol": _tol_of_order(p + TAYLOR_CHECK_ORDERS)}
+    else:
+        loose = {**rung, "tol": rung["tol"] * CHECK_LOOSER}
+        tight = {**rung, "tol": max(rung["tol"] / CHECK_LOOSER, RK_MIN_TOL)}
+    return loose if effective_tol(loose) <= CHECK_MAX_TOL * (1 + 1e-9) else tight
+
+
+def scale(method: str, tol_run: float, tol_check: float) -> float:
+    """The returned run's error per unit of its difference from the check run (module
+    doc), effective tols: rho / (1 - rho), rho = (tol_run / tol_check)^alpha, for a looser
+    check; 1 / (1 - rho), rho = (tol_check / tol_run)^alpha, for a tighter one; inf for
+    the same tol."""
+    if tol_check == tol_run:
+        return float("inf")
+    rho = (min(tol_run, tol_check) / max(tol_run, tol_check)) ** ALPHA[method]
+    return (rho if tol_check > tol_run else 1.0) / (1.0 - rho)
+
+
+def plan(choice: dict, t_end: float) -> list[dict]:
+    """The runs a request fixes before it runs (solvers/integrate/run_plan.py): the
+    first run and its check; a tighter round depends on the estimate."""
+    extended = choice["requested_rtol"] <= EXTENDED_BELOW
+    first = _rung(choice["method"], choice["tol"], choice["precision"],
+                  choice["compensated"], t_end, extended)
+    return [first, _looser(first, t_end)]
 
 
 def _describe(r: dict) -> str:
@@ -197,65 +273,137 @@ def _describe(r: dict) -> str:
             + (f" in {r['precision']}" if r["precision"] else ""))
 
 
-def run_checked(choice: dict, runner, t_end: float, max_steps: int, taylor_ok: bool = False):
-    """Run auto's choice, estimate the run's global error by a check run CHECK_FACTOR
-    tighter, tighten while the estimate exceeds the request (module comment above).
-    The estimate returned is always the returned run's: a tightened run that could not be
-    checked (budget, a failed check run) is not returned; the last checked one is.
+_pool: list = []
+_pool_lock = threading.Lock()
 
-    runner(rung, max_steps) -> an integrator result (t, y, success, steps, ...).
-    taylor_ok: the Taylor backend may run this case (beyond the Runge-Kutta floor).
+
+def _checker():
+    """The process's threads for check runs (started once: a thread's start costs as
+    much as a short run; a forked child starts its own: threads do not cross a fork)."""
+    with _pool_lock:
+        if not _pool or _pool[0][0] != os.getpid():
+            _pool[:] = [(os.getpid(), ThreadPoolExecutor(
+                max_workers=max(os.cpu_count() or 1, 2), thread_name_prefix="auto-check"))]
+        return _pool[0][1]
+
+
+def _pair(runner, a: dict, budget_a: int, b: dict, budget_b: int, parallel: bool = True):
+    """Run a and b, b on a second thread at the same time where parallel; both results."""
+    if not parallel:
+        return runner(a, budget_a), runner(b, budget_b)
+    fut = _checker().submit(runner, b, budget_b)
+    try:
+        ra = runner(a, budget_a)
+    finally:
+        rb = fut.result()      # waits for it (and re-raises its error) either way
+    return ra, rb
+
+
+def _estimate(res, rung, ref, ref_rung, t_end):
+    """(estimate of res's error, how) from the check run ref; (None, why) without one."""
+    if not ref.success or len(ref.t) != len(res.t):
+        return None, f"the check run of {_describe(ref_rung)} stopped early ({ref.message})"
+    e_run, e_ref = effective_tol(rung, res), effective_tol(ref_rung, ref)
+    k = scale(rung["method"], e_run, e_ref)
+    if not np.isfinite(k):
+        return None, f"the check run of {_describe(ref_rung)} runs the same order"
+    from solvers.integrate.taylor_backend import floor
+
+    rounding = floor(rung["precision"] or "double", t_end)
+    near_floor = rung["method"] == wp.TAYLOR and e_run < FLOOR_MARGIN * rounding
+    k = max(k, 1.0) if near_floor else k
+    # the difference of two runs does not see the round-off both carry: never below it
+    est = max(error_between(res.y[:len(res.t)], ref.y[:len(ref.t)]) * k, ROUNDING * rounding)
+    side = "looser" if e_ref > e_run else "tighter"
+    ratio = max(e_ref, e_run) / min(e_ref, e_run)
+    return est, (f"{'upper estimate by extrapolation' if side == 'looser' else 'estimate'}: "
+                 f"the difference from a run of {_describe(ref_rung)} ({ratio:.3g} times "
+                 f"{side}" + (", by the Taylor orders' tolerances"
+                              if rung["method"] == wp.TAYLOR else "")
+                 + f") times {k:.3g} (error ~ tol^{ALPHA[rung['method']]}, the exponent "
+                 "taken low" + ("; near the round-off floor: the difference itself"
+                                if near_floor else "")
+                 + "); the difference: max over the output times of |y - y_check| / "
+                 "max(1, max |y_check|)")
+
+
+def run_checked(choice: dict, runner, t_end: float, max_steps: int, taylor_ok: bool = False):
+    """Run auto's choice and its check beside it; estimate the returned run's global
+    error from their difference (module doc); tighten while the estimate exceeds the
+    request. The estimate returned is always the returned run's.
+
+    runner(rung, max_steps) -> an integrator result (t, y, success, steps, ...); it is
+    called from two threads at once for a run and its check.
     Returns (the result to return, {"error_estimate", "error_estimate_method", "met",
     "rounds", "runs", "compiled_runs", "steps_total", "rhs_calls_total", "wall_s_total",
     "returned"})."""
     requested = choice["requested_rtol"]
-    rung = _rung(choice["method"], choice["tol"], choice["precision"],
-                 choice["compensated"], t_end)
-    runs = []
+    extended = requested <= EXTENDED_BELOW
+    runs, done = [], []          # done: (rung, res) of every successful run, for checks
 
-    def go(r):
-        res = runner(r, max(max_steps - sum(x.steps for x in runs), 1))
-        runs.append(res)
-        return res
+    def spent():
+        return sum(x.steps for x in runs)
 
-    res = go(rung)
-    rounds, checked, why = [], None, ""      # checked: (res, rung, estimate, how)
-    for k in range(MAX_ROUNDS):
-        if not res.success:
-            why = f"the run of {_describe(rung)} stopped early ({res.message})"
-            break
-        check = _tightened(rung, rung["tol"] / CHECK_FACTOR, t_end, taylor_ok)
-        if (check["tol"], check["precision"]) == (rung["tol"], rung["precision"]):
-            why = f"{_describe(rung)} is as tight as auto runs, no tighter check"
-            break
-        if sum(x.steps for x in runs) >= max_steps:
-            why = "the step budget was spent before a check run"
-            break
-        ref = go(check)
-        if not ref.success or len(ref.t) != len(res.t):
-            why = f"the check run of {_describe(check)} stopped early ({ref.message})"
-            break
-        estimate = error_between(res.y[:len(res.t)], ref.y[:len(ref.t)])
-        how = (f"the difference from a second run of {_describe(check)} "
-               f"(tol {rung['tol'] / check['tol']:.3g} times tighter): max over the output "
-               "times of |y - y_check| / max(1, max |y_check|)")
-        checked = (res, rung, estimate, how)
-        rounds.append({**rung, "check": _describe(check), "error_estimate": estimate})
-        if estimate <= requested or k == MAX_ROUNDS - 1:
-            break
-        want = _tightened(rung, rung["tol"] * AIM * requested / estimate, t_end, taylor_ok)
-        if (want["method"], want["precision"]) == (check["method"], check["precision"]) \
-                and want["tol"] >= check["tol"]:
-            rung, res = check, ref     # the check run is tight enough: it becomes the run
-        elif (want["tol"], want["method"]) == (rung["tol"], rung["method"]):
-            why = f"{_describe(rung)} is as tight as auto runs"
-            break
+    def checked_run(want, budget):
+        """Run `want` with a check: a looser earlier run of its kind (the closest in
+        tol, within CHECK_MAX_TOL) or else a check run beside it."""
+        kin = [(r, x) for r, x in done if (r["method"], r["precision"]) ==
+               (want["method"], want["precision"])
+               and effective_tol(want) < effective_tol(r, x) <= CHECK_MAX_TOL * (1 + 1e-9)]
+        if kin:
+            chk, ref = min(kin, key=lambda rx: effective_tol(*rx))
+            res = runner(want, budget)
+            runs.append(res)
         else:
-            rung = want
-            res = go(rung)
+            chk = _looser(want, t_end)
+            b = max(int(budget * CHECK_SHARE), 1)
+            res, ref = _pair(runner, want, max(budget - b, 1), chk, b,
+                             parallel=(choice.get("expected_s") or np.inf) >= PARALLEL_MIN_S)
+            runs.extend([res, ref])
+            if ref.success:
+                done.append((chk, ref))
+        if not res.success:
+            return res, chk, None, f"the run of {_describe(want)} stopped early ({res.message})"
+        done.append((want, res))
+        est, how = _estimate(res, want, ref, chk, t_end)
+        return res, chk, est, how
+
+    rung = plan(choice, t_end)[0]
+    res, chk, est, how = checked_run(rung, max_steps)
+    rounds, checked, why = [], None, ""
+    if est is None:
+        why = how
+    else:
+        checked = (res, rung, est, how)
+        rounds.append({**rung, "check": _describe(chk), "error_estimate": est})
+    while checked is not None and checked[2] > requested and len(rounds) < MAX_ROUNDS:
+        res0, rung0, est0, _ = checked
+        factor = max((est0 / (AIM * requested)) ** (1.0 / ALPHA[rung0["method"]]),
+                     MIN_TIGHTEN)
+        eff = effective_tol(rung0, res0) / factor
+        if rung0["method"] == wp.TAYLOR:     # the order that tol needs, and its tol
+            eff = _tol_of_order(max(taylor_order(eff), taylor_order(rung0["tol"]) + 1))
+        want = _tighter(rung0, eff, t_end, taylor_ok, extended)
+        if (want["method"] == rung0["method"] and want["precision"] == rung0["precision"]
+                and effective_tol(want) >= effective_tol(rung0, res0) * (1 - 1e-9)):
+            why = f"{_describe(rung0)} is as tight as auto runs here"
+            break
+        budget = max_steps - spent()
+        if budget <= 0:
+            why = "the step budget was spent before a tighter run"
+            break
+        new, chk, est, how = checked_run(want, budget)
+        if est is None:
+            why = how
+            break
+        checked = (new, want, est, how)
+        rounds.append({**want, "check": _describe(chk), "error_estimate": est})
+    else:
+        if checked is not None and checked[2] > requested and not why:
+            why = f"{MAX_ROUNDS} rounds spent"
     if checked is not None:
         res, rung, estimate, how = checked
-        if checked[2] > requested and why:
+        if estimate > requested and why:
             how += f"; no further round: {why}"
     else:
         estimate, how = None, f"none: {why}"
@@ -265,7 +413,7 @@ def run_checked(choice: dict, runner, t_end: float, max_steps: int, taylor_ok: b
             # Taylor runs that compiled their integrator here (not from a cache): what a
             # request's deadline paid for (app/services/kernel_prepare.py prepares them)
             "compiled_runs": sum(1 for x in runs if getattr(x, "extra", {}).get("compiled")),
-            "steps_total": int(sum(x.steps for x in runs)),
+            "steps_total": int(spent()),
             "rhs_calls_total": int(sum(x.rhs_calls for x in runs)),
             "wall_s_total": float(sum(x.wall_s for x in runs)),
             "returned": rung}

@@ -7,21 +7,11 @@ precision and the tol it runs in: taylor_backend.run picks them from rtol and th
 of the WHOLE run (choose_precision, snap_tol), so a tiny run would compile another one
 (rtol 1e-15: double over 1 time unit, long double over 100).
 
-A run of method "auto" (solvers/integrate/auto.py) runs its choice from the front, then a
-check run CHECK_FACTOR tighter (the Taylor backend, possibly in long double, where a
-Runge-Kutta pair cannot be checked), and, when the check finds the first run missed the
-request by at most CHECK_FACTOR / AIM (misses of that size were measured on other starts
-than the front's: bench/auto_coverage.py), the check run becomes the run and one more check
-CHECK_FACTOR tighter follows. Those three rungs are fixed by the request; a larger miss,
-or a third round, tightens to a tolerance computed from the measured estimate, which no
-plan knows before the run (a Taylor run compiled then says so: stats "compiled").
-
-The third rung is prepared ahead of need (CHECKS_AHEAD = 2): it costs the first request of
-a structure and level its compile even when the first estimate meets the request. For
-example auto at rtol 1e-10 on the Chaplygin ball runs vern9 at 1e-12, checks with vern9 at
-3.2e-14, and a second round's check is Taylor in double at 1e-15, a cold compile of its own
-(once per machine: the disk cache); at rtol 1e-15 the three rungs are long double Taylor
-integrators (their compile times: bench/taylor_compile.py, docs/performance.md).
+A run of method "auto" (solvers/integrate/auto.py) runs its choice and, beside it, a check
+run of the same method looser by auto.CHECK_LOOSER (auto.plan): those two rungs are fixed
+by the request. A tighter round, when the estimate misses the request, runs at a
+tolerance computed from the measured estimate, which no plan knows before the run (a
+Taylor run compiled then says so: stats "compiled").
 
 The Runge-Kutta kernels do not depend on the tolerance (compensated summation is a
 run-time flag of the same kernel), so their rungs name only the method.
@@ -30,7 +20,6 @@ run-time flag of the same kernel), so their rungs name only the method.
 from __future__ import annotations
 
 TAYLOR = "taylor"
-CHECKS_AHEAD = 2     # the check run, and the check's check (module doc)
 
 
 def rungs(case_id: str, model, method: str, rtol: float, t_end: float, *,
@@ -45,15 +34,11 @@ def rungs(case_id: str, model, method: str, rtol: float, t_end: float, *,
         return [{"method": TAYLOR, "tol": snap_tol(rtol), "precision": prec}]
     if method != "auto":
         return [{"method": method, "tol": rtol, "precision": None}]
-    from solvers.integrate.auto import CHECK_FACTOR, _rung, _tightened, choose
+    from solvers.integrate.auto import choose
+    from solvers.integrate.auto import plan as auto_plan
 
     choice = choose(case_id, model.model, rtol, t_end, project, step, precision)
-    first = _rung(choice["method"], choice["tol"], choice["precision"],
-                  choice["compensated"], t_end)
-    out = [first]
-    for _ in range(CHECKS_AHEAD):
-        out.append(_tightened(out[-1], out[-1]["tol"] / CHECK_FACTOR, t_end,
-                              choice["taylor_allowed"]))
+    out = auto_plan(choice, t_end)
     seen, plan = set(), []
     for r in out:
         key = (r["method"], r["tol"] if r["method"] == TAYLOR else None, r["precision"])
