@@ -4,6 +4,7 @@ prober measures GET /api/health. Bounded in users and time; it stops itself.
     python bench/load.py                         # 20 users, 60 s, its own server
     python bench/load.py --users 4 --duration 5 --json
     python bench/load.py --url http://127.0.0.1:8000   # an explorer already running
+    python bench/load.py --slow-bodies 1100 --seconds 40   # hostile: slow request bodies
 
 The users (simulate, pages and a 50 MB body): one user in four browses the pages
 (the home page, a case page and the scripts and data they load, plotly.js included); one
@@ -14,6 +15,10 @@ honour Retry-After on 503 (the designed answer of a full queue).
 Reported: latency p50/p99 of the runs and of the pages, the answers to the big bodies and
 how fast they came, p50/p99/max of the health probe, and the unplanned 5xx (every 5xx
 except 503), which must be zero.
+--slow-bodies N holds N request bodies open beside them, each sending one byte every half
+second (bench/slow_bodies.py); more than the server's connection cap (1000) keeps it
+evicting. Reported as well: the ordinary requests (runs, pages, health probes) and how
+many of them were dropped (no answer: the connection closed or reset), which must be zero.
 """
 
 from __future__ import annotations
@@ -33,6 +38,9 @@ import httpx
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
+
+from bench.slow_bodies import new_out as slow_out  # noqa: E402
+from bench.slow_bodies import raise_fd_limit, slow_bodies  # noqa: E402
 
 
 def pct(xs: list[float], q: float) -> float:
@@ -248,7 +256,8 @@ def prober(url: str, duration: float, out) -> None:
 
 
 async def load(url: str, users: int, duration: float, pages: int | None = None,
-               big: int | None = None, bombs: int = 0, stalled: int = 0) -> dict:
+               big: int | None = None, bombs: int = 0, stalled: int = 0,
+               slow: int = 0) -> dict:
     load0 = os.getloadavg()[0]
     limits = httpx.Limits(max_connections=users + 2, max_keepalive_connections=users + 2)
     timeout = httpx.Timeout(120.0)
@@ -271,11 +280,14 @@ async def load(url: str, users: int, duration: float, pages: int | None = None,
         bomb = {"status": {}, "answer_ms": [], "sent_mb": [], "errors": []}
         flood = {"opened": 0, "connect_errors": 0, "closed_by_server": 0,
                  "still_open_at_end": 0, "held_s": [], "errors": []}
+        trickle = slow_out()
         async with asyncio.TaskGroup() as tg:
             for _ in range(bombs):
                 tg.create_task(header_bombs(url, stop, bomb))
             if stalled:
                 tg.create_task(stalled_flood(url, stalled, stop, flood))
+            if slow:
+                tg.create_task(slow_bodies(url, slow, stop, trickle))
             for k in range(users - n_pages - n_big):
                 tg.create_task(user(client, cases, k, stop, sim_lat, sim_status, errors))
             for _ in range(n_pages):
@@ -289,7 +301,10 @@ async def load(url: str, users: int, duration: float, pages: int | None = None,
         pool, server_conn = final["pool"], final.get("connections")
     unplanned = sum(n for s, n in [*sim_status.items(), *health_status.items(),
                                    *page_status.items()] if s >= 500 and s != 503)
-    unplanned += sim_status.get(0, 0) + health_status.get(0, 0) + page_status.get(0, 0)
+    dropped = sim_status.get(0, 0) + health_status.get(0, 0) + page_status.get(0, 0)
+    unplanned += dropped
+    ordinary = sum(sim_status.values()) + sum(health_status.values()) + sum(
+        page_status.values())
     unplanned += sum(n for k, n in big["status"].items() if not k.endswith(":413"))
     unplanned += sum(n for k, n in bomb["status"].items() if k != 431)
     return {
@@ -320,6 +335,11 @@ async def load(url: str, users: int, duration: float, pages: int | None = None,
         "stalled": {"attempted": stalled, **{k: v for k, v in flood.items() if k != "held_s"},
                     "held_p50_s": pct(flood["held_s"], 50),
                     "held_max_s": max(flood["held_s"], default=float("nan"))},
+        "slow_bodies": trickle,
+        "ordinary": {"requests": ordinary, "dropped": dropped,
+                     "dropped_by_kind": {"simulate": sim_status.get(0, 0),
+                                         "pages": page_status.get(0, 0),
+                                         "health": health_status.get(0, 0)}},
         "server_connections": server_conn,
         "unplanned_5xx": unplanned,
         "errors": errors[:10],
@@ -367,6 +387,15 @@ def report(r: dict, settings: dict) -> str:
                      f"connect; {f['closed_by_server']} closed by the server after p50 "
                      f"{f['held_p50_s']:.1f} s, max {f['held_max_s']:.1f} s; "
                      f"{f['still_open_at_end']} still open at the end")
+    t = r["slow_bodies"]
+    if t["held"]:
+        lines.insert(-2, f"slow bodies: {t['held']} held (one byte every 0.5 s), "
+                     f"{t['opened']} connections opened, {t['closed_by_server']} closed by "
+                     f"the server, {t['connect_errors']} refused at connect, "
+                     f"{t['bytes_sent']} bytes sent")
+    o = r["ordinary"]
+    lines.insert(-2, f"ordinary requests (runs, pages, health probes): {o['requests']}, "
+                 f"dropped (no answer) {o['dropped']} {o['dropped_by_kind']}")
     if r.get("server_connections"):
         lines.append(f"server connection guards: {r['server_connections']}")
     if r["errors"]:
@@ -377,7 +406,7 @@ def report(r: dict, settings: dict) -> str:
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--users", type=int, default=20)
-    ap.add_argument("--duration", type=float, default=60.0)
+    ap.add_argument("--duration", "--seconds", type=float, default=60.0)
     ap.add_argument("--url", help="an explorer already running (default: start one)")
     ap.add_argument("--pages", type=int, help="users browsing pages (default users // 4)")
     ap.add_argument("--big", type=int, help="users sending 50 MB bodies (default 1)")
@@ -385,6 +414,8 @@ def main(argv=None) -> int:
                     help="extra clients sending 50 MB headers in a loop (at most 8)")
     ap.add_argument("--stalled", type=int, default=0,
                     help="stalled sockets to attempt (half a head or body; at most 5000)")
+    ap.add_argument("--slow-bodies", type=int, default=0,
+                    help="request bodies held open, one byte every 0.5 s (at most 5000)")
     ap.add_argument("--hostile", action="store_true",
                     help="the hostile mix: --big 3 --bombs 2 --stalled 3000")
     ap.add_argument("--max-connections", type=int,
@@ -396,14 +427,16 @@ def main(argv=None) -> int:
     ap.add_argument("--json", action="store_true", help="print the figures as JSON")
     ap.add_argument("--out", help="also write the report to this file")
     args = ap.parse_args(argv)
+    raise_fd_limit(args.stalled + args.slow_bodies)
     if args.hostile:
         args.big = 3 if args.big is None else args.big
         args.bombs = args.bombs or 2
         args.stalled = args.stalled or 3000
     if not (1 <= args.users <= 200 and 0 < args.duration <= 600):
         ap.error("users in [1, 200], duration in (0, 600] s")
-    if not (0 <= args.bombs <= 8 and 0 <= args.stalled <= 5000):
-        ap.error("--bombs in [0, 8], --stalled in [0, 5000]")
+    if not (0 <= args.bombs <= 8 and 0 <= args.stalled <= 5000
+            and 0 <= args.slow_bodies <= 5000):
+        ap.error("--bombs in [0, 8], --stalled and --slow-bodies in [0, 5000]")
     if args.max_connections is not None and not 8 <= args.max_connections <= 100_000:
         ap.error("--max-connections in [8, 100000]")
     if (args.pages or 0) + (args.big or 0) > args.users or min(args.pages or 0,
@@ -412,7 +445,7 @@ def main(argv=None) -> int:
 
     def run(url: str, settings: dict) -> dict:
         r = asyncio.run(load(url, args.users, args.duration, args.pages, args.big,
-                             args.bombs, args.stalled))
+                             args.bombs, args.stalled, args.slow_bodies))
         text = report(r, settings)
         print(json.dumps(r, indent=1) if args.json else text, end="" if not args.json else "\n")
         if args.out:
