@@ -15,10 +15,9 @@ honour Retry-After on 503 (the designed answer of a full queue).
 Reported: latency p50/p99 of the runs and of the pages, the answers to the big bodies and
 how fast they came, p50/p99/max of the health probe, and the unplanned 5xx (every 5xx
 except 503), which must be zero.
---slow-bodies N holds N request bodies open beside them, each sending one byte every half
-second (bench/slow_bodies.py); more than the server's connection cap (1000) keeps it
-evicting. Reported as well: the ordinary requests (runs, pages, health probes) and how
-many of them were dropped (no answer: the connection closed or reset), which must be zero.
+--slow-bodies N holds N request bodies open beside them (slow_bodies). Reported as well:
+the ordinary requests (runs, pages, health probes) and how many of them were dropped (no
+answer: the connection closed or reset), which must be zero.
 """
 
 from __future__ import annotations
@@ -29,6 +28,7 @@ import json
 import multiprocessing
 import os
 import platform
+import resource
 import statistics
 import sys
 import time
@@ -38,10 +38,6 @@ import httpx
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
-
-from bench.slow_bodies import new_out as slow_out  # noqa: E402
-from bench.slow_bodies import raise_fd_limit, slow_bodies  # noqa: E402
-
 
 def pct(xs: list[float], q: float) -> float:
     if not xs:
@@ -234,6 +230,74 @@ async def stalled_flood(url: str, count: int, stop: float, out: dict) -> None:
                 break
             tg.create_task(one(k))
             if k % 50 == 49:
+                await asyncio.sleep(0.1)
+
+
+# --slow-bodies N: N connections, each sending the head of a POST with a 1000-byte body,
+# then one byte of it (JSON whitespace) every TICK_S: never silent long enough to be
+# stalled (app.core.server's stall_grace_s, 1 s), never ending within the run. One the
+# server closes (an eviction at its cap) is opened again at once: N are held the whole
+# run, and more than the cap (1000) keeps the server evicting.
+SLOW_HEAD = (b"POST /api/validate HTTP/1.1\r\nHost: 127.0.0.1\r\n"
+             b"Content-Type: application/json\r\nContent-Length: 1000\r\n\r\n")
+TICK_S = 0.5
+
+
+def slow_out() -> dict:
+    return {"held": 0, "opened": 0, "closed_by_server": 0, "connect_errors": 0,
+            "bytes_sent": 0, "errors": []}
+
+
+def raise_fd_limit(count: int) -> None:
+    """Room for `count` held sockets besides the ordinary clients: the soft file limit
+    raised towards the hard one (a soft limit of 1024 is common)."""
+    soft, hard = resource.getrlimit(resource.RLIMIT_NOFILE)
+    if soft != resource.RLIM_INFINITY and soft < count + 512:
+        target = count + 512 if hard == resource.RLIM_INFINITY else min(count + 512, hard)
+        resource.setrlimit(resource.RLIMIT_NOFILE, (target, hard))
+
+
+async def _slow_one(host: str, port: int, stop: float, out: dict) -> None:
+    """One slow body at a time, opened again whenever the server closes it."""
+    while time.monotonic() < stop:
+        try:
+            reader, writer = await asyncio.open_connection(host, port)
+        except OSError as exc:
+            out["connect_errors"] += 1
+            if len(out["errors"]) < 5:
+                out["errors"].append(f"connect: {exc}")
+            await asyncio.sleep(TICK_S)
+            continue
+        out["opened"] += 1
+        try:
+            writer.write(SLOW_HEAD)
+            await writer.drain()
+            while time.monotonic() < stop:
+                await asyncio.sleep(TICK_S)
+                if reader.at_eof() or reader.exception() or writer.transport.is_closing():
+                    break
+                writer.write(b" ")
+                await writer.drain()
+                out["bytes_sent"] += 1
+            else:
+                continue                 # the run ended with this one open
+            out["closed_by_server"] += 1
+        except (ConnectionError, OSError):
+            out["closed_by_server"] += 1
+        finally:
+            writer.close()
+
+
+async def slow_bodies(url: str, count: int, stop: float, out: dict) -> None:
+    """Hold `count` slow bodies until `stop` (opened at about 1000 a second)."""
+    host, port = url.split("//", 1)[1].split(":")
+    out["held"] = count
+    async with asyncio.TaskGroup() as tg:
+        for k in range(count):
+            if time.monotonic() >= stop:
+                break
+            tg.create_task(_slow_one(host, int(port), stop, out))
+            if k % 100 == 99:
                 await asyncio.sleep(0.1)
 
 

@@ -214,11 +214,11 @@ def test_slow_bodies_at_the_cap_cost_ordinary_clients_nothing(server):
     import asyncio
     import threading
 
-    from bench.slow_bodies import new_out, slow_bodies
+    from bench.load import slow_bodies, slow_out
 
     url, port = server
     before = _guards(url)
-    out = new_out()
+    out = slow_out()
     stop = time.monotonic() + 7.0
     flood = threading.Thread(target=lambda: asyncio.run(slow_bodies(url, CAP + 10, stop, out)))
     # the keep-alive clients make a first request before the flood (a connection that
