@@ -33,14 +33,13 @@ def _input_message(e) -> str:
 
 
 def _check_bounds(request: str, **values) -> None:
-    """Options bounded as the API bounds the same fields of its request model
-    (app/schemas: "simulate" or "poincare"), refused in the API's words (exit 2)."""
+    """Options bounded as the API bounds the same fields of its request model, by the
+    same types (app.schemas.bounds: "simulate" or "poincare"), refused in the API's words
+    (exit 2). Nothing of the solvers is imported: a refusal comes at once."""
     from app.core.errors import refusal
+    from app.schemas.bounds import PoincareBounds, SimulateBounds
 
-    if request == "simulate":
-        from app.schemas.simulate import SimulateRequest as model
-    else:
-        from app.schemas.poincare import PoincareRequest as model
+    model = SimulateBounds if request == "simulate" else PoincareBounds
     message = refusal(model, {k: v for k, v in values.items() if v is not None})
     if message:
         _fail(message)

@@ -56,6 +56,10 @@ def poincare(
     timeout: TimeoutOpt = None,
 ):
     """3D Poincare map in Andoyer-Deprit variables (L/G, H/G, l) on the level E = E0."""
+    _check_seed(seed)
+    _check_timeout(timeout)
+    # refused before the solvers (and their compiled kernels) are imported
+    _check_bounds("poincare", energy=energy, direction=direction, rtol=rtol, atol=atol)
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TimeElapsedColumn
 
     from solvers.errors import InputError
@@ -64,9 +68,6 @@ def poincare(
     from solvers.models.cases import get_case
     from solvers.simulate import compiled_methods
 
-    _check_seed(seed)
-    _check_timeout(timeout)
-    _check_bounds("poincare", energy=energy, direction=direction, rtol=rtol, atol=atol)
     if method not in compiled_methods():
         _fail(f"--method {method!r}: choose a compiled method ({', '.join(compiled_methods())})")
     try:

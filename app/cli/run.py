@@ -60,23 +60,23 @@ def simulate(
     timeout: TimeoutOpt = None,
 ):
     """Integrate one case and report the state, the invariants and the cost."""
+    _check_timeout(timeout)
+    if state is None and not example:
+        _fail("--state is required (or --example for the case's demo state)")
+    if t_end is None:
+        if not example:
+            _fail("--t-end is required")
+        t_end = 100.0
+    # refused before the solvers (and their compiled kernels) are imported
+    _check_bounds("simulate", t_end=t_end, samples=samples, rtol=rtol, atol=atol, step=step)
     from solvers import simulate as sim
     from solvers.errors import InputError
     from solvers.models.cases import get_case
 
-    _check_timeout(timeout)
     try:
         spec = get_case(case)
         params = {**(spec.example if example else {}), **_parse_sets(set_)}
-        if state is None and not example:
-            _fail("--state is required (or --example for the case's demo state)")
         y0 = _parse_state(state) if state is not None else spec.state
-        if t_end is None:
-            if not example:
-                _fail("--t-end is required")
-            t_end = 100.0
-        _check_bounds("simulate", t_end=t_end, samples=samples, rtol=rtol, atol=atol,
-                      step=step)
         with _timeout(timeout):
             res = sim.simulate(case, params, y0, t_end, method=method, rtol=rtol, atol=atol,
                                samples=samples, project=project,
