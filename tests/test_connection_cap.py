@@ -261,3 +261,46 @@ def test_slow_bodies_at_the_cap_cost_ordinary_clients_nothing(server):
     assert out["opened"] > CAP + 10 and out["closed_by_server"] > 0, out
     assert by["slowest"] > 0 and by["idle"] == 0, by
     assert after["refused"] == before["refused"], (before, after)
+
+
+class _Conn:
+    """What _Candidates reads of a connection: its kind, its body's bytes, whether the app
+    paused its reading (hashable by identity, as the protocol objects are)."""
+
+    def __init__(self, kind: str, body_bytes: int = 0):
+        from types import SimpleNamespace
+
+        self._kind, self._in_bytes = kind, body_bytes
+        self.flow = SimpleNamespace(read_paused=False)
+
+
+def test_the_slowest_request_goes_before_an_idle_client_and_a_fast_upload():
+    """The ranks of _Candidates.victim below the stalled one, on the candidates as the
+    protocol files them (kinds by last sign of life, `inflight` by the request's start)."""
+    from app.core.eviction import _Candidates
+
+    now, grace = 100.0, 1.0
+    cands = _Candidates()
+    trickle = _Conn("body", body_bytes=12)        # began 6 s ago, a byte 0.4 s ago
+    upload = _Conn("body", body_bytes=900_000)    # began 8 s ago, streaming fast
+    fresh = _Conn("head")                         # a client's connection, 5 ms old
+    idle = _Conn("idle")
+    cands.inflight.update({upload: now - 8, trickle: now - 6, fresh: now - 0.005})
+    cands.kinds["body"].update({upload: now - 0.001, trickle: now - 0.4})
+    cands.kinds["head"][fresh] = now - 0.005
+    cands.kinds["idle"][idle] = now - 3
+    assert cands.victim(now, grace) == (trickle, "slowest")
+    # without the trickle: the fresh head is the slowest in progress (a flood's own
+    # sockets are older than a client's, which is why a flood evicts its own)
+    for d in (cands.inflight, cands.kinds["body"]):
+        d.pop(trickle)
+    assert cands.victim(now, grace) == (fresh, "slowest")
+    # nothing arriving slowly: the idle keep-alive connection, then the upload
+    cands.inflight.pop(fresh)
+    cands.kinds["head"].pop(fresh)
+    assert cands.victim(now, grace) == (idle, "idle")
+    cands.kinds["idle"].pop(idle)
+    assert cands.victim(now, grace) == (upload, "young_body")
+    # a body the app paused is neither slow nor stalled
+    upload.flow.read_paused = True
+    assert cands.victim(now + 5, grace) is None

@@ -65,9 +65,9 @@ class _Candidates:
                     head, a body (not paused by the app) or a lingering answer, once
                     silent for `grace` seconds;
         slowest     the request still arriving (head or body) that began the longest ago,
-                    unless it is a body arriving fast (a flood of fresh sockets or of trickling
-                    bodies evicts its own oldest; a client's request arrives in one piece
-                    and is the youngest);
+                    unless it is a body arriving fast (a flood of fresh sockets or of
+                    trickling bodies evicts its own oldest; a client's request arrives in
+                    one piece and is the youngest);
         idle        a keep-alive connection between requests, idle the longest first;
         young_body  a fast body or a lingering answer silent for less than `grace`, the
                     longest silent first (a streaming body's last byte is milliseconds old)."""
