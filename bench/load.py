@@ -141,8 +141,10 @@ async def big_bodies(url: str, stop: float, out: dict) -> None:
         t0 = time.perf_counter()
         sent = [0]
 
-        async def send(writer=writer, head=head, sent=sent, chunked=chunked):
-            writer.write(head)
+        # the head at once, as a browser sends it; the body from the sending task
+        writer.write(head)
+
+        async def send(writer=writer, sent=sent, chunked=chunked):
             while sent[0] < BIG:
                 piece = chunk[:BIG - sent[0]]
                 writer.write(b"%x\r\n%s\r\n" % (len(piece), piece) if chunked else piece)
@@ -289,7 +291,9 @@ async def _slow_one(host: str, port: int, stop: float, out: dict) -> None:
 
 
 async def slow_bodies(url: str, count: int, stop: float, out: dict) -> None:
-    """Hold `count` slow bodies until `stop` (opened at about 1000 a second)."""
+    """Hold `count` slow bodies until `stop` (opened at about 1000 a second, 10 at a time:
+    a burst as large as a small cap would fill it before the server has read a byte of
+    any, when every connection, the ordinary clients' too, is a head not read yet)."""
     host, port = url.split("//", 1)[1].split(":")
     out["held"] = count
     async with asyncio.TaskGroup() as tg:
@@ -297,8 +301,8 @@ async def slow_bodies(url: str, count: int, stop: float, out: dict) -> None:
             if time.monotonic() >= stop:
                 break
             tg.create_task(_slow_one(host, int(port), stop, out))
-            if k % 100 == 99:
-                await asyncio.sleep(0.1)
+            if k % 10 == 9:
+                await asyncio.sleep(0.01)
 
 
 def prober(url: str, duration: float, out) -> None:

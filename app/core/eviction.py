@@ -48,26 +48,31 @@ class _Candidates:
         return None
 
     def _slowest(self, now: float):
-        """The request in progress that began the longest ago, among the SLOW_SCAN oldest,
-        passing over bodies the app paused and bodies arriving at FAST_BYTES_S or more."""
+        """Among the SLOW_SCAN oldest requests in progress: the oldest body that trickles
+        (not paused by the app, arriving below FAST_BYTES_S), else the oldest head. A
+        body goes first: its sender has shown how slowly it sends, while a head not read
+        yet may be a client's that is about to arrive (on a busy client, a connection's
+        first bytes can follow it by a good part of a second)."""
+        head = None
         for n, (p, since) in enumerate(self.inflight.items()):
             if n >= SLOW_SCAN:
-                return None
-            if p._kind == "body" and (p.flow.read_paused or p._in_bytes
-                                      >= FAST_BYTES_S * max(now - since, RATE_FLOOR_S)):
-                continue
-            return p
-        return None
+                break
+            if p._kind != "body":
+                head = head or p
+            elif not (p.flow.read_paused or p._in_bytes
+                      >= FAST_BYTES_S * max(now - since, RATE_FLOOR_S)):
+                return p
+        return head
 
     def victim(self, now: float, grace: float):
         """(connection, rank) to evict, or None. The ranks, in order:
         stalled     a timed-out connection still lingering; else the longest silent of a
                     head, a body (not paused by the app) or a lingering answer, once
                     silent for `grace` seconds;
-        slowest     the request still arriving (head or body) that began the longest ago,
-                    unless it is a body arriving fast (a flood of fresh sockets or of
-                    trickling bodies evicts its own oldest; a client's request arrives in
-                    one piece and is the youngest);
+        slowest     of the requests still arriving, the trickling body that began the
+                    longest ago (not a fast upload), else the oldest head (a flood of
+                    fresh sockets or of trickling bodies evicts its own oldest; a client's
+                    request arrives in one piece and is the youngest);
         idle        a keep-alive connection between requests, idle the longest first;
         young_body  a fast body or a lingering answer silent for less than `grace`, the
                     longest silent first (a streaming body's last byte is milliseconds old)."""

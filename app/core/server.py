@@ -16,13 +16,14 @@ memory; half bodies and half heads stay open). Its h11 parser has a size limit
   slow one is there: first one closed by a read timeout and still lingering; then the
   longest silent of a head (counted from its start), a body (from its last byte; not one
   the app paused) or a lingering answer, once silent for `stall_grace_s`; then the slowest
-  request: of the requests still arriving (a head or a body), the one that began the
-  longest ago, unless it is a body arriving faster than FAST_BYTES_S (an upload, not a
-  trickle); then an idle keep-alive connection, idle longest first; last a fast body or a
-  lingering answer silent for less than the grace. A request read to its end whose answer is being
-  made or sent is never evicted; with nothing to evict the new connection is closed at
-  once. A legitimate request arrives within milliseconds of its start, so under a flood of
-  slow heads or trickling bodies it is the youngest of the requests in progress and the
+  request: of the requests still arriving, the body that began the longest ago, unless it
+  arrives faster than FAST_BYTES_S (an upload, not a trickle), else the oldest head (one
+  not read yet may be a busy client's about to arrive); then an idle keep-alive
+  connection, idle longest first; last a fast body or a lingering answer silent for less
+  than the grace. A request read to its end whose answer is being made or sent is never
+  evicted; with nothing to evict the new connection is closed at once. A legitimate
+  request arrives within milliseconds of its start, so under a flood of slow heads or
+  trickling bodies it is the youngest of the requests in progress and the
   flood evicts its own (bench/load.py --slow-bodies), and an idle client is evicted only
   when no request is arriving.
   The grace, 1 s: the legitimate clients of bench/load.py have their whole head well
