@@ -6,7 +6,7 @@ costs the imports of pydantic and FastAPI, not the compiled kernels')."""
 
 from typing import Annotated
 
-from pydantic import BaseModel, Field
+from pydantic import BaseModel, BeforeValidator, Field
 
 from app.schemas.common import FiniteFloat
 
@@ -17,15 +17,27 @@ MAX_SAMPLES = 20_000
 T_END_MIN = 1e-300
 T_END_MAX = 1e7
 
+
+
+def _integral(v):
+    """JSON Schema's integer includes 201.0; the strict models take it as 201 (a number
+    with a fraction, a string or a boolean stays refused)."""
+    return int(v) if isinstance(v, float) and v.is_integer() else v
+
+
+# an integer as the OpenAPI schema says it: a number without a fraction (the bounds go
+# before the validator, so that the schema shows them as minimum and maximum)
+Int = Annotated[int, BeforeValidator(_integral)]
+
 TEnd = Annotated[FiniteFloat, Field(ge=T_END_MIN, le=T_END_MAX)]
-Samples = Annotated[int, Field(ge=2, le=MAX_SAMPLES)]
+Samples = Annotated[int, Field(ge=2, le=MAX_SAMPLES), BeforeValidator(_integral)]
 Rtol = Annotated[FiniteFloat, Field(ge=1e-16, le=0.1)]
 Atol = Annotated[FiniteFloat, Field(gt=0, le=1.0)]
 Step = Annotated[FiniteFloat, Field(gt=0, le=1e3)]
 # the map's tolerances are tighter: a crossing is located to rtol
 MapRtol = Annotated[FiniteFloat, Field(ge=1e-14, le=1e-3)]
 # an int in [-1, 1] rather than Literal[-1, 0, 1]: a Literal accepts false for 0
-Direction = Annotated[int, Field(ge=-1, le=1)]
+Direction = Annotated[int, Field(ge=-1, le=1), BeforeValidator(_integral)]
 
 
 class SimulateBounds(BaseModel):

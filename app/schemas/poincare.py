@@ -5,7 +5,7 @@ from typing import Annotated, Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, field_validator
 
-from app.schemas.bounds import Atol, Direction, MapRtol
+from app.schemas.bounds import Atol, Direction, Int, MapRtol
 from app.schemas.common import FiniteFloat
 from app.schemas.simulate import CaseId, case_rules
 
@@ -45,12 +45,12 @@ class PoincareRequest(BaseModel):
                          description="the section g=g0 (radians)")
     direction: Direction = Field(1, description="+1: g increasing, -1: decreasing, "
                                  "0: both")
-    trajectories: int = Field(8, ge=1, le=MAX_TRAJECTORIES, description="sampled starts")
-    points: int = Field(200, ge=1, le=MAX_POINTS, description="crossings per trajectory")
+    trajectories: Int = Field(8, ge=1, le=MAX_TRAJECTORIES, description="sampled starts")
+    points: Int = Field(200, ge=1, le=MAX_POINTS, description="crossings per trajectory")
     initial: Annotated[list[Annotated[list[FiniteFloat], Field(min_length=3, max_length=3)]],
                        Field(min_length=1, max_length=MAX_TRAJECTORIES)] | None = Field(
         None, description="starts (L/G, H/G, l) on the section; replace sampling")
-    seed: int = Field(0, ge=0, le=2**32 - 1, description="seed of the sampled starts")
+    seed: Int = Field(0, ge=0, le=2**32 - 1, description="seed of the sampled starts")
     method: Literal["dop853", "vern9", "rk45"] = "dop853"
     rtol: MapRtol = 1e-10
     atol: Atol = 1e-12

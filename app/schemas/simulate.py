@@ -6,7 +6,16 @@ from pydantic import BaseModel, ConfigDict, Field
 
 # the bounds of t_end, samples and the tolerances, one definition with the command line's
 # (MAX_SAMPLES and T_END_MIN are imported from here too)
-from app.schemas.bounds import MAX_SAMPLES, T_END_MIN, Atol, Rtol, Samples, Step, TEnd  # noqa: F401
+from app.schemas.bounds import (  # noqa: F401
+    MAX_SAMPLES,
+    T_END_MIN,
+    Atol,
+    Int,
+    Rtol,
+    Samples,
+    Step,
+    TEnd,
+)
 from app.schemas.common import FiniteFloat
 
 MAX_FRAMES = 600
@@ -131,7 +140,7 @@ class SceneRequest(SimulateRequest):
     evenly spaced times (solvers.models.kinematics)."""
 
     model_config = ConfigDict(extra="forbid", strict=True)
-    frames: int = Field(200, ge=2, le=MAX_FRAMES)
+    frames: Int = Field(200, ge=2, le=MAX_FRAMES)
 
 
 class SimulateResponse(BaseModel):
