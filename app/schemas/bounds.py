@@ -18,7 +18,6 @@ T_END_MIN = 1e-300
 T_END_MAX = 1e7
 
 
-
 def _integral(v):
     """JSON Schema's integer includes 201.0; the strict models take it as 201 (a number
     with a fraction, a string or a boolean stays refused)."""
