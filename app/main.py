@@ -103,7 +103,7 @@ def _stop_now(pool: WorkerPool, kernels: KernelWarmup) -> None:
 
 
 STOP_SIGNALS = (signal.SIGINT, signal.SIGTERM)
-# the stop signals this process received while serving (app/cli.py's serve exits 128 + the
+# the stop signals this process received while serving (app/cli/serve.py's serve exits 128 + the
 # first one: uvicorn's re-raise of it does nothing where the process was started with
 # SIGINT ignored, as a shell's background job is, and the server then exited 0)
 STOP_SIGNALS_SEEN: list[int] = []

@@ -46,12 +46,16 @@ def free_port() -> int:
 @contextlib.contextmanager
 def live_server(timeout: float = 60.0, plain_uvicorn: bool = False,
                 cwd: Path | None = None, extra_env: dict | None = None,
+                prefix: list[str] | None = None, log_path: Path | None = None,
                 **settings) -> Iterator[str]:
     """Start the explorer's server (app.core.server: uvicorn app.main:app with its bounds)
     on 127.0.0.1 and a free port with ROLLING_* settings;
     yield its base URL once /api/health answers; stop it (SIGTERM, then SIGKILL).
     cwd, extra_env: where it runs and more environment (a copy of the sources with
-    PYTHONPATH on it: tests/test_cold_prepare.py)."""
+    PYTHONPATH on it: tests/test_cold_prepare.py). prefix: a command the server is
+    started under (an `unshare` that mounts its kernel cache read-only first:
+    tests/test_kernel_cache_faults.py); log_path: the server's stderr goes to this file,
+    for the test to read."""
     port = free_port()
     # pydantic-settings reads a list or dict from the environment as JSON
     env = {**os.environ, **(extra_env or {}), **{f"ROLLING_{k.upper()}":
@@ -59,11 +63,13 @@ def live_server(timeout: float = 60.0, plain_uvicorn: bool = False,
                             for k, v in {**TEST_SETTINGS, **settings}.items()}}
     env.setdefault("ROLLING_CACHE_DIR",
                    str(Path(tempfile.gettempdir()) / "rolling-hierarchy-test-cache"))
-    log = tempfile.TemporaryFile()  # a file, not a pipe: a chatty server never blocks
+    # a file, not a pipe: a chatty server never blocks
+    log = open(log_path, "w+b") if log_path is not None else tempfile.TemporaryFile()
     proc = subprocess.Popen(
         # plain_uvicorn: uvicorn's defaults (httptools, no bounds), for bench/load.py's
         # comparison only
-        [sys.executable, "-m", "uvicorn" if plain_uvicorn else "app.core.server",
+        [*(prefix or []), sys.executable, "-m",
+         "uvicorn" if plain_uvicorn else "app.core.server",
          *(["app.main:app"] if plain_uvicorn else []), "--host", "127.0.0.1",
          "--port", str(port), "--log-level", "warning"],
         env=env, stdout=subprocess.DEVNULL, stderr=log, cwd=cwd)

@@ -4,6 +4,7 @@ prober measures GET /api/health. Bounded in users and time; it stops itself.
     python bench/load.py                         # 20 users, 60 s, its own server
     python bench/load.py --users 4 --duration 5 --json
     python bench/load.py --url http://127.0.0.1:8000   # an explorer already running
+    python bench/load.py --slow-bodies 1100 --seconds 40   # hostile: slow request bodies
 
 The users (simulate, pages and a 50 MB body): one user in four browses the pages
 (the home page, a case page and the scripts and data they load, plotly.js included); one
@@ -14,6 +15,9 @@ honour Retry-After on 503 (the designed answer of a full queue).
 Reported: latency p50/p99 of the runs and of the pages, the answers to the big bodies and
 how fast they came, p50/p99/max of the health probe, and the unplanned 5xx (every 5xx
 except 503), which must be zero.
+--slow-bodies N holds N request bodies open beside them (slow_bodies). Reported as well:
+the ordinary requests (runs, pages, health probes) and how many of them were dropped (no
+answer: the connection closed or reset), which must be zero.
 """
 
 from __future__ import annotations
@@ -24,6 +28,7 @@ import json
 import multiprocessing
 import os
 import platform
+import resource
 import statistics
 import sys
 import time
@@ -33,7 +38,6 @@ import httpx
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
-
 
 def pct(xs: list[float], q: float) -> float:
     if not xs:
@@ -137,8 +141,10 @@ async def big_bodies(url: str, stop: float, out: dict) -> None:
         t0 = time.perf_counter()
         sent = [0]
 
-        async def send(writer=writer, head=head, sent=sent, chunked=chunked):
-            writer.write(head)
+        # the head at once, as a browser sends it; the body from the sending task
+        writer.write(head)
+
+        async def send(writer=writer, sent=sent, chunked=chunked):
             while sent[0] < BIG:
                 piece = chunk[:BIG - sent[0]]
                 writer.write(b"%x\r\n%s\r\n" % (len(piece), piece) if chunked else piece)
@@ -229,6 +235,76 @@ async def stalled_flood(url: str, count: int, stop: float, out: dict) -> None:
                 await asyncio.sleep(0.1)
 
 
+# --slow-bodies N: N connections, each sending the head of a POST with a 1000-byte body,
+# then one byte of it (JSON whitespace) every TICK_S: never silent long enough to be
+# stalled (app.core.server's stall_grace_s, 1 s), never ending within the run. One the
+# server closes (an eviction at its cap) is opened again at once: N are held the whole
+# run, and more than the cap (1000) keeps the server evicting.
+SLOW_HEAD = (b"POST /api/validate HTTP/1.1\r\nHost: 127.0.0.1\r\n"
+             b"Content-Type: application/json\r\nContent-Length: 1000\r\n\r\n")
+TICK_S = 0.5
+
+
+def slow_out() -> dict:
+    return {"held": 0, "opened": 0, "closed_by_server": 0, "connect_errors": 0,
+            "bytes_sent": 0, "errors": []}
+
+
+def raise_fd_limit(count: int) -> None:
+    """Room for `count` held sockets besides the ordinary clients: the soft file limit
+    raised towards the hard one (a soft limit of 1024 is common)."""
+    soft, hard = resource.getrlimit(resource.RLIMIT_NOFILE)
+    if soft != resource.RLIM_INFINITY and soft < count + 512:
+        target = count + 512 if hard == resource.RLIM_INFINITY else min(count + 512, hard)
+        resource.setrlimit(resource.RLIMIT_NOFILE, (target, hard))
+
+
+async def _slow_one(host: str, port: int, stop: float, out: dict) -> None:
+    """One slow body at a time, opened again whenever the server closes it."""
+    while time.monotonic() < stop:
+        try:
+            reader, writer = await asyncio.open_connection(host, port)
+        except OSError as exc:
+            out["connect_errors"] += 1
+            if len(out["errors"]) < 5:
+                out["errors"].append(f"connect: {exc}")
+            await asyncio.sleep(TICK_S)
+            continue
+        out["opened"] += 1
+        try:
+            writer.write(SLOW_HEAD)
+            await writer.drain()
+            while time.monotonic() < stop:
+                await asyncio.sleep(TICK_S)
+                if reader.at_eof() or reader.exception() or writer.transport.is_closing():
+                    break
+                writer.write(b" ")
+                await writer.drain()
+                out["bytes_sent"] += 1
+            else:
+                continue                 # the run ended with this one open
+            out["closed_by_server"] += 1
+        except (ConnectionError, OSError):
+            out["closed_by_server"] += 1
+        finally:
+            writer.close()
+
+
+async def slow_bodies(url: str, count: int, stop: float, out: dict) -> None:
+    """Hold `count` slow bodies until `stop` (opened at about 1000 a second, 10 at a time:
+    a burst as large as a small cap would fill it before the server has read a byte of
+    any, when every connection, the ordinary clients' too, is a head not read yet)."""
+    host, port = url.split("//", 1)[1].split(":")
+    out["held"] = count
+    async with asyncio.TaskGroup() as tg:
+        for k in range(count):
+            if time.monotonic() >= stop:
+                break
+            tg.create_task(_slow_one(host, int(port), stop, out))
+            if k % 10 == 9:
+                await asyncio.sleep(0.01)
+
+
 def prober(url: str, duration: float, out) -> None:
     """GET /api/health every 0.1 s from a process of its own, so that the latency measured
     is the server's, not that of the load generator's busy event loop."""
@@ -248,7 +324,8 @@ def prober(url: str, duration: float, out) -> None:
 
 
 async def load(url: str, users: int, duration: float, pages: int | None = None,
-               big: int | None = None, bombs: int = 0, stalled: int = 0) -> dict:
+               big: int | None = None, bombs: int = 0, stalled: int = 0,
+               slow: int = 0) -> dict:
     load0 = os.getloadavg()[0]
     limits = httpx.Limits(max_connections=users + 2, max_keepalive_connections=users + 2)
     timeout = httpx.Timeout(120.0)
@@ -271,11 +348,14 @@ async def load(url: str, users: int, duration: float, pages: int | None = None,
         bomb = {"status": {}, "answer_ms": [], "sent_mb": [], "errors": []}
         flood = {"opened": 0, "connect_errors": 0, "closed_by_server": 0,
                  "still_open_at_end": 0, "held_s": [], "errors": []}
+        trickle = slow_out()
         async with asyncio.TaskGroup() as tg:
             for _ in range(bombs):
                 tg.create_task(header_bombs(url, stop, bomb))
             if stalled:
                 tg.create_task(stalled_flood(url, stalled, stop, flood))
+            if slow:
+                tg.create_task(slow_bodies(url, slow, stop, trickle))
             for k in range(users - n_pages - n_big):
                 tg.create_task(user(client, cases, k, stop, sim_lat, sim_status, errors))
             for _ in range(n_pages):
@@ -289,7 +369,10 @@ async def load(url: str, users: int, duration: float, pages: int | None = None,
         pool, server_conn = final["pool"], final.get("connections")
     unplanned = sum(n for s, n in [*sim_status.items(), *health_status.items(),
                                    *page_status.items()] if s >= 500 and s != 503)
-    unplanned += sim_status.get(0, 0) + health_status.get(0, 0) + page_status.get(0, 0)
+    dropped = sim_status.get(0, 0) + health_status.get(0, 0) + page_status.get(0, 0)
+    unplanned += dropped
+    ordinary = sum(sim_status.values()) + sum(health_status.values()) + sum(
+        page_status.values())
     unplanned += sum(n for k, n in big["status"].items() if not k.endswith(":413"))
     unplanned += sum(n for k, n in bomb["status"].items() if k != 431)
     return {
@@ -320,6 +403,11 @@ async def load(url: str, users: int, duration: float, pages: int | None = None,
         "stalled": {"attempted": stalled, **{k: v for k, v in flood.items() if k != "held_s"},
                     "held_p50_s": pct(flood["held_s"], 50),
                     "held_max_s": max(flood["held_s"], default=float("nan"))},
+        "slow_bodies": trickle,
+        "ordinary": {"requests": ordinary, "dropped": dropped,
+                     "dropped_by_kind": {"simulate": sim_status.get(0, 0),
+                                         "pages": page_status.get(0, 0),
+                                         "health": health_status.get(0, 0)}},
         "server_connections": server_conn,
         "unplanned_5xx": unplanned,
         "errors": errors[:10],
@@ -367,6 +455,15 @@ def report(r: dict, settings: dict) -> str:
                      f"connect; {f['closed_by_server']} closed by the server after p50 "
                      f"{f['held_p50_s']:.1f} s, max {f['held_max_s']:.1f} s; "
                      f"{f['still_open_at_end']} still open at the end")
+    t = r["slow_bodies"]
+    if t["held"]:
+        lines.insert(-2, f"slow bodies: {t['held']} held (one byte every 0.5 s), "
+                     f"{t['opened']} connections opened, {t['closed_by_server']} closed by "
+                     f"the server, {t['connect_errors']} refused at connect, "
+                     f"{t['bytes_sent']} bytes sent")
+    o = r["ordinary"]
+    lines.insert(-2, f"ordinary requests (runs, pages, health probes): {o['requests']}, "
+                 f"dropped (no answer) {o['dropped']} {o['dropped_by_kind']}")
     if r.get("server_connections"):
         lines.append(f"server connection guards: {r['server_connections']}")
     if r["errors"]:
@@ -377,7 +474,7 @@ def report(r: dict, settings: dict) -> str:
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--users", type=int, default=20)
-    ap.add_argument("--duration", type=float, default=60.0)
+    ap.add_argument("--duration", "--seconds", type=float, default=60.0)
     ap.add_argument("--url", help="an explorer already running (default: start one)")
     ap.add_argument("--pages", type=int, help="users browsing pages (default users // 4)")
     ap.add_argument("--big", type=int, help="users sending 50 MB bodies (default 1)")
@@ -385,6 +482,8 @@ def main(argv=None) -> int:
                     help="extra clients sending 50 MB headers in a loop (at most 8)")
     ap.add_argument("--stalled", type=int, default=0,
                     help="stalled sockets to attempt (half a head or body; at most 5000)")
+    ap.add_argument("--slow-bodies", type=int, default=0,
+                    help="request bodies held open, one byte every 0.5 s (at most 5000)")
     ap.add_argument("--hostile", action="store_true",
                     help="the hostile mix: --big 3 --bombs 2 --stalled 3000")
     ap.add_argument("--max-connections", type=int,
@@ -396,14 +495,16 @@ def main(argv=None) -> int:
     ap.add_argument("--json", action="store_true", help="print the figures as JSON")
     ap.add_argument("--out", help="also write the report to this file")
     args = ap.parse_args(argv)
+    raise_fd_limit(args.stalled + args.slow_bodies)
     if args.hostile:
         args.big = 3 if args.big is None else args.big
         args.bombs = args.bombs or 2
         args.stalled = args.stalled or 3000
     if not (1 <= args.users <= 200 and 0 < args.duration <= 600):
         ap.error("users in [1, 200], duration in (0, 600] s")
-    if not (0 <= args.bombs <= 8 and 0 <= args.stalled <= 5000):
-        ap.error("--bombs in [0, 8], --stalled in [0, 5000]")
+    if not (0 <= args.bombs <= 8 and 0 <= args.stalled <= 5000
+            and 0 <= args.slow_bodies <= 5000):
+        ap.error("--bombs in [0, 8], --stalled and --slow-bodies in [0, 5000]")
     if args.max_connections is not None and not 8 <= args.max_connections <= 100_000:
         ap.error("--max-connections in [8, 100000]")
     if (args.pages or 0) + (args.big or 0) > args.users or min(args.pages or 0,
@@ -412,7 +513,7 @@ def main(argv=None) -> int:
 
     def run(url: str, settings: dict) -> dict:
         r = asyncio.run(load(url, args.users, args.duration, args.pages, args.big,
-                             args.bombs, args.stalled))
+                             args.bombs, args.stalled, args.slow_bodies))
         text = report(r, settings)
         print(json.dumps(r, indent=1) if args.json else text, end="" if not args.json else "\n")
         if args.out:

@@ -145,3 +145,50 @@ def test_sweep_has_a_timeout(sigint):
                    "--timeout", "2", timeout=120, preexec_fn=ignore)
     line = _one_line_error(proc, 3)
     assert "--timeout" in line
+
+
+# --- one validation: the API's bounds and words, at once -------------------------------
+
+# the command line run in a process that says at its exit whether it imported the solvers
+# and numba (a refusal by the bounds needs neither: it comes before their imports)
+IMPORTED = ("import atexit, sys\n"
+            "atexit.register(lambda: print('imported:', sorted(m for m in ('numba', "
+            "'solvers.simulate') if m in sys.modules)))\n"
+            "from app.cli import main\nmain(sys.argv[1:])\n")
+
+
+def _api_detail(path: str, body: dict) -> str:
+    from fastapi.testclient import TestClient
+
+    from app.main import create_app
+    from app.testing import settings_for_tests
+
+    with TestClient(create_app(settings_for_tests(warm_workers=False))) as c:
+        r = c.post(path, json=body)
+    assert r.status_code == 422, r.text
+    return r.json()["detail"]
+
+
+def test_a_huge_t_end_is_refused_in_the_apis_words_before_the_solvers_load():
+    """Before: 19.7 s of CPU, then exit 3 ("step budget ran out"), where the API refuses
+    t_end above 1e7 at once with a 422."""
+    proc = subprocess.run([sys.executable, "-c", IMPORTED, "simulate", "plane/chaplygin-ball",
+                           "--example", "--t-end", "1e308"], capture_output=True, text=True,
+                          timeout=120)
+    line = _one_line_error(proc, 2)
+    assert line == "error: " + _api_detail("/api/validate", {
+        "case": "plane/chaplygin-ball", "example": True, "t_end": 1e308})
+    assert "imported: []" in proc.stdout, proc.stdout
+
+
+def test_a_huge_energy_is_one_line_in_the_apis_words():
+    """Before: exit 2, but three numpy RuntimeWarnings and an internal message ("t_out
+    (trajectory 0) must be finite and strictly increasing") where the API says the
+    energy is too large."""
+    proc = rolling("poincare", "plane/chaplygin-ball", "--example", "--energy", "1e308",
+                   timeout=120)
+    line = _one_line_error(proc, 2)
+    assert "Warning" not in proc.stderr
+    detail = _api_detail("/api/poincare", {"case": "plane/chaplygin-ball", "example": True,
+                                           "energy": 1e308})
+    assert line == "error: " + detail and "too large" in detail and "overflow" in detail

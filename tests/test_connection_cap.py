@@ -115,7 +115,7 @@ def test_a_flood_of_stalled_bodies_and_heads_evicts_itself_not_the_legitimate_cl
     evicted = after["evicted"] - before["evicted"]
     by = {k: after["evicted_by"][k] - before["evicted_by"][k] for k in after["evicted_by"]}
     # every flood socket the server closed was evicted (the timeouts are 60 s), all of
-    # them as stalled or new heads, and the first wave's bodies among them; no idle
+    # them as stalled or the slowest, and the first wave's bodies among them; no idle
     # keep-alive connection was evicted and no connection refused
     assert after["refused"] == before["refused"], (before, after)
     assert by["idle"] == 0 and by["young_body"] == 0, by
@@ -202,3 +202,119 @@ def test_a_small_body_reaches_the_app_however_it_comes(server, how):
     # the app's own answer (the validation's 422 or 200), not a timeout or a reset
     assert answer.split(b" ", 2)[1] in (b"200", b"422"), answer[:200]
     assert b"application/json" in answer.split(b"\r\n\r\n", 1)[0].lower()
+
+
+def test_slow_bodies_at_the_cap_cost_ordinary_clients_nothing(server):
+    """As many trickling bodies as the cap (each sends one byte every half second, so
+    none is ever stalled, and is opened again when evicted), which with the clients'
+    connections exceed it by about a tenth, as bench/load.py --slow-bodies 1100 does a cap
+    of 1000: every request of a raw keep-alive socket, an httpx pool and fresh
+    connections is answered, and what is evicted is the slow bodies. Before: an idle
+    keep-alive connection was evicted before a trickling body, and its next request went
+    unanswered (issue 42: 2 of 507 ordinary requests dropped under 1,100 slow bodies)."""
+    import asyncio
+    import threading
+
+    from bench.load import slow_bodies, slow_out
+
+    url, port = server
+    before = _guards(url)
+    out = slow_out()
+    stop = time.monotonic() + 7.0
+    flood = threading.Thread(target=lambda: asyncio.run(slow_bodies(url, CAP, stop, out)))
+    # the keep-alive clients make a first request before the flood (a connection that
+    # sends nothing for stall_grace_s is stalled, rightly)
+    keep = socket.create_connection(("127.0.0.1", port), timeout=5.0)
+    keep.sendall(REQUEST)
+    assert _one_response(keep).startswith(b"HTTP/1.1 200")
+    pooled = httpx.Client(base_url=url, timeout=10.0)
+    assert pooled.get("/api/health").status_code == 200
+    answers: list = []
+    flood.start()
+    try:
+        time.sleep(1.5)              # the cap is full of slow bodies and evicting them
+        while time.monotonic() < stop - 0.5:
+            try:
+                keep.sendall(REQUEST)
+                answers.append(_one_response(keep)[:12])
+            except OSError as exc:
+                answers.append(repr(exc))
+            for client in (pooled, None):
+                try:
+                    if client is None:
+                        with httpx.Client(timeout=10.0) as fresh:
+                            answers.append(fresh.get(f"{url}/api/health").status_code)
+                    else:
+                        answers.append(client.get("/api/health").status_code)
+                except httpx.TransportError as exc:
+                    answers.append(repr(exc))
+            time.sleep(0.2)
+    finally:
+        flood.join(15)
+        keep.close()
+        pooled.close()
+    after = _guards(url)
+    by = {k: after["evicted_by"][k] - before["evicted_by"][k] for k in after["evicted_by"]}
+    rounds = len(answers) // 3
+    assert rounds >= 5, answers
+    assert answers == [b"HTTP/1.1 200", 200, 200] * rounds, answers
+    # the slow bodies filled the cap and were evicted by their own reconnections
+    assert out["opened"] > CAP and out["closed_by_server"] > 0, out
+    assert by["slowest"] > 0 and by["idle"] == 0, by
+    assert after["refused"] == before["refused"], (before, after)
+
+
+class _Conn:
+    """What _Candidates reads of a connection: its kind, its body's bytes, whether the app
+    paused its reading (hashable by identity, as the protocol objects are)."""
+
+    def __init__(self, kind: str, body_bytes: int = 0):
+        from types import SimpleNamespace
+
+        self._kind, self._in_bytes = kind, body_bytes
+        self.flow = SimpleNamespace(read_paused=False)
+
+
+def test_the_slowest_request_goes_before_an_idle_client_and_a_fast_upload():
+    """The ranks of _Candidates.victim below the stalled one, on the candidates as the
+    protocol files them (kinds by last sign of life, `inflight` by the request's start):
+    a trickling body, then a head, then an idle connection, then a fast upload."""
+    from app.core.eviction import _Candidates
+
+    now, grace = 100.0, 1.0
+    cands = _Candidates()
+    trickle = _Conn("body", body_bytes=12)        # began 6 s ago, a byte 0.4 s ago
+    upload = _Conn("body", body_bytes=900_000)    # began 8 s ago, streaming fast
+    fresh = _Conn("head")                         # a client's connection, 5 ms old
+    idle = _Conn("idle")
+    cands.inflight.update({upload: now - 8, trickle: now - 6, fresh: now - 0.005})
+    cands.kinds["body"].update({upload: now - 0.001, trickle: now - 0.4})
+    cands.kinds["head"][fresh] = now - 0.005
+    cands.kinds["idle"][idle] = now - 3
+    assert cands.victim(now, grace) == (trickle, "slowest")
+    # without the trickle: the head is the slowest in progress (a flood's own sockets are
+    # older than a client's, which is why a flood of empty sockets evicts its own)
+    for d in (cands.inflight, cands.kinds["body"]):
+        d.pop(trickle)
+    assert cands.victim(now, grace) == (fresh, "slowest")
+    # nothing arriving slowly: the idle keep-alive connection, then the upload
+    cands.inflight.pop(fresh)
+    cands.kinds["head"].pop(fresh)
+    assert cands.victim(now, grace) == (idle, "idle")
+    cands.kinds["idle"].pop(idle)
+    assert cands.victim(now, grace) == (upload, "young_body")
+    # a trickling body goes before an older head not read yet (a busy client's, maybe)
+    starting = _Conn("body", body_bytes=0)
+    older = _Conn("head")
+    cands.inflight.update({older: now - 0.3, starting: now - 0.2})
+    cands.kinds["head"][older] = now - 0.3
+    cands.kinds["body"][starting] = now - 0.2
+    assert cands.victim(now, grace) == (starting, "slowest")
+    for d in (cands.inflight, cands.kinds["body"]):
+        d.pop(starting)
+    assert cands.victim(now, grace) == (older, "slowest")
+    for d in (cands.inflight, cands.kinds["head"]):
+        d.pop(older)
+    # a body the app paused is neither slow nor stalled
+    upload.flow.read_paused = True
+    assert cands.victim(now + 5, grace) is None

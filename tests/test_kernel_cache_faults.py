@@ -5,6 +5,7 @@ Poincare with 200, says once in its log why, and /api/health reports "degraded" 
 reason (before: every default run was a plain-text 500 from numba's "no locator available",
 and health said "ok")."""
 
+import contextlib
 import os
 import shutil
 import subprocess
@@ -15,7 +16,7 @@ from pathlib import Path
 import httpx
 import pytest
 
-from app.testing import TEST_SETTINGS, free_port, wait_answering, wait_idle
+from app.testing import live_server, wait_idle
 
 RUNS = [("/api/simulate", {"case": "plane/chaplygin-ball", "example": True, "t_end": 1.0,
                            "samples": 5}),
@@ -46,45 +47,25 @@ def _can_mount_read_only() -> bool:
     return probe.returncode == 0
 
 
+@contextlib.contextmanager
 def _serve(cache: str, tmp: Path, read_only_from: Path | None = None):
-    """A server (app.core.server) with the kernel cache at `cache`; read_only_from: a
-    directory bind-mounted read-only at `cache` in the server's own mount namespace (the
-    mount ends with the process)."""
-    port = free_port()
-    env = {**os.environ, **{f"ROLLING_{k.upper()}": str(v) for k, v in TEST_SETTINGS.items()
-                            if not isinstance(v, list)},
-           "ROLLING_ALLOWED_HOSTS": '["127.0.0.1", "localhost"]',
-           "ROLLING_KERNEL_CACHE": cache,
-           # the warm-up is asked for: on an unwritable cache it must not run
-           "ROLLING_WARM_KERNELS": "true", "ROLLING_KERNELS_WARM": "false",
-           "ROLLING_WARM_WORKERS": "true", "ROLLING_DEADLINE_S": "120",
-           "ROLLING_CACHE_DIR": str(tmp / "app-cache")}
-    env.pop("ROLLING_KERNEL_CACHE_WARNED", None)
-    cmd = [sys.executable, "-m", "app.core.server", "--host", "127.0.0.1", "--port",
-           str(port), "--log-level", "warning"]
+    """A server (app.testing.live_server) with the kernel cache at `cache`; read_only_from:
+    a directory bind-mounted read-only at `cache` in the server's own mount namespace (the
+    mount ends with the process). Yields its URL and a reader of its log."""
+    prefix = None
     if read_only_from is not None:
-        cmd = ["unshare", "-m", "sh", "-c", 'mount --bind "$1" "$2" && mount -o '
-               'remount,bind,ro "$2" && shift 2 && exec "$@"', "sh", str(read_only_from),
-               cache, *cmd]
-    log = open(tmp / "server.log", "w+b")
-    proc = subprocess.Popen(cmd, env=env, stdout=subprocess.DEVNULL, stderr=log)
-    url = f"http://127.0.0.1:{port}"
-
-    def text() -> str:
-        log.flush()
-        return (tmp / "server.log").read_text(errors="replace")
-
-    try:
-        wait_answering(url, proc, 120, text)
-        yield url, text
-    finally:
-        proc.terminate()
-        try:
-            proc.wait(10)
-        except subprocess.TimeoutExpired:
-            proc.kill()
-            proc.wait(5)
-        log.close()
+        prefix = ["unshare", "-m", "sh", "-c", 'mount --bind "$1" "$2" && mount -o '
+                  'remount,bind,ro "$2" && shift 2 && exec "$@"', "sh", str(read_only_from),
+                  cache]
+    log = tmp / "server.log"
+    # the warm-up is asked for: on an unwritable cache it must not run; no warning said by
+    # a parent process (jit.WARNED_ENV empty)
+    with live_server(timeout=120, prefix=prefix, log_path=log,
+                     extra_env={"ROLLING_KERNEL_CACHE": cache,
+                                "ROLLING_KERNEL_CACHE_WARNED": ""},
+                     warm_kernels=True, kernels_warm=False, warm_workers=True,
+                     deadline_s=120, cache_dir=tmp / "app-cache") as url:
+        yield url, lambda: log.read_text(errors="replace")
 
 
 def _check_degraded_service(url, log_text, cache):
@@ -108,12 +89,8 @@ def test_an_empty_cache_under_a_file(tmp_path):
     blocker.write_text("not a directory")
     cache = str(blocker / "kernels")
     assert _unwritable(Path(cache))
-    gen = _serve(cache, tmp_path)
-    url, text = next(gen)
-    try:
+    with _serve(cache, tmp_path) as (url, text):
         _check_degraded_service(url, text, cache)
-    finally:
-        gen.close()
 
 
 @pytest.mark.skipif(not _can_mount_read_only(), reason="no read-only bind mount here")
@@ -127,12 +104,8 @@ def test_a_filled_cache_on_a_read_only_mount(tmp_path):
         filled.mkdir()
     mount_point = tmp_path / "kernels"
     mount_point.mkdir()
-    gen = _serve(str(mount_point), tmp_path, read_only_from=filled)
-    url, text = next(gen)
-    try:
+    with _serve(str(mount_point), tmp_path, read_only_from=filled) as (url, text):
         _check_degraded_service(url, text, str(mount_point))
-    finally:
-        gen.close()
 
 
 def test_the_health_of_a_writable_cache_is_ok(tmp_path):

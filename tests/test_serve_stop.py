@@ -172,7 +172,7 @@ def test_sigterm_while_compiling_stops_in_seconds_and_leaves_no_process(tmp_path
 def test_ctrl_c_while_the_warm_up_compiles_stops_in_seconds(tmp_path):
     """Ctrl-C (SIGINT), on this checkout's warm numba caches with an empty kernel cache:
     the warm-up compiles the small kernels. uvicorn re-raises the interrupt after its
-    shutdown; the interpreter's teardown then took 2-4 s more (app/cli.py's serve exits
+    shutdown; the interpreter's teardown then took 2-4 s more (app/cli/serve.py's serve exits
     at once instead)."""
     server, url = _serve(tmp_path, None)
     try:

@@ -12,21 +12,27 @@ memory; half bodies and half heads stay open). Its h11 parser has a size limit
   the connection or of the first byte of the request (408 and close);
 - a body: a gap of `body_timeout_s` without a byte closes the connection;
 - at most `max_connections` open connections. At the cap a new connection evicts one
-  that makes no progress (_Candidates.victim), never a legitimate one while a stalled one
-  is there: first one closed by a read timeout and still lingering; then the longest
-  silent of a head (counted from its start), a body (from its last byte; not one the app
-  paused) or a lingering answer, once silent for `stall_grace_s`; then a younger head,
-  oldest first; then an idle keep-alive connection, idle longest first; last a body
-  silent for less than the grace. A request read to its end whose answer is being made
-  or sent is never evicted; with nothing to evict the new connection is closed at once.
+  that makes no progress (_Candidates.victim), never a legitimate one while a stalled or
+  slow one is there: first one closed by a read timeout and still lingering; then the
+  longest silent of a head (counted from its start), a body (from its last byte; not one
+  the app paused) or a lingering answer, once silent for `stall_grace_s`; then the slowest
+  request: of the requests still arriving, the body that began the longest ago, unless it
+  arrives faster than FAST_BYTES_S (an upload, not a trickle), else the oldest head (one
+  not read yet may be a busy client's about to arrive); then an idle keep-alive
+  connection, idle longest first; last a fast body or a lingering answer silent for less
+  than the grace. A request read to its end whose answer is being made or sent is never
+  evicted; with nothing to evict the new connection is closed at once. A legitimate
+  request arrives within milliseconds of its start, so under a flood of slow heads or
+  trickling bodies it is the youngest of the requests in progress and the
+  flood evicts its own (bench/load.py --slow-bodies), and an idle client is evicted only
+  when no request is arriving.
   The grace, 1 s: the legitimate clients of bench/load.py have their whole head well
   within it and no gap inside a body near it even on a loaded machine, while a flood of
   stalled sockets at half the cap a second leaves its own sockets twice the grace to age
-  (bench/connection_cap.py; docs/performance.md). A flood of stalled heads never pushes out
-  an idle client; one of half bodies does only if it brings more than the cap of them
-  within the grace time (1000 a second). The candidates are kept in time order per
-  kind, so choosing one costs little, not a scan of every connection (a scan at the cap,
-  at every new connection of a flood, took most of a core). The soft file limit is raised
+  (bench/connection_cap.py; docs/performance.md). The candidates are kept in time order
+  per kind, so choosing one costs little, not a scan of every connection (a scan at the
+  cap, at every new connection of a flood, took most of a core): the slowest request is
+  found among the oldest SLOW_SCAN requests in progress. The soft file limit is raised
   towards the hard one, so that fd_bound does not halve the cap; the app of a request with
   a small body starts once the body is in (_DeferringLoop), so that the stalled half
   bodies the cap now admits cost no app run;
@@ -47,13 +53,13 @@ import asyncio
 import logging
 import resource
 import time
-from collections import OrderedDict
 from dataclasses import dataclass
 
 import h11
 from uvicorn.protocols.http.flow_control import HIGH_WATER_LIMIT
 from uvicorn.protocols.http.h11_impl import H11Protocol
 
+from app.core.eviction import FAST_BYTES_S, KINDS, SLOW_SCAN, _Candidates  # noqa: F401
 from app.core.guards import HEADERS
 
 log = logging.getLogger("rolling.server")
@@ -81,64 +87,7 @@ class Limits:
 # evicted_by: the evictions by rank (see _Candidates.victim)
 STATS = {"connections": 0, "peak_connections": 0, "evicted": 0, "refused": 0,
          "header_timeouts": 0, "body_timeouts": 0, "header_too_large": 0, "lingered": 0,
-         "evicted_by": {"stalled": 0, "new_head": 0, "idle": 0, "young_body": 0}}
-
-# the kinds of connection that may be evicted (a connection is in at most one):
-#   dead     closed by a read timeout, still lingering
-#   head     waiting for a request head; since = the connection, or the first byte of the
-#            next request on a keep-alive connection (a trickle does not renew it)
-#   body     sending a request body; since = its last byte
-#   closing  lingering after an answer (413, 431, 400); since = the close
-#   idle     a keep-alive connection between requests; since = the end of the last answer
-# Never in any: a request read to its end whose answer is being made or sent, a
-# connection closing with no unread input (its answer is being flushed).
-KINDS = ("dead", "head", "body", "closing", "idle")
-
-
-class _Candidates:
-    """The evictable connections of one server, by kind. Each kind is an insertion-ordered
-    dict protocol -> since, and every (re)insertion is made with since = now, so that each
-    dict is ordered by `since` (time is monotonic) and its oldest entry is its first: a
-    victim is found in O(1), whatever the number of connections."""
-
-    def __init__(self) -> None:
-        self.kinds: dict[str, OrderedDict] = {k: OrderedDict() for k in KINDS}
-
-    @staticmethod
-    def _first(d: OrderedDict, skip=None):
-        for p, since in d.items():
-            if skip is None or not skip(p):
-                return since, p
-        return None
-
-    def victim(self, now: float, grace: float):
-        """(connection, rank) to evict, or None. The ranks, in order:
-        stalled     a timed-out connection still lingering; else the longest silent of a
-                    head, a body (not paused by the app) or a lingering answer, once
-                    silent for `grace` seconds;
-        new_head    a head younger than that, oldest first (a flood of fresh sockets
-                    evicts its own oldest; a client's head arrives in one piece);
-        idle        a keep-alive connection between requests, idle the longest first;
-        young_body  a body or lingering answer silent for less than `grace`, the longest
-                    silent first (a streaming body's last byte is milliseconds old)."""
-        k = self.kinds
-        if k["dead"]:
-            return next(iter(k["dead"])), "stalled"
-        # a body whose reading the app paused (it has not read what came) is not stalled
-        fronts = [f for f in (self._first(k["head"]),
-                              self._first(k["body"], lambda p: p.flow.read_paused),
-                              self._first(k["closing"])) if f is not None]
-        oldest = min(fronts, key=lambda f: f[0]) if fronts else None
-        if oldest is not None and now - oldest[0] >= grace:
-            return oldest[1], "stalled"
-        if k["head"]:
-            return next(iter(k["head"])), "new_head"
-        if k["idle"]:
-            return next(iter(k["idle"])), "idle"
-        if oldest is not None:
-            return oldest[1], "young_body"
-        return None
-
+         "evicted_by": {"stalled": 0, "slowest": 0, "idle": 0, "young_body": 0}}
 
 # the limits of the server running in this process (set by config())
 ACTIVE: Limits | None = None
@@ -259,6 +208,7 @@ class GuardedH11Protocol(H11Protocol):
         self._timed_out = False
         self._served = 0
         self._kind: str | None = None     # see KINDS
+        self._in_bytes = 0                 # bytes of the body arriving (see _place)
         cands = getattr(server_state, "rolling_candidates", None)
         if cands is None:                # one index per server (its connections' set)
             cands = server_state.rolling_candidates = _Candidates()
@@ -300,12 +250,20 @@ class GuardedH11Protocol(H11Protocol):
     def _place(self, kind: str | None) -> None:
         """Put this connection among the candidates of `kind` (None: not evictable). A
         body that stays a body is moved to the end (its last byte is now); a head that
-        stays a head keeps its place (its deadline runs from its start)."""
+        stays a head keeps its place (its deadline runs from its start). A request that
+        begins (a head) joins `inflight` and counts its body's bytes; one read to its end
+        leaves it."""
         if kind == self._kind and kind != "body":
             return
         kinds = self._cands.kinds
         if self._kind is not None:
             kinds[self._kind].pop(self, None)
+        arriving = kind in ("head", "body")
+        if arriving and self._kind not in ("head", "body"):
+            self._in_bytes = 0
+            self._cands.inflight[self] = time.monotonic()
+        elif not arriving and self._kind in ("head", "body"):
+            self._cands.inflight.pop(self, None)
         self._kind = kind
         if kind is not None:
             kinds[kind][self] = time.monotonic()
@@ -378,6 +336,8 @@ class GuardedH11Protocol(H11Protocol):
                 self.send_400_response("")
                 return
         super().data_received(data)
+        if self._kind == "body":
+            self._in_bytes += len(data)
 
     def handle_events(self) -> None:
         super().handle_events()

@@ -48,8 +48,9 @@ class ConnectionsPublic(BaseModel):
     evicted: int = Field(description="idle or stalled connections closed to make room")
     evicted_by: dict[str, int] = Field(
         default_factory=dict, description="the evictions by rank, in the order they are "
-        "chosen: stalled (a head or body silent for stall_grace_s, or timed out), new_head "
-        "(a younger head), idle (keep-alive), young_body")
+        "chosen: stalled (a head or body silent for stall_grace_s, or timed out), slowest "
+        "(the request arriving that began the longest ago, not a fast one), idle (keep-alive), "
+        "young_body (a fast body or a lingering answer)")
     refused: int = Field(description="connections closed at once: the cap was reached")
     header_timeouts: int
     body_timeouts: int

@@ -5,6 +5,7 @@ from typing import Annotated, Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, field_validator
 
+from app.schemas.bounds import Atol, Direction, Int, MapRtol
 from app.schemas.common import FiniteFloat
 from app.schemas.simulate import CaseId, case_rules
 
@@ -42,18 +43,17 @@ class PoincareRequest(BaseModel):
     energy: FiniteFloat = Field(1.0, description="energy level E0")
     section: str = Field("g=0", max_length=40, pattern=SECTION,
                          description="the section g=g0 (radians)")
-    # an int in [-1, 1] rather than Literal[-1, 0, 1]: a Literal accepts false for 0
-    direction: int = Field(1, ge=-1, le=1, description="+1: g increasing, -1: "
-                           "decreasing, 0: both")
-    trajectories: int = Field(8, ge=1, le=MAX_TRAJECTORIES, description="sampled starts")
-    points: int = Field(200, ge=1, le=MAX_POINTS, description="crossings per trajectory")
+    direction: Direction = Field(1, description="+1: g increasing, -1: decreasing, "
+                                 "0: both")
+    trajectories: Int = Field(8, ge=1, le=MAX_TRAJECTORIES, description="sampled starts")
+    points: Int = Field(200, ge=1, le=MAX_POINTS, description="crossings per trajectory")
     initial: Annotated[list[Annotated[list[FiniteFloat], Field(min_length=3, max_length=3)]],
                        Field(min_length=1, max_length=MAX_TRAJECTORIES)] | None = Field(
         None, description="starts (L/G, H/G, l) on the section; replace sampling")
-    seed: int = Field(0, ge=0, le=2**32 - 1, description="seed of the sampled starts")
+    seed: Int = Field(0, ge=0, le=2**32 - 1, description="seed of the sampled starts")
     method: Literal["dop853", "vern9", "rk45"] = "dop853"
-    rtol: FiniteFloat = Field(1e-10, ge=1e-14, le=1e-3)
-    atol: FiniteFloat = Field(1e-12, gt=0, le=1.0)
+    rtol: MapRtol = 1e-10
+    atol: Atol = 1e-12
     allow_any_inertia: bool = False
 
     @field_validator("section")

@@ -4,9 +4,20 @@ from typing import Annotated, Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field
 
+# the bounds of t_end, samples and the tolerances, one definition with the command line's
+# (MAX_SAMPLES and T_END_MIN are imported from here too)
+from app.schemas.bounds import (  # noqa: F401
+    MAX_SAMPLES,
+    T_END_MIN,
+    Atol,
+    Int,
+    Rtol,
+    Samples,
+    Step,
+    TEnd,
+)
 from app.schemas.common import FiniteFloat
 
-MAX_SAMPLES = 20_000
 MAX_FRAMES = 600
 
 
@@ -76,11 +87,6 @@ CROSS_FIELD_RULES = [
     {"if": NOT_EXAMPLE, "then": {"required": ["params", "state"]}},
     case_rules(),
 ]
-# the smallest final time: from it up, the output times linspace(0, t_end, samples) are
-# distinct for every number of samples accepted (a smaller one, such as 5e-324, cannot
-# hold two); the largest, the bound of one request's work
-T_END_MIN = 1e-300
-T_END_MAX = 1e7
 
 
 class SimulateRequest(BaseModel):
@@ -103,18 +109,17 @@ class SimulateRequest(BaseModel):
     state: Annotated[list[FiniteFloat], Field(min_length=5, max_length=6)] | None = Field(
         None, description="initial state: M1 M2 M3 g1 g2 g3 (|g| = 1), or M1 M2 M3 r1 r2 "
         "for the flat-base cases; null with example = true: the case's demo state")
-    t_end: FiniteFloat = Field(ge=T_END_MIN, le=T_END_MAX, description="final time")
+    t_end: TEnd = Field(description="final time")
     method: Method = Field("dop853", description="integrator (GET /api/methods)")
-    rtol: FiniteFloat = Field(1e-10, ge=1e-16, le=0.1)
-    atol: FiniteFloat = Field(1e-12, gt=0, le=1.0)
-    step: FiniteFloat | None = Field(None, gt=0, le=1e3, description="the constant step of "
-                                     "a symmetric method (gauss4/6/8; required there, "
-                                     "refused elsewhere: the others choose theirs)")
+    rtol: Rtol = 1e-10
+    atol: Atol = 1e-12
+    step: Step | None = Field(None, description="the constant step of a symmetric method "
+                              "(gauss4/6/8; required there, refused elsewhere: the others "
+                              "choose theirs)")
     precision: Literal["double", "long double", "quad"] | None = Field(
         None, description="method taylor only: the floating-point type of the Taylor "
         "integrator; null: chosen from rtol and t_end (results are float64 either way)")
-    samples: int = Field(201, ge=2, le=MAX_SAMPLES, description="output times, evenly "
-                         "spaced on [0, t_end]")
+    samples: Samples = Field(201, description="output times, evenly spaced on [0, t_end]")
     project: bool = Field(False, description="project onto the known integrals after "
                           "every step (compiled methods only)")
     allow_any_inertia: bool = Field(False, description="accept moments that violate the "
@@ -135,7 +140,7 @@ class SceneRequest(SimulateRequest):
     evenly spaced times (solvers.models.kinematics)."""
 
     model_config = ConfigDict(extra="forbid", strict=True)
-    frames: int = Field(200, ge=2, le=MAX_FRAMES)
+    frames: Int = Field(200, ge=2, le=MAX_FRAMES)
 
 
 class RunProvenance(BaseModel):
