@@ -41,7 +41,7 @@ def test_options_after_the_name_reach_the_script():
     # `-- --help`: the script's own help (its module doc), nothing run
     r = CliRunner().invoke(cli, ["bench", "cold-cli", "--", "--help"])
     assert r.exit_code == 0 and "Cold `rolling simulate`" in r.output
-    r = CliRunner().invoke(cli, ["bench", "auto-front", "--", "--help"])
+    r = CliRunner().invoke(cli, ["bench", "auto-coverage", "--", "--help"])
     assert r.exit_code == 0 and "--quick" in r.output
 
 

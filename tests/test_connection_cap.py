@@ -265,7 +265,7 @@ def test_slow_bodies_at_the_cap_cost_ordinary_clients_nothing(server):
 
 
 class _Conn:
-    """What _Candidates reads of a connection: its kind, its body's bytes, whether the app
+    """What Candidates reads of a connection: its kind, its body's bytes, whether the app
     paused its reading (hashable by identity, as the protocol objects are)."""
 
     def __init__(self, kind: str, body_bytes: int = 0):
@@ -276,13 +276,13 @@ class _Conn:
 
 
 def test_the_slowest_request_goes_before_an_idle_client_and_a_fast_upload():
-    """The ranks of _Candidates.victim below the stalled one, on the candidates as the
+    """The ranks of Candidates.victim below the stalled one, on the candidates as the
     protocol files them (kinds by last sign of life, `inflight` by the request's start):
     a trickling body, then a head, then an idle connection, then a fast upload."""
-    from app.core.eviction import _Candidates
+    from app.core.eviction import Candidates
 
     now, grace = 100.0, 1.0
-    cands = _Candidates()
+    cands = Candidates()
     trickle = _Conn("body", body_bytes=12)        # began 6 s ago, a byte 0.4 s ago
     upload = _Conn("body", body_bytes=900_000)    # began 8 s ago, streaming fast
     fresh = _Conn("head")                         # a client's connection, 5 ms old

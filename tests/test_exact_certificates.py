@@ -63,14 +63,14 @@ def test_proved_certified_neither(records):
     """Issue 18: at least 100 verified formula records proved symbolically; the summary
     line counts proved / certified / neither, and every verified record that is neither
     has a reason."""
-    from app.cli import _exact_summary
+    from app.cli import exact_summary
     from solvers.verify.exact.report import exact_counts, neither_reasons
     recs = list(records.values())
     c = exact_counts(recs)
     assert c["proved"] >= 100, c
     assert c["proved"] + c["certified"] + c["neither"] == c["verified"]
     assert len(neither_reasons(recs)) == c["neither"]
-    line = _exact_summary(recs)
+    line = exact_summary(recs)
     assert f"{c['proved']} proved" in line and f"{c['certified']} certified" in line
     assert f"N = 2^{BITS}" in line and f"k = {K_POINTS}" in line
 

@@ -28,7 +28,7 @@ KERNEL_REDESIGN = {
 # Files still over the limit, each being split apart from this check (the kernels, the
 # integrator, the command line); any other file over it fails.
 LONG_ELSEWHERE = {"solvers/integrate/integrator.py", "solvers/kernels/generate.py",
-                  "solvers/kernels/rk.py", "app/cli.py"}
+                  "solvers/kernels/rk.py"}
 
 
 def test_no_file_is_over_the_line_limit():

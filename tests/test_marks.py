@@ -212,7 +212,7 @@ def test_cli_prints_shapes_words_and_counts_by_mark(records):
     buf = io.StringIO()
     orig = Console.__init__
 
-    def to_buffer(self, *a, **k):          # _verify_tables makes its own Console
+    def to_buffer(self, *a, **k):          # verify_tables makes its own Console
         orig(self, *a, **{**k, "file": buf, "width": 200})
     Console.__init__ = to_buffer
     try:

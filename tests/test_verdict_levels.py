@@ -61,18 +61,18 @@ def test_no_table_cell_shows_a_cross(records):
     records nor in the terminal tables."""
     from rich.console import Console
 
-    import app.cli as cli
+    import app.cli.checks
 
     failing = [r["claim"] for r in records if r["level"] == "cell" and r["verdict"] == "fails"]
     assert failing == []
     buf = io.StringIO()
     orig = Console.__init__
 
-    def to_buffer(self, *a, **k):          # _verify_tables makes its own Console
+    def to_buffer(self, *a, **k):          # verify_tables makes its own Console
         orig(self, *a, **{**k, "file": buf})
     Console.__init__ = to_buffer
     try:
-        cli._verify_tables(records, None)
+        app.cli.checks.verify_tables(records, None)
     finally:
         Console.__init__ = orig
     text = buf.getvalue()

@@ -11,7 +11,7 @@ strict JSON: a non-finite number is written as null (as the API does).
 import sys
 
 from app.cli.benches import BENCHES, QUICK, SETTINGS, bench
-from app.cli.checks import _exact_summary, _verify_tables, errata, verify
+from app.cli.checks import errata, exact_summary, verify, verify_tables
 from app.cli.common import EXIT_INPUT, EXIT_SINGULAR, cli
 from app.cli.maps import poincare, sweep
 from app.cli.run import cases, methods, simulate
@@ -21,8 +21,16 @@ for _command in (cases, simulate, verify, errata, methods, serve, poincare, swee
     cli.command()(_command)
 cli.command(**SETTINGS)(bench)
 
-__all__ = ["BENCHES", "EXIT_INPUT", "EXIT_SINGULAR", "QUICK", "_exact_summary",
-           "_verify_tables", "cli", "main"]
+__all__ = [
+    "BENCHES",
+    "EXIT_INPUT",
+    "EXIT_SINGULAR",
+    "QUICK",
+    "cli",
+    "exact_summary",
+    "main",
+    "verify_tables",
+]
 
 
 def main(argv: list[str] | None = None):

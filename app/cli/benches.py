@@ -5,15 +5,16 @@ from typing import Annotated
 
 import typer
 
-from app.cli.common import _fail
+from app.cli.common import fail
 
 # the benchmarks of bench/ (bench/README.md): name -> (script, what it measures); the ones
 # in QUICK take --quick (a smoke run whose table goes to a *_quick file, never kept)
 BENCHES = {
     "work-precision": ("work_precision.py", "every method vs scipy and heyoka, error against "
                        "cost, 6 cases; writes the front auto reads"),
-    "auto-front": ("auto_front.py", "method auto vs heyoka on lean equations at matched "
-                   "error"),
+    "auto-starts": ("auto_starts.py", "method auto over 20 starts per case: its cost against "
+                    "the cheapest single run and heyoka-lean at matched error, its coverage; "
+                    "writes the choice data auto reads"),
     "auto-coverage": ("auto_coverage.py", "whether auto's run meets the requested error over "
                       "random starts"),
     "limit": ("limit.py", "ours vs a hand-written DOP853 and heyoka over many starts (modes: "
@@ -41,7 +42,7 @@ BENCHES = {
                       "explorer's figure data)"),
     "screenshots": ("screenshots.py", "screenshots of the explorer for docs/screenshots/"),
 }
-QUICK = ("work-precision", "auto-front", "auto-coverage", "limit", "ensemble", "payload",
+QUICK = ("work-precision", "auto-coverage", "limit", "ensemble", "payload",
          "entry-overhead", "taylor-compile")
 
 
@@ -67,12 +68,12 @@ def bench(
     from pathlib import Path
 
     if name not in BENCHES:
-        _fail(f"unknown benchmark {name!r}; choose one of {', '.join(BENCHES)}")
+        fail(f"unknown benchmark {name!r}; choose one of {', '.join(BENCHES)}")
     if quick and name not in QUICK:
-        _fail(f"{name} has no --quick; the benchmarks with one: {', '.join(QUICK)}")
+        fail(f"{name} has no --quick; the benchmarks with one: {', '.join(QUICK)}")
     script = Path(__file__).resolve().parents[2] / "bench" / BENCHES[name][0]
     if not script.is_file():
-        _fail(f"{script} not found: the benchmarks run from a checkout of the repository")
+        fail(f"{script} not found: the benchmarks run from a checkout of the repository")
     saved = sys.argv
     sys.argv = [str(script), *(["--quick"] if quick else []), *ctx.args]
     try:

@@ -7,12 +7,12 @@ import typer
 
 from app.cli.common import (
     TimeoutOpt,
-    _check_timeout,
-    _check_workers,
-    _fail,
-    _input_message,
-    _timeout,
-    _write_json,
+    check_timeout,
+    check_workers,
+    fail,
+    input_message,
+    time_limit,
+    write_json,
 )
 
 
@@ -28,27 +28,27 @@ def verify(
     from solvers.errors import InputError
     from solvers.verify.parallel import verify_parallel
 
-    _check_workers(workers, zero="one per core")
-    _check_timeout(timeout)
+    check_workers(workers, zero="one per core")
+    check_timeout(timeout)
     if claim is not None:
         known = {cl.id for c in load_catalogue().cases() if case in (None, c.id)
                  for cl in c.claims}
         if claim not in known:
             where = f" of case {case}" if case else ""
-            _fail(f"--claim {claim!r}: no such claim{where} (the claim ids: rolling "
+            fail(f"--claim {claim!r}: no such claim{where} (the claim ids: rolling "
                   "verify --json, or GET /api/cases/{id})")
     try:
-        with _timeout(timeout):
+        with time_limit(timeout):
             records = verify_parallel(case=case, claim=claim, workers=workers)
     except InputError as e:
-        _fail(_input_message(e))
+        fail(input_message(e))
     if as_json:
-        _write_json(records)
+        write_json(records)
         return
-    _verify_tables(records, case)
+    verify_tables(records, case)
 
 
-def _verify_tables(records, only_case):
+def verify_tables(records, only_case):
     from rich.console import Console
     from rich.markup import escape
     from rich.table import Table
@@ -106,7 +106,7 @@ def _verify_summary(con, records):
             "and statements)"
         con.print(f"{units}: {len(recs)}{what}: " + vocab.sentence(
             {k: counts[k] for k in vocab.IDS if counts.get(k)}, unit, units), markup=False)
-    con.print(_exact_summary(records))
+    con.print(exact_summary(records))
     quals = Counter(r.get("qualifier") for r in records if r.get("qualifier"))
     if quals:
         con.print("formula qualifiers: " + ", ".join(f"{k}: {v}" for k, v in sorted(
@@ -147,13 +147,13 @@ def errata(
     from solvers.verify import errata as er
     from solvers.verify.parallel import verify_parallel
 
-    _check_workers(workers, zero="one per core")
+    check_workers(workers, zero="one per core")
     cat = load_catalogue()
     records = verify_parallel(workers=workers)
     out = {"errata": er.errata(records, cat), "conventions": er.conventions(records, cat),
            "findings": er.findings(records, cat)}
     if as_json:
-        _write_json(out)
+        write_json(out)
         return
     from rich.console import Console
 
@@ -194,7 +194,7 @@ def errata(
         con.print(f"   claim {e['claim']} ({num}); reproduce: {e['reproduce']}", markup=False)
 
 
-def _exact_summary(records) -> str:
+def exact_summary(records) -> str:
     """One line: of the verified formula records, how many are proved symbolically, how
     many certified with a Schwartz-Zippel bound (N and k read from the code), how many
     neither (solvers/verify/exact/report.py gives each one's reason); and how many failing

@@ -19,12 +19,12 @@ EXIT_INPUT = 2
 EXIT_SINGULAR = 3
 
 
-def _fail(message: str, code: int = EXIT_INPUT):
+def fail(message: str, code: int = EXIT_INPUT):
     typer.echo(f"error: {message}", err=True)
     raise typer.Exit(code)
 
 
-def _input_message(e) -> str:
+def input_message(e) -> str:
     """An InputError's message, with the flag of this command line that accepts the input
     anyway where there is one (the message itself names no interface's flag)."""
     option = getattr(e, "option", None)
@@ -32,7 +32,7 @@ def _input_message(e) -> str:
     return f"{e}{flag}"
 
 
-def _check_bounds(request: str, **values) -> None:
+def check_bounds(request: str, **values) -> None:
     """Options bounded as the API bounds the same fields of its request model, by the
     same types (app.schemas.bounds: "simulate" or "poincare"), refused in the API's words
     (exit 2). Nothing of the solvers is imported: a refusal comes at once."""
@@ -42,10 +42,10 @@ def _check_bounds(request: str, **values) -> None:
     model = SimulateBounds if request == "simulate" else PoincareBounds
     message = refusal(model, {k: v for k, v in values.items() if v is not None})
     if message:
-        _fail(message)
+        fail(message)
 
 
-def _write_json(obj) -> None:
+def write_json(obj) -> None:
     from app.services.jobs import dumps
 
     sys.stdout.write(dumps(obj).decode() + "\n")
@@ -61,31 +61,31 @@ MAX_TIMEOUT_S = 7 * 86400.0
 MAX_SEED = 2**32 - 1
 
 
-def _max_workers() -> int:
+def max_workers() -> int:
     return 4 * (os.cpu_count() or 1)
 
 
-def _check_workers(n: int | None, zero: str | None = None) -> None:
+def check_workers(n: int | None, zero: str | None = None) -> None:
     """--workers: 1 .. 4 x the cores; 0 only where it has a meaning (`zero`)."""
     if n is None or (n == 0 and zero):
         return
-    hi = _max_workers()
+    hi = max_workers()
     if not 1 <= n <= hi:
         also = f"0 ({zero}) or " if zero else ""
-        _fail(f"--workers {n}: must be {also}a number of processes from 1 to {hi} "
+        fail(f"--workers {n}: must be {also}a number of processes from 1 to {hi} "
               f"(4 x the {os.cpu_count() or 1} cores)")
 
 
-def _check_seed(seed: int) -> None:
+def check_seed(seed: int) -> None:
     if not 0 <= seed <= MAX_SEED:
-        _fail(f"--seed {seed}: must lie in [0, 2**32 - 1] (as in the API)")
+        fail(f"--seed {seed}: must lie in [0, 2**32 - 1] (as in the API)")
 
 
-def _check_timeout(seconds: float | None) -> None:
+def check_timeout(seconds: float | None) -> None:
     if seconds is None:
         return
     if not (seconds > 0 and seconds <= MAX_TIMEOUT_S):     # NaN fails both
-        _fail(f"--timeout {seconds!r}: must be a positive number of seconds, at most "
+        fail(f"--timeout {seconds!r}: must be a positive number of seconds, at most "
               f"{MAX_TIMEOUT_S:g} (a week)")
 
 
@@ -101,7 +101,7 @@ def _raise_timed_out(signum, frame):
 
 
 @contextlib.contextmanager
-def _timeout(seconds: float | None, graceful: threading.Event | None = None):
+def time_limit(seconds: float | None, graceful: threading.Event | None = None):
     """Stop the whole process when `seconds` have passed: the compiled kernels run without
     returning to Python, so a watchdog thread ends the process (exit 3) from outside.
     `graceful` (sweep): set once the dask cluster is up; then first interrupt the main
@@ -113,7 +113,7 @@ def _timeout(seconds: float | None, graceful: threading.Event | None = None):
     if seconds is None:
         yield
         return
-    _check_timeout(seconds)
+    check_timeout(seconds)
     done = threading.Event()
     message = f"stopped by --timeout after {seconds:g} s"
     old = signal.signal(signal.SIGUSR1, _raise_timed_out) if graceful is not None else None
@@ -139,35 +139,35 @@ def _timeout(seconds: float | None, graceful: threading.Event | None = None):
         yield
     except _TimedOut:
         done.set()
-        _fail(message, EXIT_SINGULAR)
+        fail(message, EXIT_SINGULAR)
     finally:
         done.set()
         if old is not None:
             signal.signal(signal.SIGUSR1, old)
 
 
-def _parse_sets(items: list[str]) -> dict[str, str]:
+def parse_sets(items: list[str]) -> dict[str, str]:
     params = {}
     for item in items:
         name, sep, value = item.partition("=")
         if not sep or not name.strip():
-            _fail(f"--set {item!r}: expected NAME=VALUE")
+            fail(f"--set {item!r}: expected NAME=VALUE")
         params[name.strip()] = value.strip()
     return params
 
 
-def _parse_state(text: str) -> list[str]:
+def parse_state(text: str) -> list[str]:
     return [v.strip() for v in text.replace(" ", ",").split(",") if v.strip()]
 
 
-def _interrupted(code: int):
+def interrupted(code: int):
     sys.stderr.write("error: interrupted\n")
     sys.stderr.flush()
     sys.stdout.flush()
     os._exit(code)
 
 
-def _stderr_console():
+def stderr_console():
     from rich.console import Console
 
     return Console(stderr=True)

@@ -9,28 +9,28 @@ import typer
 from app.cli.common import (
     EXIT_SINGULAR,
     TimeoutOpt,
-    _check_bounds,
-    _check_seed,
-    _check_timeout,
-    _check_workers,
-    _fail,
-    _input_message,
-    _parse_sets,
-    _parse_state,
-    _stderr_console,
-    _timeout,
-    _write_json,
+    check_bounds,
+    check_seed,
+    check_timeout,
+    check_workers,
+    fail,
+    input_message,
+    parse_sets,
+    parse_state,
+    stderr_console,
+    time_limit,
+    write_json,
 )
 
 
 def _parse_section(text: str) -> float:
     name, sep, value = text.partition("=")
     if name.strip() != "g" or not sep:
-        _fail(f"--section {text!r}: expected g=VALUE (the Andoyer-Deprit angle g, radians)")
+        fail(f"--section {text!r}: expected g=VALUE (the Andoyer-Deprit angle g, radians)")
     try:
         return float(value)
     except ValueError:
-        _fail(f"--section {text!r}: {value!r} is not a number")
+        fail(f"--section {text!r}: {value!r} is not a number")
 
 
 def poincare(
@@ -56,10 +56,10 @@ def poincare(
     timeout: TimeoutOpt = None,
 ):
     """3D Poincare map in Andoyer-Deprit variables (L/G, H/G, l) on the level E = E0."""
-    _check_seed(seed)
-    _check_timeout(timeout)
+    check_seed(seed)
+    check_timeout(timeout)
     # refused before the solvers (and their compiled kernels) are imported
-    _check_bounds("poincare", energy=energy, direction=direction, rtol=rtol, atol=atol)
+    check_bounds("poincare", energy=energy, direction=direction, rtol=rtol, atol=atol)
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TimeElapsedColumn
 
     from solvers.errors import InputError
@@ -69,11 +69,11 @@ def poincare(
     from solvers.simulate import compiled_methods
 
     if method not in compiled_methods():
-        _fail(f"--method {method!r}: choose a compiled method ({', '.join(compiled_methods())})")
+        fail(f"--method {method!r}: choose a compiled method ({', '.join(compiled_methods())})")
     try:
         spec_case = get_case(case)
-        params = {**(spec_case.example if example else {}), **_parse_sets(set_)}
-        starts = [[float(v) for v in _parse_state(s)] for s in initial] or None
+        params = {**(spec_case.example if example else {}), **parse_sets(set_)}
+        starts = [[float(v) for v in parse_state(s)] for s in initial] or None
         spec = MapSpec(energy=energy, g0=_parse_section(section), direction=direction,
                        points=points, method=method, rtol=rtol, atol=atol)
         # bad input (a level whose starts overflow, too many trajectories): one line,
@@ -81,22 +81,22 @@ def poincare(
         spec.validate()
         starts_for(map_model(case, params, allow_any_inertia=allow_any_inertia), spec,
                    trajectories=trajectories, initial=starts, seed=seed)
-        with _timeout(timeout), Progress(
+        with time_limit(timeout), Progress(
                 "[progress.description]{task.description}", BarColumn(),
                 MofNCompleteColumn(), TimeElapsedColumn(),
-                console=_stderr_console(), transient=as_json) as bar:
+                console=stderr_console(), transient=as_json) as bar:
             task = bar.add_task("trajectories", total=len(starts) if starts else trajectories)
             res = run(case, params, spec, trajectories=trajectories, initial=starts,
                       seed=seed, allow_any_inertia=allow_any_inertia,
                       progress=lambda done, total: bar.update(task, completed=done,
                                                               total=total))
     except InputError as e:
-        _fail(_input_message(e))
+        fail(input_message(e))
     except ValueError as e:
-        _fail(str(e))
+        fail(str(e))
     out = res.to_json()
     if as_json:
-        _write_json(out)
+        write_json(out)
     else:
         _poincare_summary(out)
     if any(t["status"] not in ("ok", "no-return") for t in out["trajectories"]):
@@ -139,21 +139,21 @@ def sweep(
     from solvers.models.cases import get_case
 
     if (vary is None) == (energies is None):
-        _fail("give exactly one of --vary NAME=v1,v2,... and --energies e1,e2,...")
-    _check_workers(workers)     # 0 would start a cluster without workers and wait forever
-    _check_seed(seed)
-    _check_timeout(timeout)
+        fail("give exactly one of --vary NAME=v1,v2,... and --energies e1,e2,...")
+    check_workers(workers)     # 0 would start a cluster without workers and wait forever
+    check_seed(seed)
+    check_timeout(timeout)
     try:
-        params = {**(get_case(case).example if example else {}), **_parse_sets(set_)}
+        params = {**(get_case(case).example if example else {}), **parse_sets(set_)}
         kw = {"g0": _parse_section(section), "trajectories": trajectories, "points": points}
         if vary is not None:
             name, sep, vals = vary.partition("=")
             if not sep:
-                _fail(f"--vary {vary!r}: expected NAME=v1,v2,...")
+                fail(f"--vary {vary!r}: expected NAME=v1,v2,...")
             tasks = parameter_tasks(case, params, name.strip(),
-                                    [float(v) for v in _parse_state(vals)], energy, **kw)
+                                    [float(v) for v in parse_state(vals)], energy, **kw)
         else:
-            tasks = energy_tasks(case, params, [float(v) for v in _parse_state(energies)],
+            tasks = energy_tasks(case, params, [float(v) for v in parse_state(energies)],
                                  **kw)
         base = DaskSettings()
         settings = base.model_copy(update={k: v for k, v in
@@ -161,18 +161,18 @@ def sweep(
                                            if v is not None})
         validate(seeded(tasks, seed))     # bad input: one line, before a bar is drawn
         up = threading.Event()
-        with _timeout(timeout, graceful=up), Progress(
+        with time_limit(timeout, graceful=up), Progress(
                 "[progress.description]{task.description}", BarColumn(),
                 MofNCompleteColumn(), TimeElapsedColumn(),
-                console=_stderr_console(), transient=True) as bar:
+                console=stderr_console(), transient=True) as bar:
             task = bar.add_task("maps", total=len(tasks))
             res = run(tasks, seed=seed, settings=settings,
                       progress=lambda done, total: (up.set(),
                                                     bar.update(task, completed=done)))
     except (InputError, ValueError) as e:
-        _fail(str(e))
+        fail(str(e))
     if as_json:
-        _write_json(res.to_json())
+        write_json(res.to_json())
         return
     from rich.console import Console
     from rich.table import Table

@@ -8,14 +8,14 @@ import typer
 from app.cli.common import (
     EXIT_SINGULAR,
     TimeoutOpt,
-    _check_bounds,
-    _check_timeout,
-    _fail,
-    _input_message,
-    _parse_sets,
-    _parse_state,
-    _timeout,
-    _write_json,
+    check_bounds,
+    check_timeout,
+    fail,
+    input_message,
+    parse_sets,
+    parse_state,
+    time_limit,
+    write_json,
 )
 
 
@@ -60,32 +60,32 @@ def simulate(
     timeout: TimeoutOpt = None,
 ):
     """Integrate one case and report the state, the invariants and the cost."""
-    _check_timeout(timeout)
+    check_timeout(timeout)
     if state is None and not example:
-        _fail("--state is required (or --example for the case's demo state)")
+        fail("--state is required (or --example for the case's demo state)")
     if t_end is None:
         if not example:
-            _fail("--t-end is required")
+            fail("--t-end is required")
         t_end = 100.0
     # refused before the solvers (and their compiled kernels) are imported
-    _check_bounds("simulate", t_end=t_end, samples=samples, rtol=rtol, atol=atol, step=step)
+    check_bounds("simulate", t_end=t_end, samples=samples, rtol=rtol, atol=atol, step=step)
     from solvers import simulate as sim
     from solvers.errors import InputError
     from solvers.models.cases import get_case
 
     try:
         spec = get_case(case)
-        params = {**(spec.example if example else {}), **_parse_sets(set_)}
-        y0 = _parse_state(state) if state is not None else spec.state
-        with _timeout(timeout):
+        params = {**(spec.example if example else {}), **parse_sets(set_)}
+        y0 = parse_state(state) if state is not None else spec.state
+        with time_limit(timeout):
             res = sim.simulate(case, params, y0, t_end, method=method, rtol=rtol, atol=atol,
                                samples=samples, project=project,
                                allow_any_inertia=allow_any_inertia, step=step, field=field,
                                precision=precision)
     except InputError as e:
-        _fail(_input_message(e))
+        fail(input_message(e))
     if as_json:
-        _write_json(res.to_json())
+        write_json(res.to_json())
     else:
         _summary(res)
     if not res.ok:

@@ -4,7 +4,7 @@ from typing import Annotated
 
 import typer
 
-from app.cli.common import _check_workers, _interrupted
+from app.cli.common import check_workers, interrupted
 
 
 def serve(
@@ -16,7 +16,7 @@ def serve(
     """Start the web explorer (FastAPI + uvicorn) on http://127.0.0.1:8000."""
     import os
 
-    _check_workers(workers)
+    check_workers(workers)
     if workers is not None:
         os.environ["ROLLING_WORKERS"] = str(workers)
     if host is not None:   # the app derives its Host allow-list from the address it serves
@@ -36,8 +36,8 @@ def serve(
         # workers and the warm-up (app/main.py), nothing is left to clean up, and the
         # interpreter's own teardown (numba's and LLVM's compiled code) takes seconds more,
         # and the explorer should stop at once. SIGTERM ends the process the same way.
-        _interrupted(130)
+        interrupted(130)
     if STOP_SIGNALS_SEEN:
         # stopped by a signal whose re-raise did nothing: the process started with SIGINT
         # ignored (a background job of a shell), which uvicorn restores before re-raising
-        _interrupted(128 + STOP_SIGNALS_SEEN[0])
+        interrupted(128 + STOP_SIGNALS_SEEN[0])

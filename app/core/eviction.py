@@ -1,7 +1,7 @@
 """Which connection to close when the server's connection cap is reached
 (app.core.server, GuardedH11Protocol._evict_one): the candidates by kind, each kept in
 time order so that a victim is found without a scan of every connection. The ranks and
-why they are in that order: _Candidates.victim and app.core.server's docstring."""
+why they are in that order: Candidates.victim and app.core.server's docstring."""
 
 from __future__ import annotations
 
@@ -29,7 +29,7 @@ RATE_FLOOR_S = 0.1
 SLOW_SCAN = 32
 
 
-class _Candidates:
+class Candidates:
     """The evictable connections of one server, by kind. Each kind is an insertion-ordered
     dict protocol -> since, and every (re)insertion is made with since = now, so that each
     dict is ordered by `since` (time is monotonic) and its oldest entry is its first: a

@@ -12,7 +12,7 @@ memory; half bodies and half heads stay open). Its h11 parser has a size limit
   the connection or of the first byte of the request (408 and close);
 - a body: a gap of `body_timeout_s` without a byte closes the connection;
 - at most `max_connections` open connections. At the cap a new connection evicts one
-  that makes no progress (_Candidates.victim), never a legitimate one while a stalled or
+  that makes no progress (Candidates.victim), never a legitimate one while a stalled or
   slow one is there: first one closed by a read timeout and still lingering; then the
   longest silent of a head (counted from its start), a body (from its last byte; not one
   the app paused) or a lingering answer, once silent for `stall_grace_s`; then the slowest
@@ -59,7 +59,7 @@ import h11
 from uvicorn.protocols.http.flow_control import HIGH_WATER_LIMIT
 from uvicorn.protocols.http.h11_impl import H11Protocol
 
-from app.core.eviction import FAST_BYTES_S, KINDS, SLOW_SCAN, _Candidates  # noqa: F401
+from app.core.eviction import FAST_BYTES_S, KINDS, SLOW_SCAN, Candidates  # noqa: F401
 from app.core.guards import HEADERS
 
 log = logging.getLogger("rolling.server")
@@ -84,7 +84,7 @@ class Limits:
 
 
 # what the guards did, for /api/health and bench/load.py (one process, one event loop);
-# evicted_by: the evictions by rank (see _Candidates.victim)
+# evicted_by: the evictions by rank (see Candidates.victim)
 STATS = {"connections": 0, "peak_connections": 0, "evicted": 0, "refused": 0,
          "header_timeouts": 0, "body_timeouts": 0, "header_too_large": 0, "lingered": 0,
          "evicted_by": {"stalled": 0, "slowest": 0, "idle": 0, "young_body": 0}}
@@ -211,8 +211,8 @@ class GuardedH11Protocol(H11Protocol):
         self._in_bytes = 0                 # bytes of the body arriving (see _place)
         cands = getattr(server_state, "rolling_candidates", None)
         if cands is None:                # one index per server (its connections' set)
-            cands = server_state.rolling_candidates = _Candidates()
-        self._cands: _Candidates = cands
+            cands = server_state.rolling_candidates = Candidates()
+        self._cands: Candidates = cands
         self._app_held: tuple | None = None    # (the app's coroutine, its start signal)
         self.loop = _DeferringLoop(self.loop, self)
 

@@ -310,7 +310,7 @@ def _compile(model: int, p, precision: str, tol: float) -> Compiled:
     # E - k J >= E, as J = Hess h is positive semidefinite for a convex body
     # A ball (support c |gamma| + (a, gamma)) has the constant radius of curvature c, and a
     # ball that does not fit is refused before any run: no event (it doubled the cost of
-    # a step of the Chaplygin ball in a cavity, bench/results/auto_front.txt)
+    # a step of the Chaplygin ball in a cavity)
     pv = np.asarray(p, dtype=float)
     ball = not any(pv[s] != 0.0 for s in (L.B11, L.B22, L.B33, L.B12, L.B13, L.B23, L.DISK_D))
     if "fit" in checks and pv[L.CURV] > 0 and not ball:
