@@ -2,9 +2,11 @@
 
 *What* is integrated: a model code and its parameter vector (`solvers.kernels.layout`);
 *how*: a method name (a tableau of `solvers.integrate.tableaux`) and a `StepControl`; *what to
-record*: the output times `t_out`, integrals to project onto, a `Section` to cross. This
-layer converts everything to the float/int arrays the kernel takes (poliastro style) and
-turns the kernel's status code into a message; the kernel knows nothing of it.
+record*: the output times `t_out`, integrals to project onto, a `Section` to cross.
+integrate()'s keywords make one typed record of the run's options (`RunOptions`,
+solvers/integrate/options.py), which `run_options` packs into the float/int arrays the
+kernel takes (poliastro style) only at the compiled call, and the kernel's status code
+becomes a message; the kernel knows nothing of it.
 
 `solve_ivp_reference` runs scipy's solve_ivp on the same field, as an independent check.
 """
