@@ -5,7 +5,10 @@ a matched final-state error interpolated (log-log) on that front:
   limit        a DOP853 written by hand in numba (scipy's coefficients, loops over constant
                arrays), the field written by hand and inlined (inline='always'): the
                Chaplygin ball, the disk and the body with a flat base (the gyrostat
-               term S x omega of the flat base is zero in this example and left out);
+               term S x omega of the flat base is zero in this example and left out).
+               It is the independent baseline and stays a step of its own, apart from
+               the project's one Runge-Kutta step (solvers/kernels/rk.py and the kernels
+               made from it): a reference that shared that code could not show its cost;
   lean-dop853  the same hand-written DOP853 on the generated field of the case
                (solvers/kernels/generate.py): what the generated field alone buys;
   ours         the project's integrate(): general rk_integrate kernel, general field;

@@ -25,8 +25,8 @@ from solvers.models.cases import build, registry
 from tests.test_ensemble import _case, _same
 
 
-# rk.py's generated integrator on the ball only: it is rk.py's source with the field's
-# import changed (test_integrate_and_the_ensemble_twin_run_one_module), and every case's
+# rk.py's generated integrator on the ball only: it is rk.py's code bound to the field
+# (test_integrate_and_the_ensemble_twin_run_one_module), and every case's
 # generated field is checked against the general one (tests/test_generated.py), so a
 # second structure (the flat base's 5-dimensional state) cost a ~37 s compile in CI for a
 # combination of two parts checked each on its own; the flat base's small kernel stays
@@ -80,11 +80,13 @@ def test_same_bits_as_the_generated_integrator():
 
 
 def test_integrate_and_the_ensemble_twin_run_one_module():
-    """What integrate(generated=True) runs on a case: rk.py's own source with only its
-    field import changed (its tableau loops, nothing written out), the same module the
-    ensemble twin imports."""
+    """What integrate(generated=True) runs on a case: rk.py's own functions (the same code
+    objects' bytecode: its tableau loops, nothing written out) bound to the case's
+    generated field, the same module whose rk_integrate the ensemble twin calls; the twin
+    is ensemble.py's loop, bound the same way. No source text is read to make them."""
     from solvers.integrate import ensemble
-    from solvers.kernels import rk
+    from solvers.kernels import bind, rk
+    from solvers.kernels import ensemble as ens_kernels
 
     c = registry()["plane/chaplygin-ball"]
     m = build(c.id, c.example)
@@ -92,11 +94,46 @@ def test_integrate_and_the_ensemble_twin_run_one_module():
     mod = integrator._generated_module(m.model, p, (m.model, p.tobytes()))
     assert mod is generate.generated_integrator(m.model, p)
     field = generate.generated(m.model, p)
-    rk_src = open(rk.__file__).read().replace(
-        "from solvers.kernels.fields import rhs\n", f"from {field.__name__} import rhs\n")
-    assert open(mod.__file__).read() == rk_src
-    twin = open(ensemble.generated_ensemble(m.model, p).__file__).read()
-    assert f"from {mod.__name__} import rk_integrate" in twin
+    assert mod.rhs is field.rhs and rk.rhs is not field.rhs
+    own = bind.jitted(rk)
+    assert "rk_integrate" in own and "_stages" in own
+    for name, disp in own.items():
+        bound = getattr(mod, name)
+        assert bound is not disp
+        assert bound.py_func.__code__.co_code == disp.py_func.__code__.co_code
+        assert bound.py_func.__globals__ is vars(mod)
+        assert bound.py_func.__code__.co_filename == mod.__file__
+    twin = ensemble.generated_ensemble(m.model, p)
+    assert twin.rk_integrate is mod.rk_integrate
+    assert twin.rk_ensemble.py_func.__code__.co_code == \
+        ens_kernels.rk_ensemble.py_func.__code__.co_code
+    assert twin.rk_ensemble.targetoptions.get("parallel") is True
+
+
+def test_no_module_edits_source_text():
+    """No module of solvers/ reads a Python file's text to edit it (str.replace on what
+    read_text() or read() returned): kernels are bound (solvers/kernels/bind.py) or
+    generated from their own descriptions."""
+    import ast
+    from pathlib import Path
+
+    root = Path(generate.__file__).resolve().parents[1]
+    def read(node) -> bool:     # x.read_text() or x.read()
+        return (isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute)
+                and node.func.attr in ("read_text", "read"))
+
+    found = []
+    for f in sorted(root.rglob("*.py")):
+        tree = ast.parse(f.read_text())
+        texts = {t.id for node in ast.walk(tree) if isinstance(node, ast.Assign)
+                 and read(node.value) for t in node.targets if isinstance(t, ast.Name)}
+        for node in ast.walk(tree):
+            if (isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute)
+                    and node.func.attr == "replace"):
+                recv = node.func.value
+                if read(recv) or (isinstance(recv, ast.Name) and recv.id in texts):
+                    found.append(f"{f.relative_to(root)}:{node.lineno}")
+    assert not found, found
 
 
 def test_generated_ensemble_equals_generated_one_by_one():

@@ -26,7 +26,6 @@ from __future__ import annotations
 import os
 import threading
 import time
-from pathlib import Path
 
 import numba
 import numpy as np
@@ -44,6 +43,7 @@ from solvers.integrate.integrator import (
     small_module,
     status_message,
 )
+from solvers.integrate.options import Projection, RunOptions
 from solvers.kernels import ensemble as kernels
 from solvers.kernels import generate, rk
 from solvers.kernels import layout as L
@@ -120,19 +120,14 @@ def _small_ensemble(model, p, Y0, T, counts, steps, compensated, FOPT, atol_v, m
 
 
 def generated_ensemble(model: int, p):
-    """The ensemble loop compiled against the case's generated `rk_integrate`
-    (generate.generated_integrator): solvers/kernels/ensemble.py written next to it in
-    generate.cache_dir() with only its import line changed. Its name follows the
-    integrator module's, which already hashes the structure and every kernel source."""
+    """The ensemble loop (solvers/kernels/ensemble.py) bound to the case's generated
+    `rk_integrate` (generate.generated_integrator; generate.bound_module: the same code,
+    another callee). Its name follows the integrator module's, which already hashes the
+    structure and every kernel source."""
     rk_mod = generate.generated_integrator(model, p)
-
-    def source():
-        src = Path(kernels.__file__).read_text()
-        old = "from solvers.kernels.rk import rk_integrate\n"
-        assert old in src
-        return src.replace(old, f"from {rk_mod.__name__} import rk_integrate\n")
-
-    return generate.cached_module(f"ens_{rk_mod.__name__}", source)
+    name = f"ens_{rk_mod.__name__}"
+    return generate.bound_module(name, kernels, {"rk_integrate": rk_mod.rk_integrate},
+                                 f"solvers/kernels/ensemble.py's loop on {rk_mod.__name__}")
 
 
 def _per_traj(value, n_traj, name, dtype):
@@ -257,14 +252,20 @@ def integrate_ensemble(model, p, Y0, t_out, *, method="dop853", rtol=1e-10, atol
     cross = (np.maximum(1, _per_traj(max_crossings, n_traj, "max_crossings", np.int64))
              if section is not None else np.ones(n_traj, dtype=np.int64))
     n_cross = int(cross.max(initial=1))
-    IOPT = np.empty((n_traj, 7), dtype=np.int64)
-    IOPT[:] = [0, int(compensated), project_every, sec.code, int(np.sign(sec.direction)),
-               0, int(fixed)]
+    # the options every trajectory shares, packed once (options.py); then the columns
+    # that differ per trajectory: the budget, the crossings and h_max
+    opts = RunOptions(method=method, rtol=rtol, atol=atol, control=control,
+                      h_fixed=h_fixed, dense_output=dense_output, compensated=compensated,
+                      section=section, projection=Projection(
+                          tuple(codes.tolist()), every=int(project_every)) if codes.size
+                      else None)
+    ipack, fpack = opts.packed()
+    IOPT = np.empty((n_traj, len(ipack)), dtype=np.int64)
+    IOPT[:] = ipack
     IOPT[:, rk.I_MAX_STEPS] = steps
     IOPT[:, rk.I_MAX_CROSS] = cross
-    FOPT = np.empty((n_traj, 7), dtype=np.float64)
-    FOPT[:] = [rtol, h_fixed if fixed else control.h0, 0.0, control.safety,
-               control.fac_min, control.fac_max, control.beta]
+    FOPT = np.empty((n_traj, len(fpack)), dtype=np.float64)
+    FOPT[:] = fpack
     FOPT[:, rk.F_HMAX] = hmax
     N = T.shape[1]
     Y = np.empty((n_traj, N, n))

@@ -2,9 +2,11 @@
 
 *What* is integrated: a model code and its parameter vector (`solvers.kernels.layout`);
 *how*: a method name (a tableau of `solvers.integrate.tableaux`) and a `StepControl`; *what to
-record*: the output times `t_out`, integrals to project onto, a `Section` to cross. This
-layer converts everything to the float/int arrays the kernel takes (poliastro style) and
-turns the kernel's status code into a message; the kernel knows nothing of it.
+record*: the output times `t_out`, integrals to project onto, a `Section` to cross.
+integrate()'s keywords make one typed record of the run's options (`RunOptions`,
+solvers/integrate/options.py), which `run_options` packs into the float/int arrays the
+kernel takes (poliastro style) only at the compiled call, and the kernel's status code
+becomes a message; the kernel knows nothing of it.
 
 `solve_ivp_reference` runs scipy's solve_ivp on the same field, as an independent check.
 """
@@ -19,40 +21,16 @@ from pathlib import Path
 import numpy as np
 
 from solvers.integrate import collocation, tableaux
+from solvers.integrate.options import (
+    Projection,
+    RunOptions,
+    Section,  # noqa: F401 (its callers import it from here)
+    StepControl,
+    fopt,
+)
 from solvers.kernels import baked, gauss, generate, rk, small
 from solvers.kernels import layout as L
 from solvers.kernels.fields import rhs
-
-
-@dataclass(frozen=True)
-class StepControl:
-    """Step-size control (Hairer's DOPRI5 PI controller): h_new = h * clip(safety *
-    err^-(1/(q+1) - 0.75 beta) * err_prev^beta, fac_min, fac_max); beta = 0 gives the
-    classical controller. h0 = 0: Hairer's automatic initial step."""
-
-    safety: float = 0.9
-    fac_min: float = 0.2
-    fac_max: float = 10.0
-    beta: float = 0.04
-    h0: float = 0.0
-    h_max: float = np.inf
-
-
-@dataclass(frozen=True)
-class Section:
-    """The section s(y) = coef . y - offset = 0, crossed with s increasing (direction
-    +1), decreasing (-1) or either (0). Crossings are located by Henon's trick."""
-
-    coef: tuple
-    offset: float = 0.0
-    direction: int = 1
-    code: int = rk.SECTION_LINEAR
-
-    def packed(self, n):
-        c = np.zeros(n + 1)
-        c[:n] = np.asarray(self.coef, dtype=np.float64)
-        c[n] = self.offset
-        return c
 
 
 @dataclass(slots=True)   # not frozen: a frozen init costs more per call (the thin entry)
@@ -343,10 +321,13 @@ def small_fits(model, method, *, fixed=False, dense_output=True) -> bool:
             and dense_output)
 
 
+_CONTROL = StepControl()     # the default (one object: the plain entry's memos key on it)
+
+
 def integrate(model, p, y0, t_out, *, method="dop853", rtol=1e-10, atol=1e-12,
               max_steps=10_000_000, compensated=False, project_codes=(), project_values=None,
               project_every=1, section=None, max_crossings=100_000, h_fixed=None,
-              dense_output=True, control=StepControl(),
+              dense_output=True, control=_CONTROL,
               generated=None, kernel=None) -> IntegrationResult:
     """Integrate `model` from (t_out[0], y0) and return the states at the times t_out.
 
@@ -389,15 +370,14 @@ def integrate(model, p, y0, t_out, *, method="dop853", rtol=1e-10, atol=1e-12,
         # a plain run (is_plain): the small kernel, by the short entry below
         return _integrate_small(model, p, y0, t_out, method, rtol, atol, max_steps,
                                 compensated, control)
-    t_out, y0, p, n = _inputs(model, p, y0, t_out)
+    t_out, y0, p, _ = _inputs(model, p, y0, t_out)
     if method in collocation.METHODS:
         if project_codes or section is not None or not h_fixed or not h_fixed > 0:
             raise ValueError(f"{method} is a symmetric fixed-step method: give h_fixed > 0; "
                              "it takes no projection and no section")
         return _integrate_symmetric(model, p, y0, t_out, method, float(h_fixed), max_steps)
-    A, c, b, E, P, meth = _method_arrays(method)
-    if not dense_output:
-        P = _NO_DENSE
+    if kernel not in (None, "rk", "small"):
+        raise ValueError(f"kernel = {kernel!r}: None, 'rk' or 'small'")
     if len(project_codes):
         codes = np.asarray(project_codes, dtype=np.int64).ravel()
         if project_values is None:
@@ -408,60 +388,76 @@ def integrate(model, p, y0, t_out, *, method="dop853", rtol=1e-10, atol=1e-12,
                                   else np.array(project_values, dtype=np.float64).ravel())
     if vals.size != codes.size or project_every < 1:
         raise ValueError("one project_value per code, and project_every >= 1")
-    fixed = h_fixed is not None
-    if fixed and not h_fixed > 0:
-        raise ValueError("h_fixed must be positive")
+    projection = (Projection(tuple(codes.tolist()), tuple(vals.tolist()), int(project_every))
+                  if codes.size else None)
+    opts = RunOptions(method=method, rtol=rtol, atol=atol, control=control, h_fixed=h_fixed,
+                      dense_output=dense_output, compensated=compensated, section=section,
+                      max_crossings=max_crossings, projection=projection,
+                      max_steps=max_steps)
+    return run_options(model, p, y0, t_out, opts, generated=generated, kernel=kernel)
+
+
+def run_options(model, p, y0, t_out, opts: RunOptions, *, generated=None,
+                kernel=None) -> IntegrationResult:
+    """integrate() of checked inputs (float64 arrays: y0, t_out strictly increasing) and a
+    RunOptions: the kernel chosen by integrate()'s rule, the options packed into its
+    arrays here, at the compiled call."""
+    n = y0.size
+    method = opts.method
+    A, c, b, E, P, meth = _method_arrays(method)
+    if not opts.dense_output:
+        P = _NO_DENSE
+    proj = opts.projection
+    if proj is None:
+        codes, vals, project_every = _NO_CODES, _NO_VALUES, 1
+    else:
+        codes = np.array(proj.codes, dtype=np.int64)
+        vals = (initial_integrals(model, p, y0, codes) if proj.values is None
+                else np.array(proj.values, dtype=np.float64))
+        project_every = proj.every
+    section = opts.section
     if section is None:
         sec_coef = _NO_SECTION.get(n)
         if sec_coef is None:
             sec_coef = _NO_SECTION[n] = np.zeros(n + 1)
-        sec_code, sec_dir, n_cross = rk.SECTION_NONE, 0, 1
     else:
-        sec_code, sec_dir = section.code, int(np.sign(section.direction))
-        n_cross, sec_coef = max(1, int(max_crossings)), section.packed(n)
-    iopt, fopt = _option_arrays(
-        (int(max_steps), int(compensated), int(project_every), sec_code, sec_dir, n_cross,
-         int(fixed)),
-        (float(rtol), float(h_fixed if fixed else control.h0), float(control.h_max),
-         float(control.safety), float(control.fac_min), float(control.fac_max),
-         float(control.beta)))
-    if isinstance(atol, float | int):
-        atol_v = np.empty(n)
-        atol_v[:] = atol
-    else:
-        atol_v = np.array(np.broadcast_to(np.asarray(atol, dtype=np.float64), (n,)))
+        sec_coef = section.packed(n)
+    ipack, fpack = opts.packed()
+    sec_code, sec_dir, n_cross = (ipack[rk.I_SECTION], ipack[rk.I_DIRECTION],
+                                  ipack[rk.I_MAX_CROSS])
+    iopt, fopt_v = _option_arrays(ipack, fpack)
+    atol_v = opts.atol_vector(n)
+    compensated, max_steps = opts.compensated, opts.max_steps
     # fresh outputs on every call: Y and y_stop are handed to the caller
     Y = np.empty((t_out.size, n))
     cross_t = np.empty(n_cross)
     cross_y = np.empty((n_cross, n))
     y_stop = np.empty(n)
     stats = np.zeros(5, dtype=np.int64)
-    if kernel not in (None, "rk", "small"):
-        raise ValueError(f"kernel = {kernel!r}: None, 'rk' or 'small'")
     if kernel in (None, "small") and generated is not False and is_plain(
             model, method, project=bool(codes.size), section=section,
-            compensated=compensated, fixed=fixed, dense_output=dense_output):
+            compensated=compensated, fixed=opts.fixed, dense_output=opts.dense_output):
         run = small_module(model, p, method).run
         t0 = time.perf_counter()
-        status, t_stop = run(p, y0, t_out, int(max_steps), bool(compensated), fopt, atol_v,
+        status, t_stop = run(p, y0, t_out, int(max_steps), bool(compensated), fopt_v, atol_v,
                              Y, y_stop, stats)
         wall = time.perf_counter() - t0
         return _result(t_out, Y, y_stop, stats, status, t_stop, wall, method, cross_t,
                        cross_y, "generated", "small")
     if kernel == "small":   # a section or a projection: the small kernel with it
         if (generated is False or (section is not None and codes.size) or not small_fits(
-                model, method, fixed=fixed, dense_output=dense_output)):
+                model, method, fixed=opts.fixed, dense_output=opts.dense_output)):
             raise ValueError(SMALL_REFUSED)
         t0 = time.perf_counter()
         if section is not None:
             run = small_module(model, p, method, sections=True).run
-            status, t_stop = run(p, y0, t_out, int(max_steps), bool(compensated), fopt,
+            status, t_stop = run(p, y0, t_out, int(max_steps), bool(compensated), fopt_v,
                                  atol_v, Y, y_stop, stats, int(model), sec_code, sec_dir,
                                  n_cross, sec_coef, A, c, b, meth, cross_t, cross_y)
             used = SMALL_SECTIONS
         else:
             run = small_module(model, p, method, projection=True).run
-            status, t_stop = run(p, y0, t_out, int(max_steps), bool(compensated), fopt,
+            status, t_stop = run(p, y0, t_out, int(max_steps), bool(compensated), fopt_v,
                                  atol_v, Y, y_stop, stats, int(model), codes, vals,
                                  int(project_every))
             used = SMALL_PROJECTION
@@ -475,7 +471,7 @@ def integrate(model, p, y0, t_out, *, method="dop853", rtol=1e-10, atol=1e-12,
             kern, used = _generated_module(model, p, key[:2]).rk_integrate, "generated"
             fresh = None if _GEN_READY.get(key) is True else key
     t0 = time.perf_counter()
-    status, t_stop = kern(int(model), p, y0, t_out, A, c, b, E, P, meth, iopt, fopt,
+    status, t_stop = kern(int(model), p, y0, t_out, A, c, b, E, P, meth, iopt, fopt_v,
                           atol_v, codes, vals, sec_coef, Y, cross_t, cross_y, y_stop, stats)
     wall = time.perf_counter() - t0
     if fresh is not None:   # compiled now: later calls (and processes) may use it
@@ -510,10 +506,8 @@ def _plain_fopt(rtol, control: StepControl) -> np.ndarray:
     if hit is None or hit[0] is not control:
         if len(_PLAIN_FOPT) > _CACHE_MAX:
             _PLAIN_FOPT.clear()
-        hit = _PLAIN_FOPT[key] = (control, np.array(
-            (key[0], float(control.h0), float(control.h_max), float(control.safety),
-             float(control.fac_min), float(control.fac_max), float(control.beta)),
-            dtype=np.float64))
+        hit = _PLAIN_FOPT[key] = (control, np.array(fopt(key[0], control),
+                                                     dtype=np.float64))
     return hit[1]
 
 

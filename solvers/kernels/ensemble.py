@@ -11,9 +11,9 @@ T_out[i, :n_out[i]] of a padded table), its own options iopt/fopt (step budget, 
 and its own projection values. Statuses, stop times, final states, crossings and stats
 come back per trajectory: a singular trajectory stops alone.
 
-The generated twin (the same loop compiled against a case's generated `rk_integrate`,
-solvers/kernels/generate.py) is this file with its import line changed; see
-solvers/integrate/ensemble.py. parallel=True needs a threading layer; the Python entry
+The generated twin (the same loop compiled against a case's generated `rk_integrate`) is
+this module's function bound to that kernel (generate.bound_module, solvers/kernels/bind.py);
+see solvers/integrate/ensemble.py. parallel=True needs a threading layer; the Python entry
 picks one and serialises launches (numba's workqueue layer is not thread-safe).
 """
 

@@ -549,7 +549,7 @@ def cached_module(name: str, source):
     """The module `name` of cache_dir(): loaded once per process; on first use anywhere
     its text `source()` is written there (atomically: a concurrent process or thread sees
     all of it or nothing). Registered in sys.modules, so other generated modules (the
-    integrator copy, the ensemble twin) import it by name."""
+    small kernels' shared operations) import it by name."""
     mod = _LOADED.get(name)
     if mod is not None:
         return mod
@@ -595,21 +595,32 @@ def _memory_module(name: str, text: str):
     return mod
 
 
+def bound_module(name: str, module, replace: dict, what: str):
+    """The module `name` of cache_dir() holding `module`'s jitted functions compiled over
+    `replace` (solvers/kernels/bind.py: the same code objects, other callees; no source
+    text is read or edited). Its file is a stub saying `what` it holds, beside which numba
+    caches the machine code."""
+    from solvers.kernels import bind  # numba's: not loaded for the heyoka systems below
+
+    mod = cached_module(name, lambda: bind.stub_source(name, what))
+    bind.bind_into(mod, module, replace)
+    return mod
+
+
 def generated_integrator(model: int, p, fold: bool = False):
-    """solvers/kernels/rk.py compiled against the case's generated field instead of the
-    general `fields.rhs`: the same source (tableau as data, dense output, projection,
-    sections, statuses), written next to the generated field with only its `rhs` import
-    changed, so every stage call is the lean field, inlined. `rk_integrate` has rk.py's
-    signature. One numba compile per structure (a long one), then numba's on-disk cache."""
+    """solvers/kernels/rk.py's kernels bound to the case's generated field instead of the
+    general `fields.rhs` (bound_module): the same code (tableau as data, dense output,
+    projection, sections, statuses), every stage call the lean field, inlined.
+    `rk_integrate` has rk.py's signature. One numba compile per structure (a long one),
+    then numba's on-disk cache."""
+    # rk (numba's kernels) is imported here, not at the top: the heyoka systems below use
+    # this module without loading the compiled kernels
+    from solvers.kernels import rk
+
     field_mod = generated(model, p, fold)
-
-    def source():
-        src = (Path(__file__).resolve().parent / "rk.py").read_text()
-        old = "from solvers.kernels.fields import rhs\n"
-        assert old in src
-        return src.replace(old, f"from {field_mod.__name__} import rhs\n")
-
-    return cached_module(f"rk{field_mod.__name__[3:]}_loops", source)
+    name = f"rk{field_mod.__name__[3:]}_loops"
+    return bound_module(name, rk, {"rhs": field_mod.rhs},
+                        f"solvers/kernels/rk.py's kernels on the field {field_mod.__name__}")
 
 
 # --- heyoka ------------------------------------------------------------------------------------

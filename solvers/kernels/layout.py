@@ -36,6 +36,8 @@ MODEL_FLAT_SCENE = 6          # (M, r1, r2, Q, x_G) in R^17
 
 STATE_DIM = (2, 4, 6, 5, 4, 18, 17)
 
+EPS = 2.220446049250313e-16   # the unit round-off of float64 (the kernels' round-off tests)
+
 # --- status codes returned by the right-hand side -------------------------------------
 OK = 0
 SING_INERTIA = 1              # I_Q singular

@@ -29,6 +29,10 @@ project_every), so that every output lies on the integral manifold.
 Fixed-step mode (fopt[F_H] > 0 with iopt[I_FIXED]) has no error control: it is for order
 studies and will step over a singularity it does not land on.
 
+The projection (projection.py) and the section's value and crossing tests (sections.py)
+call no field: one compiled copy serves every field. The functions here call the field;
+a case's generated field gets them bound to it (solvers/kernels/bind.py).
+
 The kernel allocates its work arrays once per call; the step loop allocates nothing (the
 model's rhs is another matter: see fields.py).
 """
@@ -37,20 +41,29 @@ import numpy as np
 
 from solvers.kernels import layout as L
 from solvers.kernels.fields import rhs
-from solvers.kernels.integrals import integral, integrals_into
 from solvers.kernels.jit import kernel
-from solvers.kernels.sections import (
+from solvers.kernels.layout import EPS
+from solvers.kernels.projection import (  # noqa: F401 (callers import these from here)
+    PROJECTION_FAILED,
+    TEST_ANGMOM,
+    TEST_ENERGY,
+    model_integral,
+    project,
+)
+from solvers.kernels.sections import (  # noqa: F401 (callers import these from here)
     SECTION_ANDOYER_G,
-    andoyer_g_value,
+    SECTION_LINEAR,
+    SECTION_NONE,
+    crossing_start,
     section_accept,
     section_step_error,
+    section_value,
 )
 
 # --- status codes added by the integrator (0..5 are the rhs codes of layout.py) --------
 MAX_STEPS = 20
 STEP_UNDERFLOW = 21
 SECTION_TANGENT = 22
-PROJECTION_FAILED = 23
 CROSSINGS_DONE = 24       # a success: the requested number of crossings was found
 STATUS_TEXT = {
     MAX_STEPS: "the step budget (max_steps attempts) ran out before the last output time",
@@ -70,62 +83,7 @@ F_RTOL, F_H, F_HMAX, F_SAFETY, F_FACMIN, F_FACMAX, F_BETA = range(7)   # fopt (f
 S_ACCEPTED, S_REJECTED, S_RHS, S_SAMPLES, S_CROSSINGS = range(5)      # stats (int64)
 ERR_EMBEDDED, ERR_DOP853 = 0, 1
 
-# --- sections s(y) = 0 (codes; a nonlinear one, e.g. g = g0 in Andoyer-Deprit
-# variables, is one more branch of `section_value` with its gradient) ------------------
-SECTION_NONE = 0
-SECTION_LINEAR = 1        # s(y) = coef[:n] . y - coef[n]
-# SECTION_ANDOYER_G = 2: sin(g - g0) in Andoyer-Deprit variables (solvers.kernels.sections)
-
-# --- integrals of the test problems (the body models use integrals.integral) -----------
-TEST_ENERGY = 0           # oscillator (y0^2 + y1^2)/2; Kepler |v|^2/2 - 1/|x|
-TEST_ANGMOM = 1           # Kepler x vy - y vx
-
-EPS = 2.220446049250313e-16
 GRAZE_H = 1e-9            # grazing section crossings are resolved down to h = GRAZE_H |t|
-CSTEP = 1e-30             # complex-step increment: the derivative is exact to round-off
-
-
-@kernel
-def model_integral(code, model, y, p):
-    """First integral `code` of `model` at y (float64 or complex128)."""
-    if model == L.MODEL_TEST_OSC:
-        if code == TEST_ENERGY:
-            return 0.5 * (y[0] * y[0] + y[1] * y[1])
-        return np.nan + 0.0 * y[0]
-    if model == L.MODEL_TEST_KEPLER:
-        if code == TEST_ENERGY:
-            return 0.5 * (y[2] * y[2] + y[3] * y[3]) - 1.0 / np.sqrt(y[0] * y[0] + y[1] * y[1])
-        if code == TEST_ANGMOM:
-            return y[0] * y[3] - y[1] * y[2]
-        return np.nan + 0.0 * y[0]
-    return integral(code, model, y, p)
-
-
-@kernel
-def model_integrals(codes, model, y, p, out):
-    """out[i] = model_integral(codes[i], model, y, p), the body models' kinematics shared."""
-    if model == L.MODEL_TEST_OSC or model == L.MODEL_TEST_KEPLER:
-        for i in range(codes.shape[0]):
-            out[i] = model_integral(codes[i], model, y, p)
-    else:
-        integrals_into(codes, model, y, p, out)
-
-
-@kernel
-def section_value(code, y, coef, grad):
-    """s(y) of section `code`; its gradient is written to grad."""
-    n = y.shape[0]
-    if code == SECTION_LINEAR:
-        val = -coef[n]
-        for i in range(n):
-            val += coef[i] * y[i]
-            grad[i] = coef[i]
-        return val
-    if code == SECTION_ANDOYER_G:
-        return andoyer_g_value(y, coef, grad)
-    for i in range(n):
-        grad[i] = np.nan
-    return np.nan
 
 
 @kernel
@@ -201,148 +159,6 @@ def _initial_step(model, p, t, y, f0, order, rtol, atol, span, hmax, y1, f1, sta
 
 
 @kernel
-def _solve_small(M, r, x):
-    """x = M^-1 r by Gaussian elimination with partial pivoting (M, r overwritten).
-    Returns False if M is singular."""
-    m = r.shape[0]
-    for k in range(m):
-        piv = k
-        for i in range(k + 1, m):
-            if abs(M[i, k]) > abs(M[piv, k]):
-                piv = i
-        if M[piv, k] == 0.0 or not np.isfinite(M[piv, k]):
-            return False
-        if piv != k:
-            for j in range(m):
-                M[k, j], M[piv, j] = M[piv, j], M[k, j]
-            r[k], r[piv] = r[piv], r[k]
-        for i in range(k + 1, m):
-            f = M[i, k] / M[k, k]
-            for j in range(k, m):
-                M[i, j] -= f * M[k, j]
-            r[i] -= f * r[k]
-    for k in range(m - 1, -1, -1):
-        acc = r[k]
-        for j in range(k + 1, m):
-            acc -= M[k, j] * x[j]
-        x[k] = acc / M[k, k]
-    return True
-
-
-@kernel
-def _project(model, p, y, codes, vals, G, M, r, lam, yc):
-    """Move y onto {F(y) = vals}: simplified Newton y <- y - G^T (G G^T)^-1 (F(y) - F0),
-    G = dF/dy at the unprojected y by complex step (Hairer-Lubich-Wanner GNI IV.4)."""
-    n = y.shape[0]
-    m = codes.shape[0]
-    vc = np.empty(m, dtype=np.complex128)
-    for j in range(n):
-        for i in range(n):
-            yc[i] = y[i]
-        yc[j] = y[j] + 1j * CSTEP
-        model_integrals(codes, model, yc, p, vc)
-        for k in range(m):
-            G[k, j] = vc[k].imag / CSTEP
-    for it in range(4):
-        done = True
-        model_integrals(codes, model, y, p, r)
-        for k in range(m):
-            r[k] -= vals[k]
-            if not np.isfinite(r[k]):
-                return PROJECTION_FAILED
-            if abs(r[k]) > 2.0 * EPS * max(1.0, abs(vals[k])):
-                done = False
-        if done or it == 3:
-            return L.OK
-        for k in range(m):
-            for q in range(m):
-                acc = 0.0
-                for j in range(n):
-                    acc += G[k, j] * G[q, j]
-                M[k, q] = acc
-        if not _solve_small(M, r, lam):
-            return PROJECTION_FAILED
-        for j in range(n):
-            for k in range(m):
-                y[j] -= G[k, j] * lam[k]
-    return L.OK
-
-
-@kernel
-def _crossing_start(code, coef, y, f0, ynew, f1, h, grad, direction):
-    """Where to locate the section crossing of the step (y, f0) -> (ynew, f1) of length
-    h from: +1 its start, -1 its end, 0 no crossing in `direction`, 2 unresolved (halve
-    the step). Henon's step from an end reaches the right crossing only if s runs
-    monotonically from that end to it; the Hermite cubic of s through the ends (values and
-    slopes ds/dt = grad s . f) shows a step whose ends alone mislead: s of one sign at
-    both ends but crossing over inside, or coming nearer to the section than it swings in
-    the step (a grazing pair), or a sign change with ds/dt of the wrong sign at both
-    ends."""
-    s0, d0 = section_slope(code, y, f0, coef, grad)
-    s1, d1 = section_slope(code, ynew, f1, coef, grad)
-    return crossing_kind(s0, d0, s1, d1, h, direction)
-
-
-@kernel
-def section_slope(code, y, f, coef, grad):
-    """(s(y), ds/dt = grad s . f) of section `code` at y where the field is f."""
-    s = section_value(code, y, coef, grad)
-    d = 0.0
-    for m in range(y.shape[0]):
-        d += grad[m] * f[m]
-    return s, d
-
-
-@kernel
-def crossing_kind(s0, d0, s1, d1, h, direction):
-    """_crossing_start's answer from the section's values and slopes at the step's ends
-    (the small kernels carry them from step to step: solvers/kernels/small.py)."""
-    if not (np.isfinite(s0) and np.isfinite(s1) and np.isfinite(d0) and np.isfinite(d1)):
-        return 0
-    up = s0 < 0.0 <= s1
-    down = s0 > 0.0 >= s1
-    if up or down:
-        if (up and direction < 0) or (down and direction > 0):
-            return 0
-        sg = 1.0 if up else -1.0
-        ok0 = sg * d0 > 0.0
-        ok1 = sg * d1 > 0.0
-        if ok0 and ok1:
-            return 1 if abs(s0) <= abs(s1) else -1
-        if ok0:
-            return 1
-        if ok1:
-            return -1
-        return 2
-    if s0 * s1 <= 0.0:
-        return 0
-    # same sign at both ends: does the cubic a3 t^3 + a2 t^2 + a1 t + s0 cross over?
-    a1 = h * d0
-    a2 = -3.0 * s0 - 2.0 * h * d0 + 3.0 * s1 - h * d1
-    a3 = 2.0 * s0 + h * d0 - 2.0 * s1 + h * d1
-    qa = 3.0 * a3
-    qb = 2.0 * a2
-    for root in range(2):
-        if qa == 0.0:
-            if root == 1 or qb == 0.0:
-                break
-            th = -a1 / qb
-        else:
-            disc = qb * qb - 4.0 * qa * a1
-            if disc < 0.0:
-                break
-            sq = np.sqrt(disc)
-            th = (-qb + sq) / (2.0 * qa) if root == 0 else (-qb - sq) / (2.0 * qa)
-        if 0.0 < th < 1.0:
-            v = ((a3 * th + a2) * th + a1) * th + s0
-            # across, or nearer to the section than its swing in the step (the cubic's own
-            # error is below the swing): unresolved until the pieces are small enough
-            if (s0 < 0.0 < v) or (s0 > 0.0 > v) or abs(v) <= max(abs(s0 - v), abs(s1 - v)):
-                return 2
-    return 0
-
-
-@kernel
 def _henon_step(model, p, z0, f0, ds, A, c, b, s, code, coef, KH, z, ztmp, yb, fb, grad,
                 stats):
     """One RK step of length ds in the independent variable s (Henon, Physica D 5 (1982)
@@ -384,7 +200,7 @@ def _henon_step(model, p, z0, f0, ds, A, c, b, s, code, coef, KH, z, ztmp, yb, f
 
 
 @kernel
-def _locate_crossing(model, p, t0, y0, f0, s0, A, c, b, s, code, coef, KH, z0, z, ztmp, yb,
+def locate_crossing(model, p, t0, y0, f0, s0, A, c, b, s, code, coef, KH, z0, z, ztmp, yb,
                      fb, grad, stats):
     """Crossing of s = 0 from (t0, y0) with s(y0) = s0: a Henon step of length -s0, then
     up to two more from the result until s is at round-off. Result (y, t) in z."""
@@ -420,7 +236,7 @@ def _locate_crossing(model, p, t0, y0, f0, s0, A, c, b, s, code, coef, KH, z0, z
 
 
 @kernel
-def _refine_crossing(model, p, t, y, t_new, A, c, b, s, code, coef, K, ytmp, KH, z0, z, ztmp,
+def refine_crossing(model, p, t, y, t_new, A, c, b, s, code, coef, K, ytmp, KH, z0, z, ztmp,
                      grad, stats):
     """Newton on the crossing time with full RK steps from (t, y): Henon's step (one RK
     step in s, no error control) is only as accurate as 1/(ds/dt) is smooth over it, so
@@ -458,7 +274,7 @@ def _refine_crossing(model, p, t, y, t_new, A, c, b, s, code, coef, K, ytmp, KH,
         if abs(dt) <= 4.0 * EPS * max(1.0, abs(tc)) or \
                 (it == 4 and abs(dt) <= 1e-6 * abs(t_new - t)):
             if t <= tc <= t_new:
-                _locate_crossing(model, p, tc, yc, fb, sv, A, c, b, s, code, coef, KH, z0,
+                locate_crossing(model, p, tc, yc, fb, sv, A, c, b, s, code, coef, KH, z0,
                                  z, ztmp, ytmp, fb, grad, stats)
             return
         tc += dt
@@ -598,7 +414,7 @@ def rk_integrate(model, p, y0, t_out, A, c, b, E, P, meth, iopt, fopt, atol, pro
         # pair is at round-off distance and left unresolved
         from_start = 0
         if code != SECTION_NONE:
-            from_start = _crossing_start(code, sec_coef, y, K[0], ynew, K[new], h, grad,
+            from_start = crossing_start(code, sec_coef, y, K[0], ynew, K[new], h, grad,
                                          direction)
             if from_start == 2 and not fixed and abs(h) > GRAZE_H * max(1.0, abs(t)):
                 stats[S_REJECTED] += 1
@@ -613,7 +429,7 @@ def rk_integrate(model, p, y0, t_out, A, c, b, E, P, meth, iopt, fopt, atol, pro
             t_comp = 0.0
         projected = nproj > 0 and stats[S_ACCEPTED] % project_every == 0
         if projected:
-            status = _project(model, p, ynew, proj_codes, proj_vals, G, Mw, rw, lam, yc)
+            status = project(model, p, ynew, proj_codes, proj_vals, G, Mw, rw, lam, yc)
             if status != L.OK:
                 break
             for m in range(n):
@@ -631,7 +447,7 @@ def rk_integrate(model, p, y0, t_out, A, c, b, E, P, meth, iopt, fopt, atol, pro
             if t_out[j] == t_new:
                 Y[j, :] = ynew
                 if nproj > 0 and not projected:
-                    status = _project(model, p, Y[j], proj_codes, proj_vals, G, Mw, rw, lam,
+                    status = project(model, p, Y[j], proj_codes, proj_vals, G, Mw, rw, lam,
                                       yc)
                     if status != L.OK:
                         break
@@ -655,7 +471,7 @@ def rk_integrate(model, p, y0, t_out, A, c, b, E, P, meth, iopt, fopt, atol, pro
                         acc += w[i] * K[i, m]
                     Y[j, m] = y[m] + h * acc
                 if nproj > 0:   # interpolated samples join the projected trajectory
-                    status = _project(model, p, Y[j], proj_codes, proj_vals, G, Mw, rw, lam,
+                    status = project(model, p, Y[j], proj_codes, proj_vals, G, Mw, rw, lam,
                                       yc)
                     if status != L.OK:
                         break
@@ -670,15 +486,15 @@ def rk_integrate(model, p, y0, t_out, A, c, b, E, P, meth, iopt, fopt, atol, pro
                     (direction <= 0 and s_old > 0.0 >= s_new):
                 k = stats[S_CROSSINGS]
                 if from_start != -1:    # the end s runs monotonically from (see above)
-                    status = _locate_crossing(model, p, t, y, K[0], s_old, A, c, b, s, code,
+                    status = locate_crossing(model, p, t, y, K[0], s_old, A, c, b, s, code,
                                               sec_coef, KH, z0, z, ztmp, ytmp, fb, grad, stats)
                 else:
-                    status = _locate_crossing(model, p, t_new, ynew, fnew, s_new, A, c, b, s,
+                    status = locate_crossing(model, p, t_new, ynew, fnew, s_new, A, c, b, s,
                                               code, sec_coef, KH, z0, z, ztmp, ytmp, fb, grad,
                                               stats)
                 if status != L.OK:
                     break
-                _refine_crossing(model, p, t, y, t_new, A, c, b, s, code, sec_coef, K, ytmp,
+                refine_crossing(model, p, t, y, t_new, A, c, b, s, code, sec_coef, K, ytmp,
                                  KH, z0, z, ztmp, grad, stats)
                 if section_accept(code, z, sec_coef):   # refuses g = g0 + pi (sections.py)
                     cross_t[k] = z[n]

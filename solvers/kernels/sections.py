@@ -29,6 +29,12 @@ import numpy as np
 
 from solvers.kernels.jit import kernel
 
+# --- section codes s(y) = 0 (a nonlinear one is one more branch of `section_value`, with
+# its gradient) --------------------------------------------------------------------------
+SECTION_NONE = 0
+SECTION_LINEAR = 1        # s(y) = coef[:n] . y - coef[n]
+# SECTION_ANDOYER_G = 2: sin(g - g0) in Andoyer-Deprit variables (below)
+
 SECTION_ANDOYER_G = 2     # the next code after rk.SECTION_NONE = 0, rk.SECTION_LINEAR = 1
 DG_MAX = 0.5              # largest change of g in one step (radians)
 
@@ -91,3 +97,94 @@ def section_step_error(y, ynew, coef, q):
     if not np.isfinite(dg):
         return 0.0
     return (abs(dg) / DG_MAX) ** (q + 1)
+
+
+@kernel
+def section_value(code, y, coef, grad):
+    """s(y) of section `code`; its gradient is written to grad."""
+    n = y.shape[0]
+    if code == SECTION_LINEAR:
+        val = -coef[n]
+        for i in range(n):
+            val += coef[i] * y[i]
+            grad[i] = coef[i]
+        return val
+    if code == SECTION_ANDOYER_G:
+        return andoyer_g_value(y, coef, grad)
+    for i in range(n):
+        grad[i] = np.nan
+    return np.nan
+
+
+@kernel
+def crossing_start(code, coef, y, f0, ynew, f1, h, grad, direction):
+    """Where to locate the section crossing of the step (y, f0) -> (ynew, f1) of length
+    h from: +1 its start, -1 its end, 0 no crossing in `direction`, 2 unresolved (halve
+    the step). Henon's step from an end reaches the right crossing only if s runs
+    monotonically from that end to it; the Hermite cubic of s through the ends (values and
+    slopes ds/dt = grad s . f) shows a step whose ends alone mislead: s of one sign at
+    both ends but crossing over inside, or coming nearer to the section than it swings in
+    the step (a grazing pair), or a sign change with ds/dt of the wrong sign at both
+    ends."""
+    s0, d0 = section_slope(code, y, f0, coef, grad)
+    s1, d1 = section_slope(code, ynew, f1, coef, grad)
+    return crossing_kind(s0, d0, s1, d1, h, direction)
+
+
+@kernel
+def section_slope(code, y, f, coef, grad):
+    """(s(y), ds/dt = grad s . f) of section `code` at y where the field is f."""
+    s = section_value(code, y, coef, grad)
+    d = 0.0
+    for m in range(y.shape[0]):
+        d += grad[m] * f[m]
+    return s, d
+
+
+@kernel
+def crossing_kind(s0, d0, s1, d1, h, direction):
+    """crossing_start's answer from the section's values and slopes at the step's ends
+    (the small kernels carry them from step to step: solvers/kernels/small.py)."""
+    if not (np.isfinite(s0) and np.isfinite(s1) and np.isfinite(d0) and np.isfinite(d1)):
+        return 0
+    up = s0 < 0.0 <= s1
+    down = s0 > 0.0 >= s1
+    if up or down:
+        if (up and direction < 0) or (down and direction > 0):
+            return 0
+        sg = 1.0 if up else -1.0
+        ok0 = sg * d0 > 0.0
+        ok1 = sg * d1 > 0.0
+        if ok0 and ok1:
+            return 1 if abs(s0) <= abs(s1) else -1
+        if ok0:
+            return 1
+        if ok1:
+            return -1
+        return 2
+    if s0 * s1 <= 0.0:
+        return 0
+    # same sign at both ends: does the cubic a3 t^3 + a2 t^2 + a1 t + s0 cross over?
+    a1 = h * d0
+    a2 = -3.0 * s0 - 2.0 * h * d0 + 3.0 * s1 - h * d1
+    a3 = 2.0 * s0 + h * d0 - 2.0 * s1 + h * d1
+    qa = 3.0 * a3
+    qb = 2.0 * a2
+    for root in range(2):
+        if qa == 0.0:
+            if root == 1 or qb == 0.0:
+                break
+            th = -a1 / qb
+        else:
+            disc = qb * qb - 4.0 * qa * a1
+            if disc < 0.0:
+                break
+            sq = np.sqrt(disc)
+            th = (-qb + sq) / (2.0 * qa) if root == 0 else (-qb - sq) / (2.0 * qa)
+        if 0.0 < th < 1.0:
+            v = ((a3 * th + a2) * th + a1) * th + s0
+            # across, or nearer to the section than its swing in the step (the cubic's own
+            # error is below the swing): unresolved until the pieces are small enough
+            if (s0 < 0.0 < v) or (s0 > 0.0 > v) or abs(v) <= max(abs(s0 - v), abs(s1 - v)):
+                return 2
+    return 0
