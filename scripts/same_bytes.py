@@ -14,7 +14,7 @@ Runs, each hashed as sha256 of (t, states, t_stop, y_stop, status, counters):
   * --generated: also one case on the generated loop integrator (generated=True,
     kernel="rk") and its ensemble twin (a long compile).
 
-    PYTHONPATH=$PWD python bench/same_bytes.py OUT.txt [--generated]
+    PYTHONPATH=$PWD python scripts/same_bytes.py OUT.txt [--generated]
 
 OUT.txt gets one line per run (name, hash) and a last line with the hash of them all;
 compare two such files with diff.
