@@ -216,7 +216,7 @@ def test_cli_prints_shapes_words_and_counts_by_mark(records):
         orig(self, *a, **{**k, "file": buf, "width": 200})
     Console.__init__ = to_buffer
     try:
-        cli._verify_tables(records, "plane/spherical-inertia")
+        cli.verify_tables(records, "plane/spherical-inertia")
     finally:
         Console.__init__ = orig
     text = buf.getvalue()
