@@ -1,5 +1,7 @@
+import copy
 import os
 from concurrent.futures import ThreadPoolExecutor
+from contextlib import contextmanager
 from pathlib import Path
 
 import anyio
@@ -148,6 +150,25 @@ def catalogue_records(tmp_path_factory, worker_id):
             return records
         finally:
             fcntl.flock(fh, fcntl.LOCK_UN)
+
+
+@contextmanager
+def client_with_verdicts(records):
+    """A TestClient of the explorer (no warm workers) whose verdict store holds these
+    records for every case, as after a finished verification."""
+    from fastapi.testclient import TestClient
+
+    from app.main import create_app
+    from app.testing import settings_for_tests
+
+    records = copy.deepcopy(records)
+    app = create_app(settings_for_tests(warm_workers=False))
+    with TestClient(app) as c:
+        store = app.state.verdicts
+        for cid in store.case_ids:
+            store.records[cid] = [r for r in records if r["case"] == cid]
+        store.state = "done"
+        yield c
 
 
 def run_async(main):

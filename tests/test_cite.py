@@ -17,8 +17,9 @@ from catalogue.schema import Reference
 
 pytestmark = pytest.mark.filterwarnings("ignore::DeprecationWarning")
 
-# entries resolved from a source that was read (catalogue/references.yaml, `checked_in`)
-COMPLETE = 10
+# entries resolved from a source that was read (catalogue/references.yaml, `checked_in`):
+# the API and the page must count what the data holds
+COMPLETE = sum(r.status == "complete" for r in load_catalogue().references)
 KINDS = ("the paper's published reference list", "another paper's reference list",
          "the publisher's record", "a bibliographic database's record")
 

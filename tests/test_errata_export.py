@@ -3,7 +3,6 @@ apart from the inherited rows that repeat one; an index that names each display 
 link to each of its rows; the whole table in the HTML (readable without scripts); CSV and
 BibTeX exports."""
 
-import copy
 import csv
 import io
 import re
@@ -15,19 +14,14 @@ from fastapi.testclient import TestClient
 from app.main import create_app
 from app.services import errata_pages
 from app.testing import settings_for_tests
+from conftest import client_with_verdicts
 
 pytestmark = pytest.mark.filterwarnings("ignore::DeprecationWarning")
 
 
 @pytest.fixture(scope="module")
 def client(catalogue_records):
-    records = copy.deepcopy(catalogue_records)
-    app = create_app(settings_for_tests(warm_workers=False))
-    with TestClient(app) as c:
-        store = app.state.verdicts
-        for cid in store.case_ids:
-            store.records[cid] = [r for r in records if r["case"] == cid]
-        store.state = "done"
+    with client_with_verdicts(catalogue_records) as c:
         yield c
 
 

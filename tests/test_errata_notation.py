@@ -3,17 +3,14 @@ findings), and the page links each of them to its definition, as the case pages 
 (tests/test_notation.py); the rows of /api/errata, /api/conventions and /api/findings carry
 the same lists for the page's script."""
 
-import copy
 import re
 
 import pytest
-from fastapi.testclient import TestClient
 
-from app.main import create_app
 from app.services.errata_pages import formulas_of
-from app.testing import settings_for_tests
 from catalogue.notation import entry_for
 from catalogue.symbols import symbols
+from conftest import client_with_verdicts
 
 pytestmark = pytest.mark.filterwarnings("ignore::DeprecationWarning")
 ROUTES = ("/api/errata", "/api/conventions", "/api/findings")
@@ -21,13 +18,7 @@ ROUTES = ("/api/errata", "/api/conventions", "/api/findings")
 
 @pytest.fixture(scope="module")
 def client(catalogue_records):
-    records = copy.deepcopy(catalogue_records)
-    app = create_app(settings_for_tests(warm_workers=False))
-    with TestClient(app) as c:
-        store = app.state.verdicts
-        for cid in store.case_ids:
-            store.records[cid] = [r for r in records if r["case"] == cid]
-        store.state = "done"
+    with client_with_verdicts(catalogue_records) as c:
         yield c
 
 
