@@ -9,12 +9,12 @@ import re
 from html import unescape
 
 import pytest
+from conftest import client_with_verdicts
 from fastapi.testclient import TestClient
 
 from app.main import create_app
 from app.services import errata_pages
 from app.testing import settings_for_tests
-from conftest import client_with_verdicts
 
 pytestmark = pytest.mark.filterwarnings("ignore::DeprecationWarning")
 

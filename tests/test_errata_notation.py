@@ -6,11 +6,11 @@ the same lists for the page's script."""
 import re
 
 import pytest
+from conftest import client_with_verdicts
 
 from app.services.errata_pages import formulas_of
 from catalogue.notation import entry_for
 from catalogue.symbols import symbols
-from conftest import client_with_verdicts
 
 pytestmark = pytest.mark.filterwarnings("ignore::DeprecationWarning")
 ROUTES = ("/api/errata", "/api/conventions", "/api/findings")
