@@ -334,7 +334,7 @@ def _integrate(model: Model, y0, t_out, method, rtol, atol, project, max_steps, 
         with np.errstate(all="ignore"):
             return solve_ivp_reference(model.model, model.p, y0, t_out,
                                        method=SCIPY_METHODS[method], rtol=rtol, atol=atol,
-                                       fun=fun)
+                                       fun=fun, max_steps=max_steps)
     if method in symmetric_methods():
         return integrate(model.model, model.p, y0, t_out, method=method, h_fixed=step,
                          max_steps=max_steps)

@@ -639,15 +639,21 @@ def _integrate_symmetric(model, p, y0, t_out, method, h, max_steps, max_iter=60)
         rhs_calls=int(stats[gauss.G_RHS]), wall_s=wall, method=method, kernel="gauss")
 
 
+SCIPY_CALLS_PER_STEP = 16
+
+
 class _Singular(Exception):
     pass
 
 
 def solve_ivp_reference(model, p, y0, t_out, method="DOP853", rtol=1e-10, atol=1e-12,
-                        fun=None) -> IntegrationResult:
+                        fun=None, max_steps=None) -> IntegrationResult:
     """scipy.integrate.solve_ivp on the same problem. `fun(t, y) -> dy/dt` defaults to a
     plain-Python wrapper of the compiled rhs (the lead's independent numpy field can be
-    passed instead)."""
+    passed instead). max_steps bounds the work as for the compiled kernels: solve_ivp has
+    no step budget, so the run stops with MAX_STEPS once its rhs calls exceed max_steps
+    steps' worth (SCIPY_CALLS_PER_STEP calls a step: DOP853's 12 stages, or an implicit
+    method's Newton iterations and a finite-difference Jacobian of the 6 to 12 variables)."""
     from scipy.integrate import solve_ivp  # lazily: scipy's import is slow to start
 
     t_out = np.asarray(t_out, dtype=np.float64)
@@ -662,9 +668,13 @@ def solve_ivp_reference(model, p, y0, t_out, method="DOP853", rtol=1e-10, atol=1
                 raise _Singular(st)
             return dy
 
+    max_calls = None if max_steps is None else SCIPY_CALLS_PER_STEP * int(max_steps)
+
     def counted(t, y):
         calls[0] += 1
         last_t[0] = t
+        if max_calls is not None and calls[0] > max_calls:
+            raise _Singular(rk.MAX_STEPS)
         dy = fun(t, y)
         if not np.all(np.isfinite(dy)):
             raise _Singular(L.SING_NONFINITE)
