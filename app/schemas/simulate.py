@@ -57,10 +57,21 @@ GAUSS = [m for m in METHODS if m.startswith("gauss")]
 NOT_EXAMPLE = {"not": {"properties": {"example": {"const": True}}, "required": ["example"]}}
 
 
+def param_schema(kind: str, symmetry: str) -> dict[str, dict]:
+    """The lower bounds of a body's parameters as JSON Schema, from the table that the
+    model's validation checks (solvers.models.bodies.param_bounds): exclusiveMinimum 0 for
+    a positive parameter, minimum 0 for a non-negative one."""
+    from solvers.models.bodies import param_bounds
+
+    return {name: ({"minimum": b["min"]} if b["min_inclusive"]
+                   else {"exclusiveMinimum": b["min"]})
+            for name, b in param_bounds(kind, symmetry).items()}
+
+
 def case_rules(with_state: bool = True) -> dict:
     """Per case, what JSON Schema can say of its inputs (the names of solvers.models.cases):
-    the parameter names it takes, the ones it requires unless example = true, and the
-    length of its state (5 for the flat-base cases, 6 for the others). One anyOf of two
+    the parameter names it takes, their lower bounds (param_schema), the ones it requires
+    unless example = true, and the length of its state (5 for the flat-base cases, 6 for the others). One anyOf of two
     branches a case (with example = true, or without it), not an if/then a case: the
     schema's generators expand each if/then into two, and 17 of them into 2^17."""
     from solvers.models.cases import registry
@@ -68,7 +79,8 @@ def case_rules(with_state: bool = True) -> dict:
     branches = []
     for cid, c in registry().items():
         props: dict[str, Any] = {"case": {"const": cid},
-                                 "params": {"propertyNames": {"enum": c.param_names}}}
+                                 "params": {"propertyNames": {"enum": c.param_names},
+                                            "properties": param_schema(c.body, c.symmetry)}}
         if with_state:
             n = len(c.state)
             props["state"] = {"minItems": n, "maxItems": n}
