@@ -63,8 +63,8 @@ def param_schema(kind: str, symmetry: str) -> dict[str, dict]:
     a positive parameter, minimum 0 for a non-negative one."""
     from solvers.models.bodies import param_bounds
 
-    return {name: ({"minimum": b["min"]} if b["min_inclusive"]
-                   else {"exclusiveMinimum": b["min"]})
+    return {name: ({"type": "number", "minimum": b["min"]} if b["min_inclusive"]
+                   else {"type": "number", "exclusiveMinimum": b["min"]})
             for name, b in param_bounds(kind, symmetry).items()}
 
 
