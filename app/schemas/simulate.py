@@ -49,6 +49,7 @@ EXAMPLE = {"case": "plane/chaplygin-ball",
 
 
 GAUSS = [m for m in METHODS if m.startswith("gauss")]
+SCIPY = [m for m in METHODS if m.startswith("scipy-")]
 # the rules between fields, in the schema (JSON Schema 2020-12, as OpenAPI 3.1 has it), so
 # that a request valid by the schema is not refused for them: `step` goes with
 # the Gauss methods and only with them; without example = true, params and state are
@@ -94,9 +95,12 @@ def case_rules(with_state: bool = True) -> dict:
 
 CROSS_FIELD_RULES = [
     {"if": {"properties": {"method": {"enum": GAUSS}}, "required": ["method"]},
-     "then": {"required": ["step"], "properties": {"step": {"type": "number"}}},
+     # a Gauss method is symmetric: it holds the integrals without projection
+     "then": {"required": ["step"], "properties": {"step": {"type": "number"},
+                                                   "project": {"const": False}}},
      "else": {"properties": {"step": {"type": "null"}}}},
-    {"if": NOT_EXAMPLE, "then": {"required": ["params", "state"]}},
+    {"if": NOT_EXAMPLE, "then": {"required": ["params", "state"],
+                                 "properties": {"state": {"type": "array"}}}},
     case_rules(),
 ]
 
@@ -152,6 +156,10 @@ class SceneRequest(SimulateRequest):
     evenly spaced times (solvers.models.kinematics)."""
 
     model_config = ConfigDict(extra="forbid", strict=True)
+    # the schema says a scene's only field; "general" is refused with the reason
+    field: Literal["auto", "general"] = Field(
+        "auto", description="a scene runs the default field (auto); field applies to "
+        "/api/simulate", json_schema_extra={"enum": ["auto"]})
     frames: Int = Field(200, ge=2, le=MAX_FRAMES)
 
 
