@@ -49,7 +49,6 @@ EXAMPLE = {"case": "plane/chaplygin-ball",
 
 
 GAUSS = [m for m in METHODS if m.startswith("gauss")]
-SCIPY = [m for m in METHODS if m.startswith("scipy-")]
 # the rules between fields, in the schema (JSON Schema 2020-12, as OpenAPI 3.1 has it), so
 # that a request valid by the schema is not refused for them: `step` goes with
 # the Gauss methods and only with them; without example = true, params and state are
@@ -59,14 +58,19 @@ NOT_EXAMPLE = {"not": {"properties": {"example": {"const": True}}, "required": [
 
 
 def param_schema(kind: str, symmetry: str) -> dict[str, dict]:
-    """The lower bounds of a body's parameters as JSON Schema, from the table that the
-    model's validation checks (solvers.models.bodies.param_bounds): exclusiveMinimum 0 for
-    a positive parameter, minimum 0 for a non-negative one."""
-    from solvers.models.bodies import param_bounds
+    """The bounds of a body's parameters as JSON Schema, from the tables that the
+    model's validation checks (solvers.models.bodies.param_bounds, param_upper_bounds):
+    exclusiveMinimum 0 for a positive parameter, minimum 0 for a non-negative one,
+    exclusiveMaximum 0 for a negative one."""
+    from solvers.models.bodies import param_bounds, param_upper_bounds
 
-    return {name: ({"type": "number", "minimum": b["min"]} if b["min_inclusive"]
-                   else {"type": "number", "exclusiveMinimum": b["min"]})
-            for name, b in param_bounds(kind, symmetry).items()}
+    out = {name: ({"type": "number", "minimum": b["min"]} if b["min_inclusive"]
+                  else {"type": "number", "exclusiveMinimum": b["min"]})
+           for name, b in param_bounds(kind, symmetry).items()}
+    for name, b in param_upper_bounds(kind).items():
+        out.setdefault(name, {"type": "number"})[
+            "maximum" if b["max_inclusive"] else "exclusiveMaximum"] = b["max"]
+    return out
 
 
 def case_rules(with_state: bool = True) -> dict:
