@@ -64,8 +64,8 @@ schema.config.generation.update(modes=[GenerationMode.POSITIVE])
 
 # validate checks a request as simulate does without running it; simulate and scene run
 # (a small step budget keeps each run quick); poincare computes its starts' levels
-OPERATIONS = {"/api/validate": 60, "/api/simulate": 25, "/api/scene": 15,
-              "/api/poincare": 20}
+OPERATIONS = {"/api/validate": 120, "/api/simulate": 40, "/api/scene": 25,
+              "/api/poincare": 40}
 
 
 def _refusal(response) -> str:

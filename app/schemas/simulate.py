@@ -51,9 +51,11 @@ EXAMPLE = {"case": "plane/chaplygin-ball",
 GAUSS = [m for m in METHODS if m.startswith("gauss")]
 # the rules between fields, in the schema (JSON Schema 2020-12, as OpenAPI 3.1 has it), so
 # that a request valid by the schema is not refused for them: `step` goes with
-# the Gauss methods and only with them; without example = true, params and state are
-# required. Each case's own parameter names are in GET /api/cases/{id} (runnable.params):
-# a wrong name is a 422 that names it.
+# the Gauss methods and only with them, and they take no projection; without example =
+# true, params and state are required; each case's parameter names and their bounds (also
+# in GET /api/cases/{id}: runnable.params). The rules between numbers (I1 = I2, the
+# triangle inequality, |gamma| = 1, the step budget) JSON Schema cannot say: those stay
+# refusals of validation alone (tests/test_schema_valid_accepted.py lists them).
 NOT_EXAMPLE = {"not": {"properties": {"example": {"const": True}}, "required": ["example"]}}
 
 
