@@ -51,16 +51,34 @@ EXAMPLE = {"case": "plane/chaplygin-ball",
 GAUSS = [m for m in METHODS if m.startswith("gauss")]
 # the rules between fields, in the schema (JSON Schema 2020-12, as OpenAPI 3.1 has it), so
 # that a request valid by the schema is not refused for them: `step` goes with
-# the Gauss methods and only with them; without example = true, params and state are
-# required. Each case's own parameter names are in GET /api/cases/{id} (runnable.params):
-# a wrong name is a 422 that names it.
+# the Gauss methods and only with them, and they take no projection; without example =
+# true, params and state are required; each case's parameter names and their bounds (also
+# in GET /api/cases/{id}: runnable.params). The rules between numbers (I1 = I2, the
+# triangle inequality, |gamma| = 1, the step budget) JSON Schema cannot say: those stay
+# refusals of validation alone (tests/test_schema_valid_accepted.py lists them).
 NOT_EXAMPLE = {"not": {"properties": {"example": {"const": True}}, "required": ["example"]}}
+
+
+def param_schema(kind: str, symmetry: str) -> dict[str, dict]:
+    """The bounds of a body's parameters as JSON Schema, from the tables that the
+    model's validation checks (solvers.models.bodies.param_bounds, param_upper_bounds):
+    exclusiveMinimum 0 for a positive parameter, minimum 0 for a non-negative one,
+    exclusiveMaximum 0 for a negative one."""
+    from solvers.models.bodies import param_bounds, param_upper_bounds
+
+    out = {name: ({"type": "number", "minimum": b["min"]} if b["min_inclusive"]
+                  else {"type": "number", "exclusiveMinimum": b["min"]})
+           for name, b in param_bounds(kind, symmetry).items()}
+    for name, b in param_upper_bounds(kind).items():
+        out.setdefault(name, {"type": "number"})[
+            "maximum" if b["max_inclusive"] else "exclusiveMaximum"] = b["max"]
+    return out
 
 
 def case_rules(with_state: bool = True) -> dict:
     """Per case, what JSON Schema can say of its inputs (the names of solvers.models.cases):
-    the parameter names it takes, the ones it requires unless example = true, and the
-    length of its state (5 for the flat-base cases, 6 for the others). One anyOf of two
+    the parameter names it takes, their lower bounds (param_schema), the ones it requires
+    unless example = true, and the length of its state (5 for the flat-base cases, 6 for the others). One anyOf of two
     branches a case (with example = true, or without it), not an if/then a case: the
     schema's generators expand each if/then into two, and 17 of them into 2^17."""
     from solvers.models.cases import registry
@@ -68,7 +86,8 @@ def case_rules(with_state: bool = True) -> dict:
     branches = []
     for cid, c in registry().items():
         props: dict[str, Any] = {"case": {"const": cid},
-                                 "params": {"propertyNames": {"enum": c.param_names}}}
+                                 "params": {"propertyNames": {"enum": c.param_names},
+                                            "properties": param_schema(c.body, c.symmetry)}}
         if with_state:
             n = len(c.state)
             props["state"] = {"minItems": n, "maxItems": n}
@@ -82,9 +101,12 @@ def case_rules(with_state: bool = True) -> dict:
 
 CROSS_FIELD_RULES = [
     {"if": {"properties": {"method": {"enum": GAUSS}}, "required": ["method"]},
-     "then": {"required": ["step"], "properties": {"step": {"type": "number"}}},
+     # a Gauss method is symmetric: it holds the integrals without projection
+     "then": {"required": ["step"], "properties": {"step": {"type": "number"},
+                                                   "project": {"const": False}}},
      "else": {"properties": {"step": {"type": "null"}}}},
-    {"if": NOT_EXAMPLE, "then": {"required": ["params", "state"]}},
+    {"if": NOT_EXAMPLE, "then": {"required": ["params", "state"],
+                                 "properties": {"state": {"type": "array"}}}},
     case_rules(),
 ]
 
@@ -140,6 +162,10 @@ class SceneRequest(SimulateRequest):
     evenly spaced times (solvers.models.kinematics)."""
 
     model_config = ConfigDict(extra="forbid", strict=True)
+    # the schema says a scene's only field; "general" is refused with the reason
+    field: Literal["auto", "general"] = Field(
+        "auto", description="a scene runs the default field (auto); field applies to "
+        "/api/simulate", json_schema_extra={"enum": ["auto"]})
     frames: Int = Field(200, ge=2, le=MAX_FRAMES)
 
 

@@ -31,6 +31,15 @@ POSITIVE = {"ball": ("R",), "routh": ("R",), "disk": ("R",), "ellipsoid": ("b1",
             "revolution": ("b1", "b3"), "general": ("b1", "b2", "b3"),
             "rattleback": ("b1", "b2", "b3"), "flat": ()}
 NON_NEGATIVE = {"revolution": ("c",), "general": ("c",)}
+# the upper bounds, which solvers.models.cases.build checks: a flat base rolls on the
+# outside of a fixed ball, k = -1/R0 < 0
+NEGATIVE = {"flat": ("k",)}
+
+
+def param_upper_bounds(kind: str) -> dict[str, dict]:
+    """The parameters of a body that have an upper bound: name -> {"max": 0.0,
+    "max_inclusive": False}."""
+    return {n: {"max": 0.0, "max_inclusive": False} for n in NEGATIVE.get(kind, ())}
 
 
 def param_bounds(kind: str, symmetry: str) -> dict[str, dict]:

@@ -14,7 +14,7 @@ from pydantic import BaseModel, ConfigDict, Field
 from solvers.errors import InputError
 from solvers.kernels import integrals as Q
 from solvers.kernels import layout as L
-from solvers.models.bodies import STATE_LABELS, check_state, fill_body, fill_inertia
+from solvers.models.bodies import NEGATIVE, STATE_LABELS, check_state, fill_body, fill_inertia
 
 PARAM_SLOTS = {"S1": L.S1, "S2": L.S2, "S3": L.S3, "g": L.GRAV, "eps": L.BRUN, "k": L.CURV}
 
@@ -211,7 +211,7 @@ def build(case_id: str, params: dict | None = None, *, allow_any_inertia: bool =
             p[slot] = prm[name]
     if case.fixed_k == "2/R":
         p[L.CURV] = 2.0 / prm["R"]
-    if case.body == "flat" and not p[L.CURV] < 0:
+    if "k" in NEGATIVE.get(case.body, ()) and not p[L.CURV] < 0:
         raise InputError(f"k = {float(p[L.CURV])!r}: a flat base rolls on the outside of a fixed "
                          "ball, so k = -1/R0 < 0 (CONVENTIONS.md; the paper's eq3.15 writes "
                          "k = +1/R with gamma pointing out of the support)")
