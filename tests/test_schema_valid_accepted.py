@@ -39,6 +39,9 @@ INEXPRESSIBLE = {
     "overflow": r"too large: the velocities or the energy this run derives",
     # the body's curvature against the sphere's, at the initial contact point
     "fit to the sphere": r"the body does not fit the sphere of curvature",
+    # the body's kinematics at the initial state (its inertia about the contact point, its
+    # fit to the sphere) from every parameter together, as the scene's first frame needs them
+    "singular start": r"the initial state is singular for this body",
     # the energy level of the map against the potential of the body (Poincare)
     "energy level": r"points of the level on the section",
     "energy overflow": r"energy .*too large",
@@ -143,3 +146,15 @@ def test_what_a_method_takes_is_taken_by_both(client, fields):
     assert _validator(client).is_valid(body), body
     r = client.post("/api/validate", json=body)
     assert r.status_code == 200, r.text
+
+
+def test_a_scene_whose_first_frame_is_singular_is_refused_with_the_reason(client):
+    """A schema-valid scene the generator found: the start passes the fit check of
+    validation, but the kinematics of the first frame find the body no longer fitting
+    the sphere; that is a 422 with the reason, not a 500."""
+    body = {"case": "sphere/body-of-revolution", "example": True, "method": "gauss4",
+            "step": 1.0, "t_end": 1.0, "params": {"c": 1.233760040210751e+16}}
+    assert _validator(client).is_valid(body)
+    r = client.post("/api/scene", json=body)
+    assert r.status_code == 422, r.text
+    assert re.search(INEXPRESSIBLE["singular start"], _refusal(r)), r.text
