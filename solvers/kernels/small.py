@@ -270,7 +270,7 @@ def kernel_source(model: int, p, method: str, tab, sections: bool = False,
     # (the kernel's spills and the stats array could collide in the store buffer; which
     # address stats gets is the caller's)
     o += [f"{ind}n_rhs = 1", f"{ind}n_acc = 0", f"{ind}n_rej = 0"]
-    # Hairer's starting step (rk._initial_step)
+    # Hairer's starting step (rk._initial_step's sums; the step from them: control.py)
     o += [f"{ind}if {fp['H']} > 0.0:", f"{ind}    h = {fp['H']}", f"{ind}else:"]
     i2 = ind * 2
     # the sums as one expression each, in rk.py's order (0.0 + t_0 + t_1 + ...)
@@ -334,8 +334,8 @@ def kernel_source(model: int, p, method: str, tab, sections: bool = False,
         c = _call("lin", ["h"], _terms(b, [f"k{j}_{m}" for j in range(s)]))
         # cn (the new compensation) is only kept when compensated
         o += [f"{i2}yn{m}, cn{m} = advance(y_{m}, {c}, cm{m}, compensated)"]
-    # 3. the error norm (rk._error), each sum one expression in rk.py's
-    # order (0.0 + t_0 + t_1 + ...)
+    # 3. the error norm (control.error_sums' sums, each one expression in its order,
+    # 0.0 + t_0 + t_1 + ...; the norm from them: control.error_norm)
     for m in R:
         names = [f"k{j}_{m}" for j in range(E.shape[1])]
         o += [f"{i2}sc{m} = at_{m} + rtol * max(abs(y_{m}), abs(yn{m}))",
