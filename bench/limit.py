@@ -7,8 +7,10 @@ a matched final-state error interpolated (log-log) on that front:
                Chaplygin ball, the disk and the body with a flat base (the gyrostat
                term S x omega of the flat base is zero in this example and left out).
                It is the independent baseline and stays a step of its own, apart from
-               the project's one Runge-Kutta step (solvers/kernels/rk.py and the kernels
-               made from it): a reference that shared that code could not show its cost;
+               the project's one Runge-Kutta step (the step control of
+               solvers/kernels/control.py, which the loop kernel rk.py and the small
+               kernels small.py both call): a reference that shared that code could
+               not show its cost;
   lean-dop853  the same hand-written DOP853 on the generated field of the case
                (solvers/kernels/generate.py): what the generated field alone buys;
   ours         the project's integrate(): general rk_integrate kernel, general field;
