@@ -81,7 +81,8 @@ from solvers.integrate.integrator import (
 )
 from solvers.integrate.taylor import Taylor
 from solvers.kernels import layout as L
-from solvers.kernels.generate import generated, generated_integrator, heyoka_system
+from solvers.kernels.field_modules import generated, generated_integrator
+from solvers.kernels.heyoka_field import heyoka_system
 from solvers.models.cases import build, registry
 from solvers.models.reference import field as ref_field
 
