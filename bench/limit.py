@@ -16,7 +16,7 @@ a matched final-state error interpolated (log-log) on that front:
                (solvers/kernels/small.py), what integrate() and simulate() run by default,
                through the Python entry;
   gen-loops    rk.py compiled against the case's generated field, inlined
-               (generate.generated_integrator: what generated=True runs with a section or
+               (field_modules.generated_integrator: what generated=True runs with a section or
                a projection), called directly (packed arrays reused: no entry);
   heyoka-lean  heyoka's Taylor integrator on the generated lean expressions;
   heyoka-gen   heyoka on the general expression system (solvers/integrate/taylor.py);

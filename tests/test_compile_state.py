@@ -41,10 +41,14 @@ def test_plan_names_the_kernel_of_each_route():
 
 
 def test_plan_of_a_taylor_run_names_its_precision_and_tol():
+    from solvers.integrate import taylor_backend as tb
+
+    m = build(BALL, registry()[BALL].example)
     keys = cs.plan(_req(method="taylor", rtol=1e-10, t_end=1.0))
     assert len(keys) == 1 and keys[0][0] == "taylor"
-    (model, _, _), k_positive, precision, tol = keys[0][1:]
-    assert precision in ("double", "long double") and tol <= 1e-10
+    (model, slots, _), k_positive, precision, tol = keys[0][1:]
+    assert (model, slots) == cs.structure(m.model, m.p) and k_positive is False
+    assert precision == tb.choose_precision(1e-10, 1.0) and tol == tb.snap_tol(1e-10)
 
 
 def test_a_structure_key_does_not_depend_on_the_parameter_values():

@@ -121,7 +121,7 @@ def test_the_health_of_a_writable_cache_is_ok(tmp_path):
 
 LOST_MID_RUN = '''
 import shutil
-from solvers.kernels import module_cache
+from solvers.kernels import jit, module_cache  # noqa: F401 (jit installs numba's cache)
 
 src = "import numba\\n\\n@numba.njit(cache=True)\\ndef f(x):\\n    return x + 1\\n"
 first = module_cache.cached_module("faults_probe_a", lambda: src)

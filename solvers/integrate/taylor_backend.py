@@ -1,7 +1,7 @@
 """`method="taylor"`: heyoka's adaptive Taylor integrator as a runtime backend of simulate().
 
 The system is the case's lean generated field (solvers/kernels/generate.py,
-`heyoka_system(fold=False)`): the same sympy equations as the generated numba field
+`heyoka_field.heyoka_system(fold=False)`): the same sympy equations as the generated numba field
 ((1.1)-(1.3), (3.16)-(3.17)), zero terms dropped, the nonzero parameters heyoka runtime
 parameters `par[slot]`, so one compiled integrator serves every parameter value of a case
 *structure*. heyoka compiles it with LLVM (seconds a case, `bench/taylor_compile.py`); heyoka

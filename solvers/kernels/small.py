@@ -1,7 +1,7 @@
 """Small kernels: one Runge-Kutta run per case structure and tableau, shaped by what a plain
 run needs.
 
-The generated integrator (generate.generated_integrator) is the general rk.py kernel
+The generated integrator (field_modules.generated_integrator) is the general rk.py kernel
 specialised per structure: sections, projection, Henon steps, compensated sums, clipped
 and fixed steps, all compiled for every structure (a long compile each). A plain run
 (samples at the output times by dense output, the step budget, the statuses) needs none
