@@ -150,3 +150,18 @@ def test_compile_then_is_compiled_across_processes_and_not_after_a_wipe(tmp_path
     assert not list(cache.glob("*.ready"))
     shutil.rmtree(cache / "__pycache__")
     assert _probe(cache, "look")["before"] == [False]
+
+
+def test_a_warm_server_prepares_a_generated_integrator_but_not_the_warmed_kernels():
+    """The explorer's rule (app/services/kernel_prepare.py needed) on compile_state's keys:
+    after the warm-up, a run needing the generated integrator (field = "generated" with a
+    projection, which the warm-up does not compile) is prepared before its deadline; a
+    plain run of an example structure and a general run are not."""
+    from app.services import kernel_prepare
+    from app.services.kernel_warmup import KernelWarmup
+
+    warm = KernelWarmup()
+    warm.state = "done"
+    assert kernel_prepare.needed(warm, True, cs.plan(_req(field="generated", project=True)))
+    assert not kernel_prepare.needed(warm, True, cs.plan(_req()))
+    assert not kernel_prepare.needed(warm, True, cs.plan(_req(project=True)))

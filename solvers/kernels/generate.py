@@ -40,8 +40,8 @@ non-finite derivative. tests/test_generated.py compares every case with the gene
 field and the independent NumPy field (solvers/models/reference.py) to round-off.
 
 The modules made from this text are written to the kernel cache and loaded from it by
-solvers/kernels/module_cache.py (named by the structure and the content hash of the
-sources of solvers/kernels).
+solvers/kernels/field_modules.py (named by the structure and the content hash of the
+sources of solvers/kernels: module_cache.py).
 """
 
 from __future__ import annotations

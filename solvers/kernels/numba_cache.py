@@ -118,5 +118,5 @@ def holds(dispatcher) -> bool:
             return True
         magic = dispatcher.targetctx.codegen().magic_tuple()
         return any(k[1] == magic for k in dispatcher._cache._cache_file._load_index())
-    except (AttributeError, OSError):
+    except Exception:   # not a dispatcher, no cache, an unreadable index: a run compiles it
         return False
