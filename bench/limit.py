@@ -18,7 +18,7 @@ a matched final-state error interpolated (log-log) on that front:
                (solvers/kernels/small.py), what integrate() and simulate() run by default,
                through the Python entry;
   gen-loops    rk.py compiled against the case's generated field, inlined
-               (generate.generated_integrator: what generated=True runs with a section or
+               (field_modules.generated_integrator: what generated=True runs with a section or
                a projection), called directly (packed arrays reused: no entry);
   heyoka-lean  heyoka's Taylor integrator on the generated lean expressions;
   heyoka-gen   heyoka on the general expression system (solvers/integrate/taylor.py);
@@ -83,7 +83,8 @@ from solvers.integrate.integrator import (
 )
 from solvers.integrate.taylor import Taylor
 from solvers.kernels import layout as L
-from solvers.kernels.generate import generated, generated_integrator, heyoka_system
+from solvers.kernels.field_modules import generated, generated_integrator
+from solvers.kernels.heyoka_field import heyoka_system
 from solvers.models.cases import build, registry
 from solvers.models.reference import field as ref_field
 

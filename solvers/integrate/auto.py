@@ -260,7 +260,7 @@ def scale(method: str, tol_run: float, tol_check: float) -> float:
 
 
 def plan(choice: dict, t_end: float) -> list[dict]:
-    """The runs a request fixes before it runs (solvers/integrate/run_plan.py): the
+    """The runs a request fixes before it runs (solvers/compile_state.py rungs): the
     first run and its check; a tighter round depends on the estimate."""
     extended = choice["requested_rtol"] <= EXTENDED_BELOW
     first = _rung(choice["method"], choice["tol"], choice["precision"],
