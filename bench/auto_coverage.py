@@ -88,23 +88,39 @@ def q(xs, f):
     return f(xs) if xs else math.nan
 
 
-def run_case(case, n_starts, levels, t_cap, rng, say):
+def case_setup(case, n_starts, rng, t_cap=None) -> dict:
+    """One work-precision case as both auto benchmarks measure it: its parameters and
+    model, T (the case's, at most t_cap), the SAMPLES output times, n_starts random starts
+    drawn from rng (bench/limit.py random_starts) and the two long double Taylor
+    references (REF_TOL, and REF_CHECK_TOL for the reference's own error bound: reference
+    below)."""
     spec = registry()[case.id]
     prm = {**spec.example, **case.overrides}
     model = build(case.id, prm)
     T = min(case.t_end, t_cap) if t_cap else case.t_end
-    t = np.linspace(0.0, T, SAMPLES)
     starts = random_starts(case.id, prm, n_starts, rng)
-    ref = Taylor(model.model, model.p, starts[0], tol=REF_TOL, fp="longdouble",
-                 compact_mode=True)
-    ref_check = Taylor(model.model, model.p, starts[0], tol=REF_CHECK_TOL, fp="longdouble",
-                       compact_mode=True)
+    ref, ref_check = (Taylor(model.model, model.p, starts[0], tol=tol, fp="longdouble",
+                             compact_mode=True) for tol in (REF_TOL, REF_CHECK_TOL))
+    return {"params": prm, "model": model, "T": T, "t": np.linspace(0.0, T, SAMPLES),
+            "starts": starts, "ref": ref, "ref_check": ref_check}
+
+
+def reference(setup, y0):
+    """(Y_ref, both reference runs succeeded, the reference's error bound: its difference
+    from the REF_CHECK_TOL run) at the case's output times."""
+    Yref, _, _, _, ok = setup["ref"].run(y0, setup["t"])
+    Ychk, _, _, _, ok2 = setup["ref_check"].run(y0, setup["t"])
+    return Yref, bool(ok and ok2), error(Ychk, Yref)
+
+
+def run_case(case, n_starts, levels, t_cap, rng, say):
+    setup = case_setup(case, n_starts, rng, t_cap)
+    prm, model, T, t = setup["params"], setup["model"], setup["T"], setup["t"]
     rows = []
-    for y0 in starts:
-        Yref, _, _, _, ok = ref.run(y0, t)
-        Ychk, _, _, _, ok2 = ref_check.run(y0, t)
+    for y0 in setup["starts"]:
+        Yref, ref_ok, bound = reference(setup, y0)
         row = {"y0": [float(v) for v in y0], "M": float(np.linalg.norm(y0[:3])),
-               "ref_ok": bool(ok and ok2), "ref_error_bound": error(Ychk, Yref), "levels": {}}
+               "ref_ok": ref_ok, "ref_error_bound": bound, "levels": {}}
         for E in levels:
             r = simulate(case.id, prm, list(y0), T, method="auto", rtol=E, atol=E,
                          samples=SAMPLES)
