@@ -504,12 +504,9 @@ def main(argv=None):
         t0 = time.perf_counter()
         for case in CASES:
             if only and case.id not in only:
-                from limit import random_starts
+                from auto_coverage import draw_only
 
-                from solvers.models.cases import registry
-
-                spec = registry()[case.id]     # draw its starts all the same
-                random_starts(case.id, {**spec.example, **case.overrides}, args.starts, rng)
+                draw_only(case, args.starts, rng)
                 continue
             raw["cases"][case.id] = run_case(
                 case, args.starts, rng, args.repeats, levels, say,
