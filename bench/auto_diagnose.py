@@ -11,9 +11,9 @@ errors E, in one process, every timing the best of REPEATS with the calls interl
   (b) the check: the returned run alone and the check run alone (simulate at their
       method and tolerance), CPU time and rhs calls: the check's share of one run
   (c) the thread: the returned run and its check by auto's own pairing (auto._pair on the
-      integrator, no simulate around them), side by side on the check thread and one
-      after the other: wall of each over the longer run alone, and whether auto ran
-      them side by side here (auto.PARALLEL_MIN_S against the choice's expected time)
+      integrator, no simulate around them) three ways: as auto pairs them (the check
+      thread joins once the run has gone on auto.CHECK_DEFER_S), both at once, one after
+      the other: the pair's wall over the longer run alone
   (d) fixed overheads: simulate(method="auto")'s CPU time less its runs' kernel time,
       against the same for a single simulate call
 
@@ -46,6 +46,9 @@ from solvers.simulate import _integrate, _model, simulate
 
 OUT = Path(__file__).with_name("results")
 REPEATS = 5
+# the pair's three ways (auto._pair's defer): auto's (the check thread joins once the run
+# has gone on CHECK_DEFER_S), both at once, one after the other on this thread
+PAIRINGS = {"deferred": None, "at_once": 0.0, "serial": -1.0}
 
 
 def _cpu_wall(fn, repeats):
@@ -122,10 +125,9 @@ def diagnose(case_id, prm, y0, T, samples, Yref, E, fr, repeats) -> dict:
                               budget, None, None, g["precision"])
 
         chk_rung = {**rung, **chk}
-        for par in (True, False):
-            (ra, rb), w, c = _cpu_wall(lambda par=par: auto._pair(
-                runner, rung, 10**8, chk_rung, 10**8, parallel=par), repeats)
-            key = "pair_par" if par else "pair_seq"
+        for key, defer in PAIRINGS.items():
+            (ra, rb), w, c = _cpu_wall(lambda defer=defer: auto._pair(
+                runner, rung, 10**8, chk_rung, 10**8, defer=defer), repeats)
             out[key + "_wall"], out[key + "_cpu"] = w, c
             out[key + "_kernels"] = (ra.wall_s, rb.wall_s)
     return out
@@ -147,13 +149,10 @@ def lines_for(case_id, k, d) -> list[str]:
                  f"{d['chk_cpu'] / d['ret_cpu']:.2f} of the returned run's, {d['chk_rhs']} "
                  f"rhs calls = {d['chk_rhs'] / d['ret_rhs']:.2f}")
         longer = max(d["ret_wall"], d["chk_wall"])
-        s.append(f"    (c) pair side by side: wall {d['pair_par_wall'] * 1e3:.3g} ms = "
-                 f"{d['pair_par_wall'] / longer:.2f} of the longer run alone (kernels "
-                 f"{d['pair_par_kernels'][0] * 1e3:.3g} + {d['pair_par_kernels'][1] * 1e3:.3g}"
-                 f" ms), one after the other {d['pair_seq_wall'] * 1e3:.3g} ms = "
-                 f"{d['pair_seq_wall'] / longer:.2f}; auto ran them "
-                 + ("side by side" if (d["expected_s"] or math.inf) >= auto.PARALLEL_MIN_S
-                    else "one after the other"))
+        s.append("    (c) the pair's wall / the longer run alone's (run + check kernels, ms): "
+                 + ", ".join(f"{k} {d[k + '_wall'] / longer:.2f} ({d[k + '_kernels'][0] * 1e3:.3g}"
+                             f" + {d[k + '_kernels'][1] * 1e3:.3g})" for k in PAIRINGS)
+                 + f"; the longer run alone {longer * 1e3:.3g} ms")
         over_auto = d["auto_cpu"] - d["auto_kernel_s"]
         over_one = d["ret_cpu"] - d["ret_kernel_s"]
         s.append(f"    (d) CPU outside the kernels: auto {over_auto * 1e3:.3g} ms, a single "

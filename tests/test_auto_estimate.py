@@ -153,10 +153,32 @@ def test_below_the_runge_kutta_floor_it_goes_to_the_taylor_backend_in_double():
                                   1000.0, 10_000, taylor_ok=True)
     ms = [(m, p) for m, _, p, _ in calls]
     assert ms[:2] == [("dop853", None)] * 2
-    # a request above 1e-14 never runs in extended precision
-    assert all(p == "double" for m, p in ms[2:]) and {m for m, _ in ms[2:]} == {"taylor"}
-    assert info["returned"]["method"] == "taylor"
-    assert info["returned"]["precision"] == "double"
+    # a request above 1e-14 never runs in extended precision: the Taylor backend in double
+    assert ms[2:4] == [("taylor", "double")] * 2
+    assert info["rounds"][1]["method"] == "taylor" and info["rounds"][1]["precision"] == "double"
+    # at double's floor and still above the request: vern9 with compensated sums, in double
+    assert all(p in (None, "double") for _, p in ms)
+    assert info["rounds"][2]["method"] == auto.PAST_FLOOR_METHOD
+    assert info["rounds"][2]["compensated"] and info["rounds"][2]["tol"] == auto.PAST_FLOOR_TOL
+    assert info["returned"] == {k: info["rounds"][2][k]
+                                for k in ("method", "tol", "precision", "compensated")}
+
+
+def test_past_doubles_floor_a_compensated_pair_tightens_to_rk_min_tol_and_meets():
+    """A Taylor run at double's floor whose error (c x its order's tol) stays above the
+    request, a pair whose error is c x tol: the compensated pair is run, checked by its own
+    looser run, tightened once, and meets the request in double."""
+    calls = []
+    E = 1e-12
+    choice = {**_choice("taylor", 1e-14, E), "precision": None}
+    res, info = auto.run_checked(choice, _fake_runner(calls, 3e3), 1000.0, 100_000,
+                                 taylor_ok=True)
+    kinds = [(x["method"], x["precision"], x["compensated"]) for x in info["rounds"]]
+    assert kinds[0] == ("taylor", "double", False)
+    assert kinds[1:] == [(auto.PAST_FLOOR_METHOD, None, True)] * (len(kinds) - 1)
+    assert info["met"] and info["error_estimate"] <= E
+    assert res.y[0, 0] == 3e3 * info["returned"]["tol"] <= E
+    assert info["returned"]["tol"] >= auto.RK_MIN_TOL
 
 
 @pytest.mark.parametrize("requested", [1e-12, 2e-14])
@@ -168,7 +190,7 @@ def test_no_request_above_1e_14_runs_in_extended_precision(requested):
     choice = {**_choice("taylor", 1e-13, requested), "precision": None}
     _res, info = auto.run_checked(choice, _fake_runner(calls, 1e6), 1000.0, 10_000,
                                   taylor_ok=True)
-    assert calls and all(p == "double" for _, _, p, _ in calls), calls
+    assert calls and all(p in (None, "double") for _, _, p, _ in calls), calls
     assert not info["met"] and info["error_estimate"] > requested
 
 
@@ -179,15 +201,26 @@ def test_at_1e_14_and_below_extended_precision_is_allowed():
     assert any(p == "long double" for _, _, p, _ in calls)
 
 
-def test_without_taylor_it_stops_at_the_floor_and_says_so():
+def test_without_taylor_it_goes_past_the_floor_compensated_and_says_when_rounds_run_out():
     calls = []
     res, info = auto.run_checked(_choice("dop853", 1e-12, 1e-8), _fake_runner(calls, 1e8),
                                  1.0, 1000)
-    # 1e-12 misses (error 1e-4); the tighter run stops at RK_MIN_RUN, checked by 1e-12
-    assert sorted(t for _, t, _, _ in calls) == pytest.approx(
-        [1e-14, 1e-12, 1e-12 * auto.CHECK_LOOSER])
-    assert not info["met"] and info["returned"]["tol"] == 1e-14
-    assert res.y[0, 0] == 1e8 * 1e-14
+    # 1e-12 misses (error 1e-4); the tighter run stops at RK_MIN_RUN, checked by 1e-12;
+    # then the compensated pair at PAST_FLOOR_TOL with its own looser check
+    assert [t for _, t, _, _ in calls] == pytest.approx(
+        [1e-12, 1e-12 * auto.CHECK_LOOSER, 1e-14, auto.PAST_FLOOR_TOL,
+         auto.PAST_FLOOR_TOL * auto.CHECK_LOOSER])
+    assert [x["compensated"] for x in info["rounds"]] == [False, False, True]
+    assert not info["met"] and info["returned"]["tol"] == auto.PAST_FLOOR_TOL
+    assert res.y[0, 0] == 1e8 * auto.PAST_FLOOR_TOL
+    assert f"{auto.MAX_ROUNDS} rounds spent" in info["error_estimate_method"]
+
+
+def test_a_compensated_pair_at_rk_min_tol_is_as_tight_as_auto_runs():
+    calls = []
+    choice = {**_choice("vern9", auto.RK_MIN_TOL, 1e-8), "compensated": True}
+    _res, info = auto.run_checked(choice, _fake_runner(calls, 1e12), 1.0, 1000)
+    assert not info["met"] and len(info["rounds"]) == 1
     assert "as tight as auto runs" in info["error_estimate_method"]
 
 

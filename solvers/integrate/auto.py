@@ -50,9 +50,14 @@ TAYLOR_CHECK_ORDERS = 2         # a Taylor check run is this many orders lower
 MIN_TIGHTEN = 10.0 ** 0.5       # a tighter round is at least this much tighter
 CHECK_MAX_TOL = 1e-5            # no looser check than this: errors there are not a power of tol
 # the exponent of the error's growth with tol, taken low (module doc): below q/(q+1) for
-# the pairs' orders (8, 9); the Taylor backend's error is far less regular in its order's
-# tol, so its exponent is taken lower still (the measured exponents: bench/auto_starts.py)
-ALPHA = {"dop853": 0.85, "vern9": 0.85, wp.TAYLOR: 0.6}
+# the pairs' orders (8, 9), near the few-percent quantile of the exponents measured between
+# a run and its check over the many-start benchmark (bench/auto_starts.py prints them): at
+# 0.85 a run on the flat base said met at 1.1 times the request; the Taylor backend's
+# error is far less regular in its order's tol, so its exponent is taken lower still
+ALPHA = {"dop853": 0.75, "vern9": 0.75, wp.TAYLOR: 0.6}
+# a compensated pair past double's floor (_past_floor) runs at tols near round-off, where
+# its error is no longer a power of tol either: the Taylor backend's exponent
+ALPHA_COMPENSATED = 0.6
 # within FLOOR_MARGIN of its precision's round-off floor (taylor_backend.floor) a Taylor
 # run's error is round-off as much as truncation and does not shrink with tol: there the
 # estimate is the difference itself (factor 1), not its extrapolation
@@ -65,8 +70,14 @@ AIM = 0.5                       # a tightened run aims at this fraction of the r
 RK_MIN_TOL = 1e-16              # simulate's smallest rtol
 RK_MIN_RUN = 1e-14              # the tightest Runge-Kutta run auto returns
 EXTENDED_BELOW = 1e-14          # only requests at or below this may run in long double
+# past double's floor of the runs above (a request above EXTENDED_BELOW): the most accurate
+# pair with compensated summation, from this tol down to RK_MIN_TOL (_past_floor)
+PAST_FLOOR_METHOD = "vern9"
+PAST_FLOOR_TOL = 1e-15
 CHECK_SHARE = 0.4               # the looser check run's share of the step budget
-PARALLEL_MIN_S = 0.005          # a run expected to take less runs its check after it, not beside
+# the check starts beside the run once the run has gone on this long (bench/auto_diagnose.py
+# measures the pair both ways): a shorter run ends first and its check runs after it
+CHECK_DEFER_S = 0.0005
 TAYLOR_MIN_TOL = 10.0 ** -18.5
 
 
@@ -204,12 +215,26 @@ def _rung(method: str, tol: float, precision: str | None, compensated: bool,
 
 
 def _tighter(rung: dict, tol: float, t_end: float, taylor_ok: bool, extended: bool) -> dict:
-    """The run at `tol`: the same method, or the Taylor backend below RK_MIN_RUN."""
-    if rung["method"] != wp.TAYLOR and tol < RK_MIN_RUN * (1 - 1e-9):
+    """The run at `tol`: the same method, or the Taylor backend below RK_MIN_RUN (a
+    compensated pair, past double's floor, stays: _past_floor)."""
+    if (rung["method"] != wp.TAYLOR and not rung["compensated"]
+            and tol < RK_MIN_RUN * (1 - 1e-9)):
         if taylor_ok:
             return _rung(wp.TAYLOR, tol, None, False, t_end, extended)
         tol = RK_MIN_RUN
     return _rung(rung["method"], tol, rung["precision"], rung["compensated"], t_end, extended)
+
+
+def _past_floor(rung: dict) -> dict | None:
+    """The run after `rung` where it is as tight as its kind runs in double (the Taylor
+    backend at double's floor, a pair at RK_MIN_RUN): PAST_FLOOR_METHOD with compensated
+    summation at PAST_FLOOR_TOL, tightened from there down to RK_MIN_TOL (_tighter); None
+    after a compensated pair (it is at RK_MIN_TOL already). Where a truncation error, not
+    round-off, is what stays above the request (a fast start over a long T), this pair's
+    tighter tols keep buying accuracy in double (bench/auto_coverage.py)."""
+    if rung["method"] != wp.TAYLOR and rung["compensated"]:
+        return None
+    return _rung(PAST_FLOOR_METHOD, PAST_FLOOR_TOL, None, True, 0.0)
 
 
 def taylor_order(tol: float) -> int:
@@ -248,14 +273,19 @@ def _looser(rung: dict, t_end: float) -> dict:
     return loose if effective_tol(loose) <= CHECK_MAX_TOL * (1 + 1e-9) else tight
 
 
-def scale(method: str, tol_run: float, tol_check: float) -> float:
+def alpha(rung: dict) -> float:
+    """The exponent auto assumes for a run's error in tol (ALPHA, ALPHA_COMPENSATED)."""
+    return ALPHA_COMPENSATED if rung.get("compensated") else ALPHA[rung["method"]]
+
+
+def scale(method: str, tol_run: float, tol_check: float, a: float | None = None) -> float:
     """The returned run's error per unit of its difference from the check run (module
     doc), effective tols: rho / (1 - rho), rho = (tol_run / tol_check)^alpha, for a looser
     check; 1 / (1 - rho), rho = (tol_check / tol_run)^alpha, for a tighter one; inf for
-    the same tol."""
+    the same tol. alpha: a, else the method's ALPHA."""
     if tol_check == tol_run:
         return float("inf")
-    rho = (min(tol_run, tol_check) / max(tol_run, tol_check)) ** ALPHA[method]
+    rho = (min(tol_run, tol_check) / max(tol_run, tol_check)) ** (a or ALPHA[method])
     return (rho if tol_check > tol_run else 1.0) / (1.0 - rho)
 
 
@@ -270,7 +300,8 @@ def plan(choice: dict, t_end: float) -> list[dict]:
 
 def _describe(r: dict) -> str:
     return (f"{r['method']} at tol {r['tol']:.3g}"
-            + (f" in {r['precision']}" if r["precision"] else ""))
+            + (f" in {r['precision']}" if r["precision"] else "")
+            + (" with compensated sums" if r.get("compensated") else ""))
 
 
 _pool: list = []
@@ -287,15 +318,35 @@ def _checker():
         return _pool[0][1]
 
 
-def _pair(runner, a: dict, budget_a: int, b: dict, budget_b: int, parallel: bool = True):
-    """Run a and b, b on a second thread at the same time where parallel; both results."""
-    if not parallel:
+def _pair(runner, a: dict, budget_a: int, b: dict, budget_b: int,
+          defer: float | None = None):
+    """Run a here and b beside it on a check thread once a has run for `defer` seconds
+    (CHECK_DEFER_S); where a ends first, b runs here after it. The start's own run
+    decides: a short run (where a thread's wake-up and the GIL's hand-over cost as much
+    as the overlap gains) runs its check after it, a long one beside it. defer < 0: one
+    after the other, no thread. Both results, a's first."""
+    defer = CHECK_DEFER_S if defer is None else defer
+    if defer < 0:
         return runner(a, budget_a), runner(b, budget_b)
-    fut = _checker().submit(runner, b, budget_b)
+    done, claim = threading.Event(), threading.Lock()
+
+    def late():
+        # b is run by whichever side takes `claim` first: this thread once the wait is
+        # over with a still running, else the caller after a
+        if done.wait(defer) or not claim.acquire(blocking=False):
+            return None
+        return runner(b, budget_b)
+
+    fut = _checker().submit(late)
     try:
         ra = runner(a, budget_a)
     finally:
-        rb = fut.result()      # waits for it (and re-raises its error) either way
+        done.set()
+        here = claim.acquire(blocking=False)
+        if not here:
+            rb = fut.result()      # the thread runs b: wait for it (and its error)
+    if here:
+        rb = runner(b, budget_b)
     return ra, rb
 
 
@@ -304,7 +355,7 @@ def _estimate(res, rung, ref, ref_rung, t_end):
     if not ref.success or len(ref.t) != len(res.t):
         return None, f"the check run of {_describe(ref_rung)} stopped early ({ref.message})"
     e_run, e_ref = effective_tol(rung, res), effective_tol(ref_rung, ref)
-    k = scale(rung["method"], e_run, e_ref)
+    k = scale(rung["method"], e_run, e_ref, alpha(rung))
     if not np.isfinite(k):
         return None, f"the check run of {_describe(ref_rung)} runs the same order"
     from solvers.integrate.taylor_backend import floor
@@ -320,7 +371,7 @@ def _estimate(res, rung, ref, ref_rung, t_end):
                  f"the difference from a run of {_describe(ref_rung)} ({ratio:.3g} times "
                  f"{side}" + (", by the Taylor orders' tolerances"
                               if rung["method"] == wp.TAYLOR else "")
-                 + f") times {k:.3g} (error ~ tol^{ALPHA[rung['method']]}, the exponent "
+                 + f") times {k:.3g} (error ~ tol^{alpha(rung)}, the exponent "
                  "taken low" + ("; near the round-off floor: the difference itself"
                                 if near_floor else "")
                  + "); the difference: max over the output times of |y - y_check| / "
@@ -347,8 +398,8 @@ def run_checked(choice: dict, runner, t_end: float, max_steps: int, taylor_ok: b
     def checked_run(want, budget):
         """Run `want` with a check: a looser earlier run of its kind (the closest in
         tol, within CHECK_MAX_TOL) or else a check run beside it."""
-        kin = [(r, x) for r, x in done if (r["method"], r["precision"]) ==
-               (want["method"], want["precision"])
+        kin = [(r, x) for r, x in done if (r["method"], r["precision"], r["compensated"]) ==
+               (want["method"], want["precision"], want["compensated"])
                and effective_tol(want) < effective_tol(r, x) <= CHECK_MAX_TOL * (1 + 1e-9)]
         if kin:
             chk, ref = min(kin, key=lambda rx: effective_tol(*rx))
@@ -357,8 +408,7 @@ def run_checked(choice: dict, runner, t_end: float, max_steps: int, taylor_ok: b
         else:
             chk = _looser(want, t_end)
             b = max(int(budget * CHECK_SHARE), 1)
-            res, ref = _pair(runner, want, max(budget - b, 1), chk, b,
-                             parallel=(choice.get("expected_s") or np.inf) >= PARALLEL_MIN_S)
+            res, ref = _pair(runner, want, max(budget - b, 1), chk, b)
             runs.extend([res, ref])
             if ref.success:
                 done.append((chk, ref))
@@ -378,7 +428,7 @@ def run_checked(choice: dict, runner, t_end: float, max_steps: int, taylor_ok: b
         rounds.append({**rung, "check": _describe(chk), "error_estimate": est})
     while checked is not None and checked[2] > requested and len(rounds) < MAX_ROUNDS:
         res0, rung0, est0, _ = checked
-        factor = max((est0 / (AIM * requested)) ** (1.0 / ALPHA[rung0["method"]]),
+        factor = max((est0 / (AIM * requested)) ** (1.0 / alpha(rung0)),
                      MIN_TIGHTEN)
         eff = effective_tol(rung0, res0) / factor
         if rung0["method"] == wp.TAYLOR:     # the order that tol needs, and its tol
@@ -386,8 +436,11 @@ def run_checked(choice: dict, runner, t_end: float, max_steps: int, taylor_ok: b
         want = _tighter(rung0, eff, t_end, taylor_ok, extended)
         if (want["method"] == rung0["method"] and want["precision"] == rung0["precision"]
                 and effective_tol(want) >= effective_tol(rung0, res0) * (1 - 1e-9)):
-            why = f"{_describe(rung0)} is as tight as auto runs here"
-            break
+            # as tight as its kind runs: past double's floor (above EXTENDED_BELOW)
+            want = None if extended else _past_floor(rung0)
+            if want is None:
+                why = f"{_describe(rung0)} is as tight as auto runs here"
+                break
         budget = max_steps - spent()
         if budget <= 0:
             why = "the step budget was spent before a tighter run"
