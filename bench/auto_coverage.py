@@ -167,6 +167,10 @@ def run_case(case, n_starts, levels, t_cap, rng, say):
              "first_median": q(fst, np.median), "first_worst": q(fst, max),
              "est_median": q(est, np.median), "est_min": q(est, min), "est_max": q(est, max),
              "not_met": sum(not x["met"] for x in L), "cost_median": q(cost, np.median),
+             "met_but_missed": sum(x["met"] and x["achieved"] > E for x in L),
+             "unmet_but_within": sum(not x["met"] and x["achieved"] <= E for x in L),
+             "time_total": float(sum(x["wall_s_total"] for x in L)),
+             "time_median": q([x["wall_s_total"] for x in L], np.median),
              "wall_median": q(wall, np.median), "wall_worst": q(wall, max),
              "methods": sorted({x["method"] for x in L}), "runs": len(L),
              "not_measurable": len(bad), "not_measurable_flagged": sum(not x["met"] for x in bad)}
@@ -178,9 +182,12 @@ def run_case(case, n_starts, levels, t_cap, rng, say):
             f"{s['first_median']:.2g} worst {s['first_worst']:.2g}"
             f"  | estimate/achieved median {s['est_median']:.2g} [{s['est_min']:.2g}, "
             f"{s['est_max']:.2g}]  | estimate > E after {auto_mod.MAX_ROUNDS} rounds: "
-            f"{s['not_met']}"
+            f"{s['not_met']} (achieved <= E on {s['unmet_but_within']} of them), met but "
+            f"achieved > E: {s['met_but_missed']}"
             f"  | cost / the first choice's: rhs calls median {s['cost_median']:.2g}, "
-            f"integration time median {s['wall_median']:.2g} worst {s['wall_worst']:.2g}"
+            f"integration time median {s['wall_median']:.2g} worst {s['wall_worst']:.2g};"
+            f" auto's integration time median {s['time_median'] * 1e3:.3g} ms, total "
+            f"{s['time_total']:.3g} s"
             f"  ({', '.join(s['methods'])})"
             + (f"  | not measurable (reference bound > E/10): {s['not_measurable']}, auto's "
                f"estimate > E on {s['not_measurable_flagged']} of them" if bad else ""))
@@ -193,19 +200,33 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="3 starts, T <= 100, 1e-6 and 1e-10")
     ap.add_argument("--only", nargs="*", help="case ids (each with the starts of a whole run)")
+    ap.add_argument("--levels", help="comma-separated requested errors (default "
+                    + ", ".join(f"{E:.0e}" for E in LEVELS) + ")")
+    ap.add_argument("--seed", type=int, default=SEED)
+    ap.add_argument("--extended-below", type=float, default=None,
+                    help="auto.EXTENDED_BELOW for this run: requests at or below it may run "
+                    "in long double (default auto's own, 1e-14): the option of allowing it")
+    ap.add_argument("--tag", default="", help="suffix of the output file")
     args = ap.parse_args()
     n_starts, levels, t_cap = (3, LEVELS[:2], 100.0) if args.quick else (20, LEVELS, None)
-    stem = "auto_coverage_quick" if args.quick else "auto_coverage"
-    rng = np.random.default_rng(SEED)
+    if args.levels:
+        levels = tuple(float(x) for x in args.levels.split(","))
+    if args.extended_below is not None:
+        auto_mod.EXTENDED_BELOW = args.extended_below
+    stem = ("auto_coverage_quick" if args.quick else "auto_coverage") + args.tag
+    seed = args.seed
+    rng = np.random.default_rng(seed)
     load0 = os.getloadavg()
-    out = {"quick": args.quick, "starts": n_starts, "levels": levels, "seed": SEED,
+    out = {"quick": args.quick, "starts": n_starts, "levels": levels, "seed": seed,
            "load_start": load0, "cases": {}}
-    text = [f"bench/auto_coverage.py{' --quick' if args.quick else ''}: method='auto' over "
-            f"{n_starts} random starts per case (bench/limit.py random_starts, seed {SEED}), "
+    cmd = " ".join(sys.argv[1:])
+    text = [f"bench/auto_coverage.py {cmd}: method='auto' over "
+            f"{n_starts} random starts per case (bench/limit.py random_starts, seed {seed}), "
             f"requested errors {', '.join(f'{E:.0e}' for E in levels)}; achieved error = max "
             "over 101 output times of |y - y_ref| / max(1, max|y_ref|), reference heyoka long "
             f"double tol {REF_TOL:g} (general expression system); coverage = fraction of runs "
-            "with achieved <= requested (target >= 90%)",
+            "with achieved <= requested (target >= 95%); requests at or below "
+            f"{auto_mod.EXTENDED_BELOW:g} may run in long double",
             f"load average at the start: {load0[0]:.2f} {load0[1]:.2f} {load0[2]:.2f} "
             f"({os.cpu_count()} cores)"]
     for line in text:
@@ -230,13 +251,19 @@ def main():
         k1 = sum(round(c["summary"][key]["first_coverage"] * c["summary"][key]["runs"])
                  for c in out["cases"].values())
         nm = sum(c["summary"][key]["not_measurable"] for c in out["cases"].values())
-        cov[key] = {"covered": k, "runs": n, "first_covered": k1, "not_measurable": nm}
+        tot = {f: sum(c["summary"][key][f] for c in out["cases"].values())
+               for f in ("not_met", "unmet_but_within", "met_but_missed", "time_total")}
+        cov[key] = {"covered": k, "runs": n, "first_covered": k1, "not_measurable": nm, **tot}
+        met = n - tot["not_met"]
         say(f"\nall cases, E {key}: auto {k}/{n} = {k / n:.0%} within the requested error "
-            f"(the first choice alone: {k1}/{n} = {k1 / n:.0%}); {nm} runs not measurable")
+            f"(the first choice alone: {k1}/{n} = {k1 / n:.0%}); {nm} runs not measurable; "
+            f"met {met}/{n}, of which achieved > E: {tot['met_but_missed']}; not met "
+            f"{tot['not_met']}, of which achieved <= E: {tot['unmet_but_within']}; auto's "
+            f"integration time over the judged runs {tot['time_total']:.3g} s")
     out["coverage"] = cov
     say(f"total {time.perf_counter() - t0:.0f} s; load average at the end "
         f"{os.getloadavg()[0]:.2f}")
-    if not args.only:
+    if not args.only or args.tag:
         OUT.mkdir(exist_ok=True)
         (OUT / f"{stem}.txt").write_text("\n".join(text) + "\n")
 
