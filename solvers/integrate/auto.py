@@ -23,8 +23,9 @@ rho = F^-alpha. alpha is taken LOWER than the error's measured growth with tol
 makes the estimate larger than the error: an upper estimate by extrapolation, not a bound.
 A run whose estimate exceeds the request is followed by a tighter one (error ~ tol^alpha,
 aiming at AIM of the request) checked against the run before it, which is looser by the
-same argument, at most MAX_ROUNDS runs of the returned kind; the run returned is always
-the last one that has an estimate.
+same argument, at most MAX_ROUNDS runs of the returned kind; the run returned is the
+last one that has an estimate where that meets the request, else the one of the least
+estimate (a run past double's floor may do worse than the one before it).
 
 A Runge-Kutta pair is not run tighter than RK_MIN_RUN (round-off, not the tolerance, sets
 its error there): a tighter run goes to the Taylor backend. A request above
@@ -55,9 +56,6 @@ CHECK_MAX_TOL = 1e-5            # no looser check than this: errors there are no
 # 0.85 a run on the flat base said met at 1.1 times the request; the Taylor backend's
 # error is far less regular in its order's tol, so its exponent is taken lower still
 ALPHA = {"dop853": 0.75, "vern9": 0.75, wp.TAYLOR: 0.6}
-# a compensated pair past double's floor (_past_floor) runs at tols near round-off, where
-# its error is no longer a power of tol either: the Taylor backend's exponent
-ALPHA_COMPENSATED = 0.6
 # within FLOOR_MARGIN of its precision's round-off floor (taylor_backend.floor) a Taylor
 # run's error is round-off as much as truncation and does not shrink with tol: there the
 # estimate is the difference itself (factor 1), not its extrapolation
@@ -71,7 +69,8 @@ RK_MIN_TOL = 1e-16              # simulate's smallest rtol
 RK_MIN_RUN = 1e-14              # the tightest Runge-Kutta run auto returns
 EXTENDED_BELOW = 1e-14          # only requests at or below this may run in long double
 # past double's floor of the runs above (a request above EXTENDED_BELOW): the most accurate
-# pair with compensated summation, from this tol down to RK_MIN_TOL (_past_floor)
+# pair with compensated summation at this tol, and no tighter: at 1e-16 round-off makes its
+# error no longer fall with tol (on the round disk over T = 1000 it rose 3x on one start)
 PAST_FLOOR_METHOD = "vern9"
 PAST_FLOOR_TOL = 1e-15
 CHECK_SHARE = 0.4               # the looser check run's share of the step budget
@@ -216,9 +215,10 @@ def _rung(method: str, tol: float, precision: str | None, compensated: bool,
 
 def _tighter(rung: dict, tol: float, t_end: float, taylor_ok: bool, extended: bool) -> dict:
     """The run at `tol`: the same method, or the Taylor backend below RK_MIN_RUN (a
-    compensated pair, past double's floor, stays: _past_floor)."""
-    if (rung["method"] != wp.TAYLOR and not rung["compensated"]
-            and tol < RK_MIN_RUN * (1 - 1e-9)):
+    compensated pair, past double's floor, stays at PAST_FLOOR_TOL: _past_floor)."""
+    if rung["method"] != wp.TAYLOR and rung["compensated"]:
+        tol = max(tol, PAST_FLOOR_TOL)
+    elif rung["method"] != wp.TAYLOR and tol < RK_MIN_RUN * (1 - 1e-9):
         if taylor_ok:
             return _rung(wp.TAYLOR, tol, None, False, t_end, extended)
         tol = RK_MIN_RUN
@@ -228,10 +228,9 @@ def _tighter(rung: dict, tol: float, t_end: float, taylor_ok: bool, extended: bo
 def _past_floor(rung: dict) -> dict | None:
     """The run after `rung` where it is as tight as its kind runs in double (the Taylor
     backend at double's floor, a pair at RK_MIN_RUN): PAST_FLOOR_METHOD with compensated
-    summation at PAST_FLOOR_TOL, tightened from there down to RK_MIN_TOL (_tighter); None
-    after a compensated pair (it is at RK_MIN_TOL already). Where a truncation error, not
-    round-off, is what stays above the request (a fast start over a long T), this pair's
-    tighter tols keep buying accuracy in double (bench/auto_coverage.py)."""
+    summation at PAST_FLOOR_TOL; None after a compensated pair. Where a truncation error,
+    not round-off, is what stays above the request (a fast start over a long T), this
+    pair's tighter tol still buys accuracy in double (bench/auto_coverage.py)."""
     if rung["method"] != wp.TAYLOR and rung["compensated"]:
         return None
     return _rung(PAST_FLOOR_METHOD, PAST_FLOOR_TOL, None, True, 0.0)
@@ -274,8 +273,8 @@ def _looser(rung: dict, t_end: float) -> dict:
 
 
 def alpha(rung: dict) -> float:
-    """The exponent auto assumes for a run's error in tol (ALPHA, ALPHA_COMPENSATED)."""
-    return ALPHA_COMPENSATED if rung.get("compensated") else ALPHA[rung["method"]]
+    """The exponent auto assumes for a run's error in tol (ALPHA)."""
+    return ALPHA[rung["method"]]
 
 
 def scale(method: str, tol_run: float, tol_check: float, a: float | None = None) -> float:
@@ -426,6 +425,7 @@ def run_checked(choice: dict, runner, t_end: float, max_steps: int, taylor_ok: b
     else:
         checked = (res, rung, est, how)
         rounds.append({**rung, "check": _describe(chk), "error_estimate": est})
+    results = [checked] if checked is not None else []
     while checked is not None and checked[2] > requested and len(rounds) < MAX_ROUNDS:
         res0, rung0, est0, _ = checked
         factor = max((est0 / (AIM * requested)) ** (1.0 / alpha(rung0)),
@@ -451,10 +451,13 @@ def run_checked(choice: dict, runner, t_end: float, max_steps: int, taylor_ok: b
             break
         checked = (new, want, est, how)
         rounds.append({**want, "check": _describe(chk), "error_estimate": est})
+        results.append(checked)
     else:
         if checked is not None and checked[2] > requested and not why:
             why = f"{MAX_ROUNDS} rounds spent"
     if checked is not None:
+        if checked[2] > requested:    # not met: the run of the least estimate, not the last
+            checked = min(results, key=lambda c: c[2])
         res, rung, estimate, how = checked
         if estimate > requested and why:
             how += f"; no further round: {why}"
