@@ -12,8 +12,8 @@ the request needs. Projection has no Taylor form, so with project = true only do
 vern9 compete; without heyoka the Taylor candidate is left out, and the reason says so.
 
 The error estimate (run_checked): the run returned is the TIGHTER of two runs of the same
-method; the other runs CHECK_LOOSER looser, on a second thread at the same time where the
-run is expected to take PARALLEL_MIN_S or more (the numba kernels are nogil and heyoka's
+method; the other runs CHECK_LOOSER looser, on a second thread beside it once the run has
+gone on CHECK_DEFER_S, else after it (_pair: the numba kernels are nogil and heyoka's
 propagation releases the GIL too: a Python loop on another thread keeps its pace beside
 it). For a method whose global error
 goes as tol^alpha, the two errors are e and e * F^alpha (F = CHECK_LOOSER), so their
@@ -30,7 +30,9 @@ estimate (a run past double's floor may do worse than the one before it).
 A Runge-Kutta pair is not run tighter than RK_MIN_RUN (round-off, not the tolerance, sets
 its error there): a tighter run goes to the Taylor backend. A request above
 EXTENDED_BELOW never runs in extended precision: the Taylor backend stays in double, down
-to its double floor (taylor_backend.floor), and says so when that is not enough.
+to its double floor (taylor_backend.floor); past it one run of PAST_FLOOR_METHOD with
+compensated sums at PAST_FLOOR_TOL (_past_floor), and met is false when that is not
+enough either.
 """
 
 from __future__ import annotations
