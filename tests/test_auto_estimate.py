@@ -300,3 +300,31 @@ def test_a_front_point_in_long_double_is_not_taken_above_1e_14(monkeypatch):
     assert auto.plan(c, 1000.0)[0]["precision"] == "double"
     c = auto.choose(BALL, 1, 1e-15, 1000.0)
     assert c["precision"] == "long double"
+
+
+def test_the_check_joins_a_long_run_on_the_check_thread_and_follows_a_short_one():
+    """auto._pair: the check starts on the check thread once the run has gone on `defer`
+    seconds; a run that ends sooner has its check run after it on the caller's thread.
+    Which thread ran what is asserted, not how long it took."""
+    import threading
+    import time
+
+    def pair(run_s, defer):
+        where = {}
+
+        def runner(rung, budget):
+            where[rung["tol"]] = threading.current_thread()
+            if rung["tol"] == 1.0:
+                time.sleep(run_s)
+            return rung["tol"]
+        got = auto._pair(runner, {"tol": 1.0}, 1, {"tol": 2.0}, 1, defer=defer)
+        return got, where
+
+    me = threading.current_thread()
+    (ra, rb), where = pair(0.0, 5.0)             # the run ends long before the wait
+    assert (ra, rb) == (1.0, 2.0) and where[1.0] is me and where[2.0] is me
+    (ra, rb), where = pair(0.5, 0.01)            # the run goes on past the wait
+    assert (ra, rb) == (1.0, 2.0) and where[1.0] is me and where[2.0] is not me
+    assert where[2.0].name.startswith("auto-check")
+    (ra, rb), where = pair(0.0, -1.0)            # defer < 0: one after the other, no thread
+    assert where[2.0] is me
