@@ -174,7 +174,7 @@ def choose(case_id: str, model: int, rtol: float, t_end: float, project: bool = 
             "tol": max(tol, RK_MIN_TOL), "compensated": False, "requested_rtol": rtol,
             "reason": "; ".join([reason, *notes]), "taylor_allowed": wp.TAYLOR in allowed,
             # the run's CPU time on the measured starts (median), None where not measured:
-            # run_checked runs the check beside the run only where that is worth a thread
+            # what the choice expects (stats.auto), not what decides the check's thread
             "expected_s": expected}
 
 
@@ -274,19 +274,14 @@ def _looser(rung: dict, t_end: float) -> dict:
     return loose if effective_tol(loose) <= CHECK_MAX_TOL * (1 + 1e-9) else tight
 
 
-def alpha(rung: dict) -> float:
-    """The exponent auto assumes for a run's error in tol (ALPHA)."""
-    return ALPHA[rung["method"]]
-
-
-def scale(method: str, tol_run: float, tol_check: float, a: float | None = None) -> float:
+def scale(method: str, tol_run: float, tol_check: float) -> float:
     """The returned run's error per unit of its difference from the check run (module
     doc), effective tols: rho / (1 - rho), rho = (tol_run / tol_check)^alpha, for a looser
     check; 1 / (1 - rho), rho = (tol_check / tol_run)^alpha, for a tighter one; inf for
-    the same tol. alpha: a, else the method's ALPHA."""
+    the same tol."""
     if tol_check == tol_run:
         return float("inf")
-    rho = (min(tol_run, tol_check) / max(tol_run, tol_check)) ** (a or ALPHA[method])
+    rho = (min(tol_run, tol_check) / max(tol_run, tol_check)) ** ALPHA[method]
     return (rho if tol_check > tol_run else 1.0) / (1.0 - rho)
 
 
@@ -356,7 +351,7 @@ def _estimate(res, rung, ref, ref_rung, t_end):
     if not ref.success or len(ref.t) != len(res.t):
         return None, f"the check run of {_describe(ref_rung)} stopped early ({ref.message})"
     e_run, e_ref = effective_tol(rung, res), effective_tol(ref_rung, ref)
-    k = scale(rung["method"], e_run, e_ref, alpha(rung))
+    k = scale(rung["method"], e_run, e_ref)
     if not np.isfinite(k):
         return None, f"the check run of {_describe(ref_rung)} runs the same order"
     from solvers.integrate.taylor_backend import floor
@@ -372,7 +367,7 @@ def _estimate(res, rung, ref, ref_rung, t_end):
                  f"the difference from a run of {_describe(ref_rung)} ({ratio:.3g} times "
                  f"{side}" + (", by the Taylor orders' tolerances"
                               if rung["method"] == wp.TAYLOR else "")
-                 + f") times {k:.3g} (error ~ tol^{alpha(rung)}, the exponent "
+                 + f") times {k:.3g} (error ~ tol^{ALPHA[rung['method']]}, the exponent "
                  "taken low" + ("; near the round-off floor: the difference itself"
                                 if near_floor else "")
                  + "); the difference: max over the output times of |y - y_check| / "
@@ -430,7 +425,7 @@ def run_checked(choice: dict, runner, t_end: float, max_steps: int, taylor_ok: b
     results = [checked] if checked is not None else []
     while checked is not None and checked[2] > requested and len(rounds) < MAX_ROUNDS:
         res0, rung0, est0, _ = checked
-        factor = max((est0 / (AIM * requested)) ** (1.0 / alpha(rung0)),
+        factor = max((est0 / (AIM * requested)) ** (1.0 / ALPHA[rung0["method"]]),
                      MIN_TIGHTEN)
         eff = effective_tol(rung0, res0) / factor
         if rung0["method"] == wp.TAYLOR:     # the order that tol needs, and its tol
