@@ -28,10 +28,17 @@ its total rhs calls over all its runs / the first choice's (a Taylor run counts 
 this ratio means little where auto moved to the Taylor backend) and its total integration
 time (every run's, compile excluded) / the first choice's. No time is asserted.
 
-    nice -n 10 .venv/bin/python bench/auto_coverage.py [--quick]
-        -> bench/results/auto_coverage.txt (--quick: auto_coverage_quick.txt, not kept)
+    nice -n 10 .venv/bin/python bench/auto_coverage.py [--quick] [--levels 1e-6,1e-8]
+        [--only CASE ...] [--seed S] [--extended-below E] [--tag T]
+        -> bench/results/auto_coverage<T>.txt (--quick: auto_coverage_quick.txt, not kept;
+           a run of --only cases writes a file only with --tag)
 --quick: 3 starts per case, T at most 100, levels 1e-6 and 1e-10 (a smoke run, seconds once
-the kernels are compiled).
+the kernels are compiled). --only: those cases, each with the starts of a whole run.
+--extended-below E: requests at or below E may run in long double (auto.EXTENDED_BELOW,
+1e-14 by default): the option of long double where double's floor is above the request,
+measured beside the default. Per level it also counts the runs that said met with the
+achieved error above the request, the runs that did not say met but reached it, and auto's
+integration time over the judged runs.
 """
 
 from __future__ import annotations
