@@ -154,14 +154,12 @@ def test_below_the_runge_kutta_floor_it_goes_to_the_taylor_backend_in_double():
     ms = [(m, p) for m, _, p, _ in calls]
     assert ms[:2] == [("dop853", None)] * 2
     # a request above 1e-14 never runs in extended precision: the Taylor backend in double
-    assert ms[2:4] == [("taylor", "double")] * 2
-    assert info["rounds"][1]["method"] == "taylor" and info["rounds"][1]["precision"] == "double"
-    # at double's floor and still above the request: vern9 with compensated sums, in double
-    assert all(p in (None, "double") for _, p in ms)
-    assert info["rounds"][2]["method"] == auto.PAST_FLOOR_METHOD
-    assert info["rounds"][2]["compensated"] and info["rounds"][2]["tol"] == auto.PAST_FLOOR_TOL
-    assert info["returned"] == {k: info["rounds"][2][k]
-                                for k in ("method", "tol", "precision", "compensated")}
+    assert ms[2:] == [("taylor", "double")] * 2
+    assert info["returned"]["method"] == "taylor"
+    assert info["returned"]["precision"] == "double"
+    # at double's floor, its estimate more than PAST_FLOOR_REACH times the request: nothing
+    # past the floor, and not met
+    assert info["error_estimate"] > auto.PAST_FLOOR_REACH * 1e-12 and not info["met"]
 
 
 def test_past_doubles_floor_a_compensated_pair_meets_in_double():
@@ -217,19 +215,34 @@ def test_at_1e_14_and_below_extended_precision_is_allowed():
     assert any(p == "long double" for _, _, p, _ in calls)
 
 
-def test_without_taylor_it_goes_past_the_floor_compensated_and_says_when_rounds_run_out():
+def test_without_taylor_it_stops_at_the_floor_and_says_so():
     calls = []
     res, info = auto.run_checked(_choice("dop853", 1e-12, 1e-8), _fake_runner(calls, 1e8),
                                  1.0, 1000)
     # 1e-12 misses (error 1e-4); the tighter run stops at RK_MIN_RUN, checked by 1e-12;
-    # then the compensated pair at PAST_FLOOR_TOL with its own looser check
+    # its estimate is far above the request: nothing past the floor
+    assert sorted(t for _, t, _, _ in calls) == pytest.approx(
+        [1e-14, 1e-12, 1e-12 * auto.CHECK_LOOSER])
+    assert not info["met"] and info["returned"]["tol"] == 1e-14
+    assert res.y[0, 0] == 1e8 * 1e-14
+    assert "as tight as auto runs" in info["error_estimate_method"]
+
+
+def test_near_the_floor_it_goes_past_it_compensated_and_says_when_rounds_run_out():
+    calls = []
+    E = 2e-10
+    res, info = auto.run_checked(_choice("dop853", 1e-12, E), _fake_runner(calls, 1e5),
+                                 1.0, 1000)
+    # the run at RK_MIN_RUN is estimated within PAST_FLOOR_REACH of the request: then the
+    # compensated pair at PAST_FLOOR_TOL with its own looser check
+    assert E < info["rounds"][1]["error_estimate"] <= auto.PAST_FLOOR_REACH * E
     assert [t for _, t, _, _ in calls] == pytest.approx(
         [1e-12, 1e-12 * auto.CHECK_LOOSER, 1e-14, auto.PAST_FLOOR_TOL,
          auto.PAST_FLOOR_TOL * auto.CHECK_LOOSER])
     assert [x["compensated"] for x in info["rounds"]] == [False, False, True]
     # not met: the run of the least estimate comes back, the compensated one here
     assert not info["met"] and info["returned"]["tol"] == auto.PAST_FLOOR_TOL
-    assert res.y[0, 0] == 1e8 * auto.PAST_FLOOR_TOL
+    assert res.y[0, 0] == 1e5 * auto.PAST_FLOOR_TOL
     assert f"{auto.MAX_ROUNDS} rounds spent" in info["error_estimate_method"]
 
 

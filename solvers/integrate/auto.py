@@ -75,6 +75,11 @@ EXTENDED_BELOW = 1e-14          # only requests at or below this may run in long
 # error no longer fall with tol (on the round disk over T = 1000 it rose 3x on one start)
 PAST_FLOOR_METHOD = "vern9"
 PAST_FLOOR_TOL = 1e-15
+# ... and only where the run at the floor was estimated within this factor of the request:
+# compensated sums take back the update's round-off, not the field's; on the round disk
+# they gained 15x over the Taylor backend's floor, while on a flat-base start whose floor
+# run was 110x above the request the pair's estimate fell 18x under its error
+PAST_FLOOR_REACH = 30.0
 CHECK_SHARE = 0.4               # the looser check run's share of the step budget
 # the check starts beside the run once the run has gone on this long (bench/auto_diagnose.py
 # measures the pair both ways): a shorter run ends first and its check runs after it
@@ -232,7 +237,8 @@ def _past_floor(rung: dict) -> dict | None:
     backend at double's floor, a pair at RK_MIN_RUN): PAST_FLOOR_METHOD with compensated
     summation at PAST_FLOOR_TOL; None after a compensated pair. Where a truncation error,
     not round-off, is what stays above the request (a fast start over a long T), this
-    pair's tighter tol still buys accuracy in double (bench/auto_coverage.py)."""
+    pair's tighter tol still buys accuracy in double (bench/auto_coverage.py); run_checked
+    takes it only within PAST_FLOOR_REACH of the request."""
     if rung["method"] != wp.TAYLOR and rung["compensated"]:
         return None
     return _rung(PAST_FLOOR_METHOD, PAST_FLOOR_TOL, None, True, 0.0)
@@ -433,8 +439,10 @@ def run_checked(choice: dict, runner, t_end: float, max_steps: int, taylor_ok: b
         want = _tighter(rung0, eff, t_end, taylor_ok, extended)
         if (want["method"] == rung0["method"] and want["precision"] == rung0["precision"]
                 and effective_tol(want) >= effective_tol(rung0, res0) * (1 - 1e-9)):
-            # as tight as its kind runs: past double's floor (above EXTENDED_BELOW)
-            want = None if extended else _past_floor(rung0)
+            # as tight as its kind runs: past double's floor (above EXTENDED_BELOW), where
+            # the floor is near enough the request
+            want = (None if extended or est0 > PAST_FLOOR_REACH * requested
+                    else _past_floor(rung0))
             if want is None:
                 why = f"{_describe(rung0)} is as tight as auto runs here"
                 break
