@@ -12,8 +12,9 @@ the request needs. Projection has no Taylor form, so with project = true only do
 vern9 compete; without heyoka the Taylor candidate is left out, and the reason says so.
 
 The error estimate (run_checked): the run returned is the TIGHTER of two runs of the same
-method; the other runs CHECK_LOOSER looser, on a second thread beside it once the run has
-gone on CHECK_DEFER_S, else after it (_pair: the numba kernels are nogil and heyoka's
+method; the other runs CHECK_LOOSER looser: where the choice expects PARALLEL_MIN_S or
+more, on a second thread beside it once the run has gone on CHECK_DEFER_S, else after it
+(_pair: the numba kernels are nogil and heyoka's
 propagation releases the GIL too: a Python loop on another thread keeps its pace beside
 it). For a method whose global error
 goes as tol^alpha, the two errors are e and e * F^alpha (F = CHECK_LOOSER), so their
@@ -82,8 +83,12 @@ PAST_FLOOR_TOL = 1e-15
 PAST_FLOOR_REACH = 30.0
 CHECK_SHARE = 0.4               # the looser check run's share of the step budget
 # the check starts beside the run once the run has gone on this long (bench/auto_diagnose.py
-# measures the pair both ways): a shorter run ends first and its check runs after it
+# measures the pair three ways): a shorter run ends first and its check runs after it
 CHECK_DEFER_S = 0.0005
+# ... and only where the choice expects PARALLEL_MIN_S or more (its median over the
+# measured starts): handing a check to the thread costs a short run about 0.05 ms of wall,
+# as much as the overlap could give it
+PARALLEL_MIN_S = 0.005
 TAYLOR_MIN_TOL = 10.0 ** -18.5
 
 
@@ -179,7 +184,7 @@ def choose(case_id: str, model: int, rtol: float, t_end: float, project: bool = 
             "tol": max(tol, RK_MIN_TOL), "compensated": False, "requested_rtol": rtol,
             "reason": "; ".join([reason, *notes]), "taylor_allowed": wp.TAYLOR in allowed,
             # the run's CPU time on the measured starts (median), None where not measured:
-            # what the choice expects (stats.auto), not what decides the check's thread
+            # run_checked hands the check to a thread only where it expects PARALLEL_MIN_S
             "expected_s": expected}
 
 
@@ -410,7 +415,9 @@ def run_checked(choice: dict, runner, t_end: float, max_steps: int, taylor_ok: b
         else:
             chk = _looser(want, t_end)
             b = max(int(budget * CHECK_SHARE), 1)
-            res, ref = _pair(runner, want, max(budget - b, 1), chk, b)
+            long = (choice.get("expected_s") or np.inf) >= PARALLEL_MIN_S
+            res, ref = _pair(runner, want, max(budget - b, 1), chk, b,
+                             defer=None if long else -1.0)
             runs.extend([res, ref])
             if ref.success:
                 done.append((chk, ref))
