@@ -17,7 +17,7 @@ errors E, in one process, every timing the best of REPEATS with the calls interl
   (d) fixed overheads: simulate(method="auto")'s CPU time less its runs' kernel time,
       against the same for a single simulate call
 
-    ROLLING_KERNEL_CACHE=... PYTHONPATH=$PWD .venv/bin/python bench/auto_diagnose.py
+    ROLLING_KERNEL_CACHE=... PYTHONPATH=$PWD .venv/bin/python scripts/auto_diagnose.py
         [--cases a,b] [--starts N] [--seed S] [--levels 1e-6,1e-8] [--repeats R]
         -> stdout (and bench/results/auto_diagnose<tag>.txt with --tag)
 The load average is printed at the start and the end: wall figures mean little above
@@ -35,7 +35,8 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
+BENCH = Path(__file__).resolve().parents[1] / "bench"   # the auto benches it reuses
+sys.path.insert(0, str(BENCH))
 
 from auto_coverage import case_setup, draw_only, reference
 from auto_starts import METHODS, RK_TOLS, TAYLOR_TOLS, at_error
@@ -44,7 +45,7 @@ from work_precision import CASES
 from solvers.integrate import auto
 from solvers.simulate import _integrate, _model, simulate
 
-OUT = Path(__file__).with_name("results")
+OUT = BENCH / "results"
 REPEATS = 5
 # the pair's three ways (auto._pair's defer): auto's (the check thread joins once the run
 # has gone on CHECK_DEFER_S), both at once, one after the other on this thread
@@ -175,7 +176,7 @@ def main(argv=None):
     want = args.cases.split(",")
     rng = np.random.default_rng(args.seed)
     load0 = os.getloadavg()
-    text = [f"bench/auto_diagnose.py --cases {args.cases} --starts {args.starts} --seed "
+    text = [f"scripts/auto_diagnose.py --cases {args.cases} --starts {args.starts} --seed "
             f"{args.seed} --levels {args.levels} --repeats {args.repeats}: load average "
             f"{load0[0]:.2f} {load0[1]:.2f} {load0[2]:.2f} at the start "
             f"({os.cpu_count()} cores)"]
