@@ -177,6 +177,7 @@ class RubberSource(Strict):
     """A work of the rubber literature: how to cite it, how much of it was read (`access`)
     and where (`read`), and what it says at each place."""
 
+    short: str  # how a table cell names it: authors and year
     cite: str
     access: Access
     read: str

@@ -221,6 +221,7 @@ class SourcedClaim(Strict):
 
 
 _LEVEL_ORDER = (CheckLevel.EXACT, CheckLevel.POINTWISE, CheckLevel.NUMERICAL)
+_EVIDENCE = ("evidence-for", "evidence-against", "inconclusive")
 
 
 class MarkedCell(Strict):
@@ -240,9 +241,12 @@ class MarkedCell(Strict):
 
     @property
     def level(self) -> CheckLevel | None:
-        """The strongest check among the cell's derived-here claims."""
+        """The level of the check the mark rests on: the strongest exact or pointwise
+        derived-here check for a mark that says something holds or fails, a numerical one
+        for evidence (a cell's other claims may be stronger: they back parts of it)."""
         levels = {c.level for c in self.derived}
-        return next((lv for lv in _LEVEL_ORDER if lv in levels), None)
+        wanted = (CheckLevel.NUMERICAL,) if self.mark in _EVIDENCE else _LEVEL_ORDER[:2]
+        return next((lv for lv in wanted if lv in levels), None)
 
     @model_validator(mode="after")
     def _mark_has_backing(self) -> MarkedCell:
@@ -251,16 +255,11 @@ class MarkedCell(Strict):
                              f"{BEYOND_MARKS}")
         if not self.statement.strip():
             raise ValueError("a cell states what it claims")
-        level = self.level
-        if self.mark == "not-checkable" and level is not None:
+        if self.mark == "not-checkable" and self.derived:
             raise ValueError("a cell with a check of the project's is not 'not checkable'")
-        if self.mark == "project-formula" and level not in (CheckLevel.EXACT,
-                                                            CheckLevel.POINTWISE):
-            raise ValueError("'holds with the project's formula' needs an exact or pointwise "
-                             "derived-here check")
-        if self.mark in ("evidence-for", "evidence-against", "inconclusive", "fails") \
-                and level is None:
-            raise ValueError(f"mark {self.mark} needs a derived-here claim with its check")
+        if self.mark != "not-checkable" and self.level is None:
+            raise ValueError(f"mark {self.mark} needs a derived-here check of its level: "
+                             "exact or pointwise to hold or fail, numerical for evidence")
         return self
 
 
