@@ -267,15 +267,23 @@ def rubber_table_html(t: dict) -> str:
 
 
 def _claim_item(cl: dict) -> str:
-    src = (f'<cite>{escape(cl["cite"])}</cite>' if cl["cite"] else "<strong>derived here"
-           "</strong>")
-    check = (f'; checked by <code>{escape(cl["check"])}</code>'
-             f'{" (" + escape(cl["level"]) + ")" if cl["level"] else ""}'
-             if cl["check"] else "")
+    """One claim of a rubber cell: its source (cited in full), the place and how much of it
+    was read, what it says and how the project's check relates to it; the module and the
+    test behind a derived claim sit behind a Details toggle, the developer's view, as on
+    the case pages."""
+    derived = cl["access"] == "derived-here"
+    src = "<strong>Derived here</strong>" if derived else (
+        f'<cite>{escape(cl["cite"])}</cite>, {escape(cl["place"])}')
     agree = "" if cl["agreement"] == "n/a" else f'; our check: {escape(cl["agreement"])}'
-    return (f'<li class="rubber-claim access-{escape(cl["access"])}">{src}, '
-            f'{escape(cl["place"])} <span class="access">({escape(cl["access_words"])})</span>:'
-            f' {escape(cl["says"])}{agree}{check}.</li>')
+    dev = [f'<dt>where</dt><dd><code>{escape(cl["place"])}</code></dd>'] if derived else []
+    if cl["check"]:
+        dev.append(f'<dt>check</dt><dd><code>{escape(cl["check"])}</code>'
+                   f'{" (" + escape(cl["level"]) + ")" if cl["level"] else ""}</dd>')
+    details = (f'<details class="dev"><summary>Details</summary><dl>{"".join(dev)}</dl>'
+               f'</details>') if dev else ""
+    return (f'<li class="rubber-claim access-{escape(cl["access"])}">{src} '
+            f'<span class="access">({escape(cl["access_words"])})</span>: '
+            f'{escape(cl["says"])}{agree}.{details}</li>')
 
 
 def rubber_claims_html(t: dict) -> str:

@@ -70,7 +70,9 @@ def test_rubber_tables_render_with_marks_sources_and_counts(page, server):
     expect(target).to_be_in_viewport()
     expect(target.locator("li.rubber-claim")).to_have_count(len(cell["claims"]))
     expect(target.locator("li.access-abstract-only").first).to_contain_text("(abstract only)")
-    expect(target.locator("li.access-derived-here code").first).to_contain_text("tests/")
+    derived = target.locator("li.access-derived-here").first
+    expect(derived.locator("details.dev")).to_contain_text("tests/")   # the developer's view
+    expect(derived.locator("details.dev code").first).not_to_be_visible()
 
     page.locator("#rubber").scroll_into_view_if_needed()
     page.evaluate("document.getElementById('rubber').scrollIntoView()")
