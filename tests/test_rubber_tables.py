@@ -214,3 +214,34 @@ def test_legendre_reading_of_ehlers_koiller():
     kR = sp.Symbol("kR")
     p_ek = ((-kR) - 1) / 2
     assert sp.simplify(p_ek + 1 - (1 - kR) / 2) == 0
+
+
+def test_every_named_module_runs():
+    import importlib.util
+    for *_, c in _claims():
+        if c.check and c.check.startswith("python -m "):
+            assert importlib.util.find_spec(c.check.removeprefix("python -m ")), c.check
+
+
+def test_the_guide_states_the_tables_as_the_data_does():
+    """docs/rubber.md's "Where each cell comes from": one line per case with each cell's
+    mark, level and sources, as the YAML has them (a cell changed in the data and not in the
+    guide fails here)."""
+    text = (ROOT / "docs" / "rubber.md").read_text(encoding="utf-8")
+    for t in TABLES:
+        for case in t.cases:
+            cells = []
+            for r in t.rows:
+                mc = case.cells[r.key]
+                info = vocab.by_id()[mc.mark]
+                srcs: list[str] = []
+                for cl in mc.claims:
+                    s = ("derived here" if cl.source == DERIVED
+                         else f"{SOURCES[cl.source].short}, {cl.access.value}")
+                    if s not in srcs:
+                        srcs.append(s)
+                level = f" ({mc.level.value})" if mc.level else ""
+                cells.append(f"{info.shape} {info.word}{level}"
+                             + (f"; {'; '.join(srcs)}" if srcs else ""))
+            line = f"| {case.id.split('/', 1)[1]} | " + " | ".join(cells) + " |"
+            assert line in text, line
