@@ -245,3 +245,16 @@ def test_the_guide_states_the_tables_as_the_data_does():
                              + (f"; {'; '.join(srcs)}" if srcs else ""))
             line = f"| {case.id.split('/', 1)[1]} | " + " | ".join(cells) + " |"
             assert line in text, line
+
+
+def test_every_measure_cell_rests_on_an_exact_check():
+    """A measure cell that states something (a density, or that none depends on gamma alone)
+    rests on an exact check: a Liouville residual reduced to zero, or an exact non-zero
+    obstruction with its scope stated in the cell."""
+    for t in TABLES:
+        for case in t.cases:
+            cell = case.cells["measure"]
+            if cell.mark != "not-checkable":
+                assert cell.mark == "project-formula" and cell.level is CheckLevel.EXACT, case.id
+                if cell.statement.startswith("no "):
+                    assert "not excluded" in cell.statement, case.id    # its scope

@@ -66,3 +66,34 @@ def test_the_obstruction_vanishes_where_a_density_exists():
     for case_id in ("rubber-plane/chaplygin-ball", "rubber-plane/spherical-inertia"):
         _b, field = _case_field(case_id)
         assert rx.gamma_density_obstruction(field, GAMMA0) == (0, 0), case_id
+
+
+DENSITY_CASES = ["rubber-plane/body-of-revolution", "rubber-plane/ellipsoid-of-revolution",
+                 "rubber-plane/round-disk", "rubber-plane/spherical-inertia"]
+
+
+def _surface(case_id):
+    b = rb.body(case_id)
+    assert b.k == 0 and not any(b.S) and b.eps == 0
+    return b, dict(I=[_exact(x) for x in b.I], m=_exact(b.m), gravity=_exact(b.g),
+                   B=[_exact(x) for x in b.B], c=_exact(b.c), a=[_exact(x) for x in b.a],
+                   d=_exact(b.d))
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("case_id", DENSITY_CASES)
+def test_revolution_density_exact(case_id):
+    """rho = (I1 + m r^2) N(gamma) is an invariant density on N: the residual of the
+    Liouville equation reduces to zero exactly, for the case's parameters as rationals
+    (every body of revolution of the table, and the body with spherical inertia, I1 = I3)."""
+    b, kw = _surface(case_id)
+    assert b.I[0] == b.I[1]
+    assert rx.revolution_density_residuals(**kw) == [0, 0, 0]
+
+
+@pytest.mark.slow
+def test_revolution_density_check_fails_a_wrong_density():
+    """Control: without the factor I1 + m r^2 the same reduction leaves a remainder."""
+    _b, kw = _surface("rubber-plane/ellipsoid-of-revolution")
+    res = rx.revolution_density_residuals(**kw, density=lambda r, P1, N2: sp.log(N2) / 2)
+    assert any(x != 0 for x in res)

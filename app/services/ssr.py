@@ -241,7 +241,7 @@ def _sources_line(c: dict) -> str:
 
 
 def rubber_table_html(t: dict) -> str:
-    """A rubber table (views.rubber_table): one column per body, one row per invariant;
+    """A rubber table (rubber_tables.rubber_table): one column per body, one row per invariant;
     every cell its statement, its sources with their access, and its mark linking to its
     claims. Nothing here is redrawn by a script: the marks are the catalogue's."""
     head = "".join(

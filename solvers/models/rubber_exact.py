@@ -182,15 +182,16 @@ def routh_measure_residual(v=None, prm=None):
     return _on_manifold(expr)
 
 
-def body_field(I, m, gravity, r, scale=1, at=None):
+def body_field(I, m, gravity, r, scale=1, at=None, Jr=None):
     """Any rubber body in the chart (omega, gamma), exact parameters: inertia I (3 numbers),
     mass m, gravity (plane only), the support point r as a sympy Matrix in g (any
     extension off |gamma| = 1: on N only its tangential derivative enters), and
     dgamma/dt = scale (gamma x omega) (scale = 1/(1 - k R) for a ball on a sphere, whose
     r = a + R gamma has J = R E). The same equations as rubber_lagrange.py. With `at` (a
     Matrix in other symbols) gamma is replaced by it before the field is assembled, so
-    that the field along a line of gamma stays small."""
-    Jr = r.jacobian(G)
+    that the field along a line of gamma stays small. With `Jr` (dr/dgamma) r may hold
+    symbols for radicals (revolution_density_residuals)."""
+    Jr = r.jacobian(G) if Jr is None else Jr
     Gm = G if at is None else at
     if at is not None:
         put = dict(zip(g, at, strict=True))
@@ -239,6 +240,52 @@ def gamma_density_obstruction(field, gamma0):
     curl = sp.Matrix([D[2, 1] - D[1, 2], D[0, 2] - D[2, 0], D[1, 0] - D[0, 1]])
     return (sp.nsimplify(sp.radsimp(div0)),
             sp.nsimplify(sp.radsimp(sp.expand(curl.dot(g0)))))
+
+
+def revolution_density_residuals(I, m, gravity, B=(0, 0, 0), c=0, a=(0, 0, 0), d=0,
+                                 density=None):
+    """Exact proof that rho = (I1 + m r^2) N(gamma), N^2 = I1 g3^2 + I3 (g1^2 + g2^2)
+    + m (r, gamma)^2, is an invariant density on N for the body with exact parameters I, m,
+    gravity and surface r = a + B gamma / q + c gamma + d (g1, g2, 0) / s (the parts of
+    rubber_bodies.RubberBody; the ball part extended off |gamma| = 1 as c gamma, which
+    changes nothing on N). The radicals q = sqrt(g.B g), s = sqrt(g1^2 + g2^2) are symbols
+    with their derivatives. div(rho v)/rho on N is affine in (w1, w2) (the field is
+    quadratic in omega), so it vanishes iff its value and its two slopes at omega = 0 do;
+    each is reduced modulo q^2 - g.B g, s^2 - g1^2 - g2^2 and |gamma|^2 - 1 (a Groebner
+    basis: the leading terms q^2, s^2, g3^2 are coprime). Returns the three remainders:
+    all zero proves the density for these parameters. `density(r, P1, N2)` replaces
+    log rho (a control: a wrong density leaves a remainder)."""
+    q, s = sp.symbols("q s", positive=True)
+    Bm = sp.diag(*B)
+    BG = Bm * G
+    u = sp.Matrix([g[0], g[1], 0])
+    P = sp.diag(1, 1, 0)
+    r = sp.Matrix(a) + c * G
+    Jr = c * sp.eye(3)
+    if any(B):
+        r, Jr = r + BG / q, Jr + Bm / q - BG * BG.T / q ** 3
+    if d:
+        r, Jr = r + d * u / s, Jr + d * (P / s - u * u.T / s ** 3)
+    v = body_field(I, m, gravity, r, Jr=Jr)
+
+    def total(f, j):   # d/dg_j with q and s functions of gamma
+        return sp.diff(f, g[j]) + BG[j] / q * sp.diff(f, q) + u[j] / s * sp.diff(f, s)
+
+    P1 = I[0] + m * r.dot(r)
+    N2 = I[0] * g[2] ** 2 + I[2] * (g[0] ** 2 + g[1] ** 2) + m * r.dot(G) ** 2
+    log_rho = density(r, P1, N2) if density else sp.log(P1) + sp.log(N2) / 2
+    expr = sum(sp.diff(v[i], X[i]) for i in range(3)) + sum(
+        total(log_rho, j) * v[3 + j] for j in range(3))
+    expr = expr.subs(w[2], -(w[0] * g[0] + w[1] * g[1]) / g[2])
+    zero = {w[0]: 0, w[1]: 0}
+    basis = [q ** 2 - G.dot(BG), s ** 2 - g[0] ** 2 - g[1] ** 2,
+             g[2] ** 2 + g[0] ** 2 + g[1] ** 2 - 1]
+    out = []
+    for part in (expr.subs(zero), sp.diff(expr, w[0]).subs(zero),
+                 sp.diff(expr, w[1]).subs(zero)):
+        num = sp.expand(sp.numer(sp.together(part)))
+        out.append(sp.reduced(num, basis, q, s, g[2], g[0], g[1])[1] if num != 0 else 0)
+    return out
 
 
 def main():
