@@ -10,7 +10,7 @@ from typing import Literal
 from pydantic import field_validator, model_validator
 
 from catalogue.claims import REF_ID_RE
-from catalogue.kinds import Strict
+from catalogue.kinds import Access, Strict
 
 SourceKind = Literal["the paper's published reference list", "another paper's reference list",
                      "the publisher's record", "the preprint's record",
@@ -170,4 +170,25 @@ class Since2002(Strict):
         for r in self.literature:
             if r.status != "complete":
                 raise ValueError(f"since-2002 literature {r.id}: only complete entries")
+        return self
+
+
+class RubberSource(Strict):
+    """A work of the rubber literature: how to cite it, how much of it was read (`access`)
+    and where (`read`), and what it says at each place."""
+
+    short: str  # how a table cell names it: authors and year
+    cite: str
+    access: Access
+    read: str
+    claims: list[dict]
+    cited_by: list[dict] | None = None
+
+    @model_validator(mode="after")
+    def _read(self) -> RubberSource:
+        if self.access is Access.DERIVED:
+            raise ValueError("a source is a work read, not derived-here")
+        for c in [*self.claims, *(self.cited_by or [])]:
+            if Access(c.get("access")) is Access.DERIVED:
+                raise ValueError("a source's statement is not derived-here")
         return self

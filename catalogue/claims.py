@@ -12,8 +12,13 @@ from typing import Literal
 from pydantic import Field, field_validator, model_validator
 
 from catalogue.kinds import (
+    BEYOND_MARKS,
     NEGATIVE_CHECKS,
     REQUIRED_ARGS,
+    Access,
+    Agreement,
+    BeyondRowKey,
+    CheckLevel,
     CheckName,
     ClaimKind,
     Gyrostat,
@@ -30,6 +35,9 @@ CASE_ID_RE = re.compile(r"^(plane|sphere)/[a-z0-9][a-z0-9-]*$")
 CLAIM_ID_RE = re.compile(r"^(plane|sphere)/[a-z0-9-]+(/[A-Za-z0-9_\-]+)+$")
 FORMULA_ID_RE = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
 REF_ID_RE = re.compile(r"^[A-Za-z][A-Za-z0-9\-:]*$")
+DERIVED = "derived-here"  # the source of a claim the project derived itself
+# a check a claim beyond the paper names: a test (path::name) or a module run as a script
+CHECK_RE = re.compile(r"^(tests/[\w/]+\.py::\w+|python -m solvers\.[\w.]+)$")
 
 
 def check_labels(labels: list[str]) -> list[str]:
@@ -173,3 +181,116 @@ class Claim(Strict):
             raise ValueError(f"claim {self.id}: a project claim says in `remarks` what the "
                              "paper asserts and what the project derived")
         return self
+
+
+class SourcedClaim(Strict):
+    """A claim of a table beyond the paper: what `source` (a key of rubber_sources.yaml, or
+    derived-here for the project's own result) says at `place`, how much of the source was
+    read (`access`), how the project's check relates to it (`agreement`) and which check
+    backs it (a test path::name or `python -m solvers...`). A derived-here claim also says
+    how strong its check is (`level`); a source's claim does not (its check, if any, is
+    another claim's)."""
+
+    source: str
+    place: str
+    access: Access
+    says: str
+    agreement: Agreement
+    check: str | None = None
+    level: CheckLevel | None = None
+
+    @model_validator(mode="after")
+    def _honest(self) -> SourcedClaim:
+        derived = self.source == DERIVED
+        if derived != (self.access is Access.DERIVED):
+            raise ValueError(f"claim from {self.source!r} has access {self.access}: "
+                             "derived-here and only it has access derived-here")
+        if derived and (not self.check or self.level is None):
+            raise ValueError("a derived-here claim names its check and the check's level")
+        if not derived and self.level is not None:
+            raise ValueError(f"claim from {self.source!r}: only a derived-here claim has a "
+                             "level (a source's statement is not a check)")
+        if derived and self.agreement is not Agreement.NOT_APPLICABLE:
+            raise ValueError("a derived-here claim agrees with no source: agreement n/a")
+        if self.agreement in (Agreement.CONFIRMED, Agreement.CONTRADICTED) and not self.check:
+            raise ValueError("confirming or contradicting a source needs a named check")
+        if self.check and not CHECK_RE.match(self.check):
+            raise ValueError(f"check {self.check!r}: a test tests/...py::name or "
+                             "python -m solvers....")
+        return self
+
+
+_LEVEL_ORDER = (CheckLevel.EXACT, CheckLevel.POINTWISE, CheckLevel.NUMERICAL)
+_EVIDENCE = ("evidence-for", "evidence-against", "inconclusive")
+
+
+class MarkedCell(Strict):
+    """A cell of a table beyond the paper: its mark (one of the vocabulary's, BEYOND_MARKS),
+    the statement in words, and the claims it rests on. A mark that says something was shown
+    rests on a derived-here claim: 'holds with the project's formula' on an exact or
+    pointwise check, evidence on a numerical one; a cell with no check of the project's is
+    not checkable, whatever its sources say."""
+
+    mark: str
+    statement: str
+    claims: list[SourcedClaim]
+
+    @property
+    def derived(self) -> list[SourcedClaim]:
+        return [c for c in self.claims if c.source == DERIVED]
+
+    @property
+    def level(self) -> CheckLevel | None:
+        """The level of the check the mark rests on: the strongest exact or pointwise
+        derived-here check for a mark that says something holds or fails, a numerical one
+        for evidence (a cell's other claims may be stronger: they back parts of it)."""
+        levels = {c.level for c in self.derived}
+        wanted = (CheckLevel.NUMERICAL,) if self.mark in _EVIDENCE else _LEVEL_ORDER[:2]
+        return next((lv for lv in wanted if lv in levels), None)
+
+    @model_validator(mode="after")
+    def _mark_has_backing(self) -> MarkedCell:
+        if self.mark not in BEYOND_MARKS:
+            raise ValueError(f"mark {self.mark!r}: a cell beyond the paper takes one of "
+                             f"{BEYOND_MARKS}")
+        if not self.statement.strip():
+            raise ValueError("a cell states what it claims")
+        if self.mark == "not-checkable" and self.derived:
+            raise ValueError("a cell with a check of the project's is not 'not checkable'")
+        if self.mark != "not-checkable" and self.level is None:
+            raise ValueError(f"mark {self.mark} needs a derived-here check of its level: "
+                             "exact or pointwise to hold or fail, numerical for evidence")
+        return self
+
+
+RUBBER_CASE_ID_RE = re.compile(r"^rubber-(plane|sphere)/[a-z0-9][a-z0-9-]*$")
+
+
+# the words of the rows the rubber tables share with Tables 1 and 2 (plane.yaml's `plain`)
+ROW_WORDS = {"measure": "measure", "integrals": "additional integrals",
+             "gyrostat": "integrable addition of gyrostat",
+             "hamiltonian_form": "Hamiltonian form"}
+
+
+class BeyondRowSpec(Strict):
+    """A row of a table beyond the paper: its key and its header in words."""
+
+    key: BeyondRowKey
+    plain: str
+
+
+class RubberCase(Strict):
+    """A column: the body (`model`, a case of solvers/models/rubber_bodies.py, which the
+    catalogue does not import) and one marked cell per row."""
+
+    id: str
+    model: str
+    title: str
+    cells: dict[BeyondRowKey, MarkedCell]
+
+    @field_validator("id", "model")
+    @classmethod
+    def _id(cls, v: str) -> str:
+        if not RUBBER_CASE_ID_RE.match(v):
+            raise ValueError(f"malformed rubber case id {v!r}")
+        return v

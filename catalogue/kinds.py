@@ -240,3 +240,55 @@ class InertiaRestriction(StrEnum):
     ELLIPSOID_FAMILY = "I=mu*E+lambda*m*B"  # (2.40)
     FLAT_PLATE = "I3=I1+I2"
     WORONETZ = "I1=I2=I3/2"
+
+
+# --- the tables beyond the 2002 paper (rubber_plane.yaml, rubber_sphere.yaml) -------------
+
+
+class BeyondRowKey(StrEnum):
+    """Rows of the tables beyond the paper: the invariant rows of Tables 1 and 2 (same keys
+    as RowKey), the Brun field that Table 1 lists among its generalizations, and
+    integrability, which Tables 1 and 2 show by their shading."""
+
+    MEASURE = "measure"
+    INTEGRALS = "integrals"
+    GYROSTAT = "gyrostat"
+    BRUN = "brun"
+    HAMILTONIAN_FORM = "hamiltonian_form"
+    INTEGRABILITY = "integrability"
+
+
+class Access(StrEnum):
+    """How much of a source was read for a claim: its text, part of it (a first page, the
+    contents), only its abstract, nothing; or the claim is the project's own."""
+
+    TEXT_READ = "text-read"
+    PARTIAL = "partial"
+    ABSTRACT_ONLY = "abstract-only"
+    NOT_REACHED = "not-reached"
+    DERIVED = "derived-here"
+
+
+class Agreement(StrEnum):
+    """How a check of the project's relates to what a source states."""
+
+    CONFIRMED = "confirmed"  # our check shows what the source states
+    CONSISTENT = "consistent"  # agrees under a stated reading or convention
+    CONTRADICTED = "contradicted"  # our check disagrees, with the evidence
+    UNCHECKED = "unchecked"
+    NOT_APPLICABLE = "n/a"  # a derived-here claim
+
+
+class CheckLevel(StrEnum):
+    """What backs a cell's mark: a symbolic identity or exact exclusion (sympy), a residual
+    at round-off at random points, or numerical evidence (a run, a floating-point search)."""
+
+    EXACT = "exact"
+    POINTWISE = "pointwise"
+    NUMERICAL = "numerical"
+
+
+# The marks a cell beyond the paper may carry: ids of the one vocabulary of marks
+# (solvers/verify/marks.yaml; tests/test_rubber_tables.py keeps them in it).
+BEYOND_MARKS = ("project-formula", "evidence-for", "evidence-against", "fails",
+                "inconclusive", "not-checkable")

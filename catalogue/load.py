@@ -15,7 +15,7 @@ from typing import Any
 
 import yaml
 
-from catalogue.schema import Catalogue, CorrectedForm, CorrectedForms
+from catalogue.schema import Catalogue, CorrectedForm, CorrectedForms, RubberTables
 
 DATA_DIR = Path(__file__).resolve().parent
 FILES = {
@@ -79,3 +79,23 @@ def load_corrected_forms(directory: Path = DATA_DIR) -> dict[str, CorrectedForm]
         if known is not None and (fid not in known or (cf.display and cf.display not in known)):
             raise ValueError(f"corrected form {fid}: unknown formula {fid!r} or {cf.display!r}")
     return forms
+
+
+RUBBER_FILES = {"sources": "rubber_sources.yaml", "plane": "rubber_plane.yaml",
+                "sphere": "rubber_sphere.yaml"}
+
+
+def read_rubber_raw(directory: Path = DATA_DIR) -> dict[str, Any]:
+    """The three YAML files of the rubber tables as plain data, keyed like RubberTables."""
+    raw: dict[str, Any] = {}
+    for field, name in RUBBER_FILES.items():
+        with open(directory / name, encoding="utf-8") as fh:
+            raw[field] = yaml.load(fh, Loader=UniqueKeyLoader)
+    raw["sources"] = raw["sources"]["sources"]
+    return raw
+
+
+@cache
+def load_rubber() -> RubberTables:
+    """The rubber tables (beyond the 2002 paper) and their sources, validated once."""
+    return RubberTables.model_validate(read_rubber_raw(DATA_DIR))

@@ -12,6 +12,10 @@ models are its contract.
       references: Reference         (references.yaml: \\cite keys and uncited names)
       formulas: Formula             (formulas.yaml: one entry per formula the solver implements)
 
+    RubberTables  (beyond the paper: sources: RubberSource, rubber_sources.yaml; plane,
+      sphere: RubberTable of RubberCase columns, each cell a MarkedCell: a mark of the one
+      vocabulary and its SourcedClaims; loaded by load.load_rubber)
+
 The vocabularies (enumerations) and the Strict base are in catalogue/kinds.py, cells and
 claims in catalogue/claims.py, the bibliography in catalogue/bibliography.py; every name is
 importable from here. Every model forbids
@@ -22,6 +26,9 @@ Catalogue is built, so a dangling key fails at load time, not in the solver.
 
 from __future__ import annotations
 
+import re
+from typing import Literal
+
 from pydantic import Field, RootModel, field_validator, model_validator
 
 from catalogue.bibliography import (
@@ -29,12 +36,15 @@ from catalogue.bibliography import (
     BibField,
     CheckedIn,
     Reference,
+    RubberSource,
     Since2002,
     SinceNote,
     SourceKind,
 )
 from catalogue.claims import (
     CASE_ID_RE,
+    DERIVED,
+    ROW_WORDS,
     CLAIM_ID_RE,
     FORMULA_ID_RE,
     LABEL_RE,
@@ -44,16 +54,25 @@ from catalogue.claims import (
     CheckArgs,
     Claim,
     Conditions,
+    BeyondRowSpec,
+    MarkedCell,
+    RubberCase,
+    SourcedClaim,
     SubRow,
     check_labels,
 )
 from catalogue.kinds import (
     ARG_ROLES,
+    BEYOND_MARKS,
     DESCRIPTIVE_ROWS,
     FORMULA_ROLE_OF_CHECK,
     NEGATIVE_CHECKS,
     REQUIRED_ARGS,
+    Access,
+    Agreement,
+    BeyondRowKey,
     Body,
+    CheckLevel,
     CheckName,
     ClaimKind,
     FormulaRole,
@@ -71,9 +90,11 @@ from catalogue.kinds import (
 # the names the rest of the code imports from here, wherever they are defined
 __all__ = [
     "ARG_ROLES",
+    "BEYOND_MARKS",
     "BIB_FIELDS",
     "CASE_ID_RE",
     "CLAIM_ID_RE",
+    "DERIVED",
     "DESCRIPTIVE_ROWS",
     "FORMULA_ID_RE",
     "FORMULA_ROLE_OF_CHECK",
@@ -81,13 +102,18 @@ __all__ = [
     "NEGATIVE_CHECKS",
     "REF_ID_RE",
     "REQUIRED_ARGS",
+    "Access",
+    "Agreement",
     "Attribution",
+    "BeyondRowKey",
+    "BeyondRowSpec",
     "BibField",
     "Body",
     "Case",
     "Catalogue",
     "Cell",
     "CheckArgs",
+    "CheckLevel",
     "CheckName",
     "CheckedIn",
     "Claim",
@@ -100,16 +126,22 @@ __all__ = [
     "FormulaRole",
     "Gyrostat",
     "InertiaRestriction",
+    "MarkedCell",
     "ModelSpec",
     "Origin",
     "Potential",
     "Reference",
     "RowKey",
     "RowSpec",
+    "RubberCase",
+    "RubberSource",
+    "RubberTable",
+    "RubberTables",
     "Shade",
     "Since2002",
     "SinceNote",
     "SourceKind",
+    "SourcedClaim",
     "StateVariables",
     "Strict",
     "SubRow",
@@ -401,3 +433,66 @@ class Catalogue(Strict):
             if ref.id == ref_id:
                 return ref
         raise KeyError(ref_id)
+
+
+# --- the tables beyond the 2002 paper: the rubber hierarchy ---------------------------------
+
+class RubberTable(Strict):
+    id: Literal["rubber-plane", "rubber-sphere"]
+    title: str
+    note: str
+    rows: list[BeyondRowSpec]
+    cases: list[RubberCase]
+
+    @model_validator(mode="after")
+    def _layout(self) -> RubberTable:
+        keys = [r.key for r in self.rows]
+        if sorted(keys) != sorted(BeyondRowKey):
+            raise ValueError(f"{self.id}: rows must be {[k.value for k in BeyondRowKey]}")
+        for key, words in {r.key.value: r.plain for r in self.rows}.items():
+            if key in ROW_WORDS and words != ROW_WORDS[key]:
+                raise ValueError(f"{self.id}: row {key} is {ROW_WORDS[key]!r} as in Tables "
+                                 "1 and 2")
+        ids = [c.id for c in self.cases]
+        if len(set(ids)) != len(ids):
+            raise ValueError(f"{self.id}: duplicate case ids")
+        for case in self.cases:
+            if not case.id.startswith(self.id + "/"):
+                raise ValueError(f"case {case.id} is not in table {self.id}")
+            if set(case.cells) != set(keys):
+                raise ValueError(f"case {case.id}: rows {sorted(case.cells)}, not {keys}")
+        return self
+
+
+class RubberTables(Strict):
+    """The rubber tables and their sources: every claim's source resolves, and no claim
+    says more of a source was read than the source's record does."""
+
+    sources: dict[str, RubberSource]
+    plane: RubberTable
+    sphere: RubberTable
+
+    @model_validator(mode="after")
+    def _resolve(self) -> RubberTables:
+        if (self.plane.id, self.sphere.id) != ("rubber-plane", "rubber-sphere"):
+            raise ValueError("rubber_plane.yaml holds the plane table, rubber_sphere.yaml "
+                             "the sphere one")
+        depth = [Access.NOT_REACHED, Access.ABSTRACT_ONLY, Access.PARTIAL, Access.TEXT_READ]
+        for case in self.cases():
+            for row, cell in case.cells.items():
+                for c in cell.claims:
+                    if c.source == DERIVED:
+                        continue
+                    if c.source not in self.sources:
+                        raise ValueError(f"{case.id} {row}: unknown source {c.source!r}")
+                    known = self.sources[c.source].access
+                    if depth.index(c.access) > depth.index(known):
+                        raise ValueError(f"{case.id} {row}: {c.source} was read as "
+                                         f"{known}; the claim cannot say {c.access}")
+        return self
+
+    def tables(self) -> tuple[RubberTable, RubberTable]:
+        return (self.plane, self.sphere)
+
+    def cases(self) -> list[RubberCase]:
+        return [*self.plane.cases, *self.sphere.cases]

@@ -10,13 +10,15 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from catalogue.rubber_schema import DERIVED, Access, Mark, load_rubber
+from catalogue.load import load_rubber, read_rubber_raw
+from catalogue.schema import BEYOND_MARKS, DERIVED, Access, CheckLevel, MarkedCell, RubberTables
+from solvers.verify import marks as vocab
 from solvers.models import rubber_bodies as rb
 from solvers.models import rubber_lagrange as rl
 
 ROOT = Path(__file__).resolve().parents[1]
-SOURCES, PLANE, SPHERE = load_rubber()
-TABLES = (PLANE, SPHERE)
+RUBBER = load_rubber()
+SOURCES, TABLES = RUBBER.sources, RUBBER.tables()
 H = 1e-30
 
 
@@ -26,6 +28,11 @@ def _claims():
             for row, cell in case.cells.items():
                 for c in cell.claims:
                     yield case, row, cell, c
+
+
+def test_the_marks_are_the_vocabularys():
+    """One vocabulary of marks: a rubber cell's mark is one of solvers/verify/marks.yaml's."""
+    assert set(BEYOND_MARKS) <= set(vocab.IDS)
 
 
 def test_every_case_runs_a_model_and_has_every_row():
@@ -47,39 +54,70 @@ def test_every_named_test_exists():
 
 def test_every_source_is_cited_and_read_level_is_honest():
     used = {c.source for *_, c in _claims()} - {DERIVED}
-    assert used <= set(SOURCES.sources)
-    for key, src in SOURCES.sources.items():
-        assert src.access != Access.full_text, f"{key}: no source was read in full"
+    assert used <= set(SOURCES)
+    for key, src in SOURCES.items():
+        assert src.access != Access.TEXT_READ, f"{key}: no source was read in full"
         for c in src.claims:
             assert c["access"] in {a.value for a in Access}
+    for *_, c in _claims():
+        if c.source != DERIVED:
+            assert c.access is Access.ABSTRACT_ONLY or c.access is Access.PARTIAL, c
 
 
 def test_counts_by_mark():
     """The summary the home page will show: cells per mark, and that no literature claim
     read in an abstract is the only backing of a proved or checked cell."""
-    counts = collections.Counter(cell.mark for t in TABLES for case in t.cases
+    counts = collections.Counter((cell.mark, cell.level) for t in TABLES for case in t.cases
                                  for cell in case.cells.values())
     assert sum(counts.values()) == 6 * sum(len(t.cases) for t in TABLES)
-    assert counts[Mark.proved_exact] >= 8
+    assert counts[("project-formula", CheckLevel.EXACT)] >= 8
     for t in TABLES:
         for case in t.cases:
             for cell in case.cells.values():
-                if cell.mark in (Mark.proved_exact, Mark.checked_pointwise):
-                    assert any(c.source == DERIVED for c in cell.claims)
+                if cell.mark != "not-checkable":
+                    assert any(c.source == DERIVED and c.check for c in cell.claims)
 
 
 def test_bad_table_is_refused():
     from pydantic import ValidationError
+    abstract = dict(source="ehlers-koiller-2006", place="abstract", access="abstract-only",
+                    says="x", agreement="unchecked")
+    derived = dict(source="derived-here", place="x", access="derived-here", says="x",
+                   agreement="n/a", check="tests/x.py::y", level="numerical")
+    refused = [
+        dict(mark="project-formula", statement="x", claims=[abstract]),  # no check of ours
+        dict(mark="project-formula", statement="x", claims=[derived]),   # numerical only
+        dict(mark="not-checkable", statement="x", claims=[derived]),     # it was checked
+        dict(mark="as-printed", statement="x", claims=[derived]),        # no paper prints it
+        dict(mark="open", statement="x", claims=[abstract]),
+        dict(mark="evidence-for", statement="x", claims=[{**derived, "access": "abstract-only"}]),
+        dict(mark="evidence-for", statement="x", claims=[{**derived, "level": None}]),
+        dict(mark="evidence-for", statement="x", claims=[{**derived, "check": "trust me"}]),
+        dict(mark="not-checkable", statement="x", claims=[{**abstract, "level": "exact"}]),
+        dict(mark="not-checkable", statement="x", claims=[{**abstract, "agreement": "confirmed"}]),
+    ]
+    for bad in refused:
+        with pytest.raises(ValidationError):
+            MarkedCell(**bad)
+    MarkedCell(mark="evidence-for", statement="x", claims=[derived, abstract])
 
-    from catalogue.rubber_schema import Cell
-    with pytest.raises(ValidationError):
-        Cell(mark="proved-exact", statement="x", claims=[dict(
-            source="ehlers-koiller-2006", place="abstract", access="abstract-only",
-            says="x", agreement="unchecked")])
-    with pytest.raises(ValidationError):
-        Cell(mark="open", statement="x", claims=[dict(
-            source="derived-here", place="x", access="abstract-only", says="x",
-            agreement="n/a", check="tests/x.py::y")])
+
+def test_a_claim_cannot_say_more_was_read_than_was():
+    """A claim that says the text of an abstract-only source was read, or names a source
+    that is not listed, is refused at load time and the data is left as it was."""
+    from pydantic import ValidationError
+    raw = read_rubber_raw()
+    cell = raw["plane"]["cases"][0]["cells"]["measure"]
+    before = repr(cell)
+    for change in ({"access": "text-read"}, {"source": "nobody-2099"}):
+        bad = {**raw, "plane": {**raw["plane"], "cases": [
+            {**raw["plane"]["cases"][0], "cells": {**raw["plane"]["cases"][0]["cells"],
+             "measure": {**cell, "claims": [cell["claims"][0], {**cell["claims"][1],
+                                                                 **change}]}}},
+            *raw["plane"]["cases"][1:]]}}
+        with pytest.raises(ValidationError, match="nobody-2099|cannot say"):
+            RubberTables.model_validate(bad)
+    assert repr(cell) == before
 
 
 # --- facts behind cells --------------------------------------------------------------------
@@ -176,3 +214,47 @@ def test_legendre_reading_of_ehlers_koiller():
     kR = sp.Symbol("kR")
     p_ek = ((-kR) - 1) / 2
     assert sp.simplify(p_ek + 1 - (1 - kR) / 2) == 0
+
+
+def test_every_named_module_runs():
+    import importlib.util
+    for *_, c in _claims():
+        if c.check and c.check.startswith("python -m "):
+            assert importlib.util.find_spec(c.check.removeprefix("python -m ")), c.check
+
+
+def test_the_guide_states_the_tables_as_the_data_does():
+    """docs/rubber.md's "Where each cell comes from": one line per case with each cell's
+    mark, level and sources, as the YAML has them (a cell changed in the data and not in the
+    guide fails here)."""
+    text = (ROOT / "docs" / "rubber.md").read_text(encoding="utf-8")
+    for t in TABLES:
+        for case in t.cases:
+            cells = []
+            for r in t.rows:
+                mc = case.cells[r.key]
+                info = vocab.by_id()[mc.mark]
+                srcs: list[str] = []
+                for cl in mc.claims:
+                    s = ("derived here" if cl.source == DERIVED
+                         else f"{SOURCES[cl.source].short}, {cl.access.value}")
+                    if s not in srcs:
+                        srcs.append(s)
+                level = f" ({mc.level.value})" if mc.level else ""
+                cells.append(f"{info.shape} {info.word}{level}"
+                             + (f"; {'; '.join(srcs)}" if srcs else ""))
+            line = f"| {case.id.split('/', 1)[1]} | " + " | ".join(cells) + " |"
+            assert line in text, line
+
+
+def test_every_measure_cell_rests_on_an_exact_check():
+    """A measure cell that states something (a density, or that none depends on gamma alone)
+    rests on an exact check: a Liouville residual reduced to zero, or an exact non-zero
+    obstruction with its scope stated in the cell."""
+    for t in TABLES:
+        for case in t.cases:
+            cell = case.cells["measure"]
+            if cell.mark != "not-checkable":
+                assert cell.mark == "project-formula" and cell.level is CheckLevel.EXACT, case.id
+                if cell.statement.startswith("no "):
+                    assert "not excluded" in cell.statement, case.id    # its scope

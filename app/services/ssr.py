@@ -13,6 +13,7 @@ from html import escape
 from markupsafe import Markup
 
 from app.services.anchors import claim_anchor
+from app.services.rubber_tables import rubber_summary, rubber_table
 from solvers.verify import marks as vocab
 
 
@@ -209,8 +210,108 @@ def table_html(t: dict) -> str:
             f'<tbody>{"".join(rows)}</tbody></table>')
 
 
+def rubber_mark_html(c: dict) -> str:
+    """A rubber cell's mark as a link to its claims below the table: the shape and word of
+    the vocabulary (the same markup as static/js/marks.js markHtml draws for Tables 1 and 2)
+    and the level of the check behind it."""
+    info = _info(c["mark"])
+    level = (f'<span class="mklevel">{escape(c["level_words"])}</span>'
+             if c.get("level_words") else "")
+    return (f'<a class="cellmark {escape(c["mark"])}" href="#{escape(c["anchor"])}">'
+            f'<span class="mk {escape(c["mark"])}" data-case="{escape(c["case"])}" '
+            f'aria-hidden="true">{info.shape}</span><span class="mkword" aria-hidden="true">'
+            f'{escape(info.word)}</span><span class="sr-only">{escape(info.name)}; its '
+            f'sources and checks</span></a>{level}')
+
+
+def _sources_line(c: dict) -> str:
+    """Who a cell's claims come from, each with how much of it was read."""
+    seen, parts = set(), []
+    for cl in c["claims"]:
+        key = (cl["short"], cl["access_words"])
+        if key not in seen:
+            seen.add(key)
+            parts.append(f'<span class="src access-{escape(cl["access"])}">'
+                         f'{escape(cl["short"])}</span>'
+                         + ("" if cl["access"] == "derived-here"
+                            else f' <span class="access">({escape(cl["access_words"])})</span>'))
+    if not parts:
+        return '<p class="cell-src">no source read or derived here</p>'
+    return f'<p class="cell-src">{"; ".join(parts)}</p>'
+
+
+def rubber_table_html(t: dict) -> str:
+    """A rubber table (rubber_tables.rubber_table): one column per body, one row per invariant;
+    every cell its statement, its sources with their access, and its mark linking to its
+    claims. Nothing here is redrawn by a script: the marks are the catalogue's."""
+    head = "".join(
+        f'<th scope="col" class="case-head">'
+        + (f'<a href="{escape(c["href"])}" data-case="{escape(c["model"])}">' if c["href"]
+           else '<span>')
+        + f'<span class="colno">{c["column"]}</span> <span class="coltitle">'
+        f'{escape(c["title"])}</span>' + ("</a>" if c["href"] else "</span>") + "</th>"
+        for c in t["columns"])
+    labels = {r["key"]: r["plain"] for r in t["rows"]}
+    rows = []
+    for grow in t["grid"]:
+        cells = "".join(
+            f'<td class="shade-none rubber-cell" data-case="{escape(c["case"])}" '
+            f'data-mark="{escape(c["mark"])}"><div class="cell-body">{escape(c["plain"])}'
+            f'</div>{_sources_line(c)}{rubber_mark_html(c)}</td>' for c in grow["cells"])
+        rows.append(f'<tr class="inv row-{escape(grow["key"])}"><th scope="row">'
+                    f'{escape(labels[grow["key"]])}</th>{cells}</tr>')
+    return (f'<table class="paper rubber" id="tbl-{escape(t["id"])}" '
+            f'aria-describedby="cap-{escape(t["id"])}"><thead><tr><th scope="col" '
+            f'class="corner"><span class="sr-only">row</span></th>{head}</tr></thead>'
+            f'<tbody>{"".join(rows)}</tbody></table>')
+
+
+def _claim_item(cl: dict) -> str:
+    """One claim of a rubber cell: its source (cited in full), the place and how much of it
+    was read, what it says and how the project's check relates to it; the module and the
+    test behind a derived claim sit behind a Details toggle, the developer's view, as on
+    the case pages."""
+    derived = cl["access"] == "derived-here"
+    src = "<strong>Derived here</strong>" if derived else (
+        f'<cite>{escape(cl["cite"])}</cite>, {escape(cl["place"])}')
+    agree = "" if cl["agreement"] == "n/a" else f'; our check: {escape(cl["agreement"])}'
+    dev = [f'<dt>where</dt><dd><code>{escape(cl["place"])}</code></dd>'] if derived else []
+    if cl["check"]:
+        dev.append(f'<dt>check</dt><dd><code>{escape(cl["check"])}</code>'
+                   f'{" (" + escape(cl["level"]) + ")" if cl["level"] else ""}</dd>')
+    details = (f'<details class="dev"><summary>Details</summary><dl>{"".join(dev)}</dl>'
+               f'</details>') if dev else ""
+    return (f'<li class="rubber-claim access-{escape(cl["access"])}">{src} '
+            f'<span class="access">({escape(cl["access_words"])})</span>: '
+            f'{escape(cl["says"])}{agree}.{details}</li>')
+
+
+def rubber_claims_html(t: dict) -> str:
+    """Where each cell of a rubber table comes from: one entry per cell, at the anchor its
+    mark links to, with every claim's source, place, access and check."""
+    labels = {r["key"]: r["plain"] for r in t["rows"]}
+    titles = {c["id"]: c["title"] for c in t["columns"]}
+    out = []
+    for grow in t["grid"]:
+        for c in grow["cells"]:
+            items = "".join(_claim_item(cl) for cl in c["claims"]) or (
+                '<li>No source read says anything of it, and nothing was derived here.</li>')
+            out.append(f'<article class="rubber-cell-claims" id="{escape(c["anchor"])}">'
+                       f'<h4>{escape(titles[c["case"]])}: {escape(labels[grow["key"]])}</h4>'
+                       f'<p>Mark: {badge_html(c["mark"])}'
+                       f'{"; check: " + escape(c["level_words"]) if c["level_words"] else ""}'
+                       f'. {escape(c["plain"])}</p><ul>{items}</ul></article>')
+    return "".join(out)
+
+
 def home_context(tables: dict[str, dict], summary: str = "") -> dict:
     """The server-drawn parts of index.html: Tables 1 and 2, the key to the marks and the
-    counts by mark."""
+    counts by mark; the rubber tables beyond the paper, their counts by mark and where
+    each of their cells comes from."""
+    rubber = [rubber_table(tid) for tid in ("rubber-plane", "rubber-sphere")]
     return {"legend": Markup(legend_html()), "summary": Markup(escape(summary)),
-            "tables": [Markup(table_html(t)) for t in tables.values()]}
+            "tables": [Markup(table_html(t)) for t in tables.values()],
+            "rubber_summary": Markup(escape(rubber_summary(rubber))),
+            "rubber": [{"id": t["id"], "title": t["title"], "note": t["note"],
+                        "summary": t["summary"], "table": Markup(rubber_table_html(t)),
+                        "claims": Markup(rubber_claims_html(t))} for t in rubber]}

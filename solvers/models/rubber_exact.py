@@ -182,6 +182,112 @@ def routh_measure_residual(v=None, prm=None):
     return _on_manifold(expr)
 
 
+def body_field(I, m, gravity, r, scale=1, at=None, Jr=None):
+    """Any rubber body in the chart (omega, gamma), exact parameters: inertia I (3 numbers),
+    mass m, gravity (plane only), the support point r as a sympy Matrix in g (any
+    extension off |gamma| = 1: on N only its tangential derivative enters), and
+    dgamma/dt = scale (gamma x omega) (scale = 1/(1 - k R) for a ball on a sphere, whose
+    r = a + R gamma has J = R E). The same equations as rubber_lagrange.py. With `at` (a
+    Matrix in other symbols) gamma is replaced by it before the field is assembled, so
+    that the field along a line of gamma stays small. With `Jr` (dr/dgamma) r may hold
+    symbols for radicals (revolution_density_residuals)."""
+    Jr = r.jacobian(G) if Jr is None else Jr
+    Gm = G if at is None else at
+    if at is not None:
+        put = dict(zip(g, at, strict=True))
+        r, Jr = r.subs(put), Jr.subs(put)
+    It = sp.diag(*I) + m * (r.dot(r) * sp.eye(3) - r * r.T)
+    gd = scale * Gm.cross(W)
+    rd = Jr * gd
+    N = (It * W).cross(W) + m * rd.cross(W.cross(r)) + Gm.cross(m * gravity * r)
+    Itd = m * (2 * r.dot(rd) * sp.eye(3) - rd * r.T - r * rd.T)
+    Iti = It.adjugate() / It.det()
+    base = Iti * (N - Itd * W)
+    Ag = Iti * Gm
+    lam = -base.dot(Gm) / Ag.dot(Gm)
+    return list(base + lam * Ag) + list(gd)
+
+
+def gamma_density_obstruction(field, gamma0):
+    """Exact obstruction to an invariant density f(gamma) depending on gamma alone, at the
+    rational point gamma0 of |gamma| = 1 (gamma0[2] != 0); `field(at)` is body_field with
+    its body's parameters.
+
+    If f existed, div v + grad log f . dgamma/dt = 0 on N; with dgamma/dt = s gamma x omega
+    this says div v = c(gamma) . omega on N with c x gamma = s grad_tan log f, so the
+    1-form alpha = (c x gamma) . dgamma would be closed on the sphere of gamma: the curl of
+    c x gamma would have no component along gamma. With omega3 eliminated by
+    (omega, gamma) = 0, div v = A1 w1 + A2 w2 and c = (A1, A2, 0) (any c with these A
+    differs by a multiple of gamma, which changes nothing). Each derivative along gamma is
+    taken on the line gamma0 + t e_j. Returns (div v at omega = 0, the curl's component
+    along gamma), exact numbers at gamma0: either non-zero proves that no f(gamma) exists,
+    not even near gamma0, for these parameters. Densities depending on omega are not
+    concerned."""
+    t = sp.Symbol("t")
+    g0 = sp.Matrix(gamma0)
+    dF, div0 = [], None
+    for j in range(3):
+        line = g0 + t * sp.eye(3)[:, j]
+        v = field(line)
+        div = sum(sp.diff(v[i], X[i]) for i in range(3))    # d(gamma x omega)_j/dg_j = 0
+        div = div.subs(w[2], -(w[0] * line[0] + w[1] * line[1]) / line[2])
+        zero = {w[0]: 0, w[1]: 0}
+        c = sp.Matrix([sp.diff(div, w[0]).subs(zero), sp.diff(div, w[1]).subs(zero), 0])
+        dF.append(sp.diff(c.cross(line), t).subs(t, 0))
+        if div0 is None:
+            div0 = div.subs(zero).subs(t, 0)
+    D = sp.Matrix.hstack(*dF)          # D[k, j] = d(c x gamma)_k / d gamma_j at gamma0
+    curl = sp.Matrix([D[2, 1] - D[1, 2], D[0, 2] - D[2, 0], D[1, 0] - D[0, 1]])
+    return (sp.nsimplify(sp.radsimp(div0)),
+            sp.nsimplify(sp.radsimp(sp.expand(curl.dot(g0)))))
+
+
+def revolution_density_residuals(I, m, gravity, B=(0, 0, 0), c=0, a=(0, 0, 0), d=0,
+                                 density=None):
+    """Exact proof that rho = (I1 + m r^2) N(gamma), N^2 = I1 g3^2 + I3 (g1^2 + g2^2)
+    + m (r, gamma)^2, is an invariant density on N for the body with exact parameters I, m,
+    gravity and surface r = a + B gamma / q + c gamma + d (g1, g2, 0) / s (the parts of
+    rubber_bodies.RubberBody; the ball part extended off |gamma| = 1 as c gamma, which
+    changes nothing on N). The radicals q = sqrt(g.B g), s = sqrt(g1^2 + g2^2) are symbols
+    with their derivatives. div(rho v)/rho on N is affine in (w1, w2) (the field is
+    quadratic in omega), so it vanishes iff its value and its two slopes at omega = 0 do;
+    each is reduced modulo q^2 - g.B g, s^2 - g1^2 - g2^2 and |gamma|^2 - 1 (a Groebner
+    basis: the leading terms q^2, s^2, g3^2 are coprime). Returns the three remainders:
+    all zero proves the density for these parameters. `density(r, P1, N2)` replaces
+    log rho (a control: a wrong density leaves a remainder)."""
+    q, s = sp.symbols("q s", positive=True)
+    Bm = sp.diag(*B)
+    BG = Bm * G
+    u = sp.Matrix([g[0], g[1], 0])
+    P = sp.diag(1, 1, 0)
+    r = sp.Matrix(a) + c * G
+    Jr = c * sp.eye(3)
+    if any(B):
+        r, Jr = r + BG / q, Jr + Bm / q - BG * BG.T / q ** 3
+    if d:
+        r, Jr = r + d * u / s, Jr + d * (P / s - u * u.T / s ** 3)
+    v = body_field(I, m, gravity, r, Jr=Jr)
+
+    def total(f, j):   # d/dg_j with q and s functions of gamma
+        return sp.diff(f, g[j]) + BG[j] / q * sp.diff(f, q) + u[j] / s * sp.diff(f, s)
+
+    P1 = I[0] + m * r.dot(r)
+    N2 = I[0] * g[2] ** 2 + I[2] * (g[0] ** 2 + g[1] ** 2) + m * r.dot(G) ** 2
+    log_rho = density(r, P1, N2) if density else sp.log(P1) + sp.log(N2) / 2
+    expr = sum(sp.diff(v[i], X[i]) for i in range(3)) + sum(
+        total(log_rho, j) * v[3 + j] for j in range(3))
+    expr = expr.subs(w[2], -(w[0] * g[0] + w[1] * g[1]) / g[2])
+    zero = {w[0]: 0, w[1]: 0}
+    basis = [q ** 2 - G.dot(BG), s ** 2 - g[0] ** 2 - g[1] ** 2,
+             g[2] ** 2 + g[0] ** 2 + g[1] ** 2 - 1]
+    out = []
+    for part in (expr.subs(zero), sp.diff(expr, w[0]).subs(zero),
+                 sp.diff(expr, w[1]).subs(zero)):
+        num = sp.expand(sp.numer(sp.together(part)))
+        out.append(sp.reduced(num, basis, q, s, g[2], g[0], g[1])[1] if num != 0 else 0)
+    return out
+
+
 def main():
     """Every exact check with all parameters symbolic (the Routh measure takes minutes)."""
     checks = [
