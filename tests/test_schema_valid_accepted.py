@@ -44,6 +44,8 @@ INEXPRESSIBLE = {
     "map start": r"initial point \[.*\]: ",
     # the section's angle, a number inside a string
     "section angle": r"section = .*: the angle",
+    # a rubber state's (omega, gamma) = 0, omega = I_Q^-1 M: a bilinear relation of fields
+    "rubber state": r"a rubber body does not spin about the normal",
     # the Taylor integrator's floating-point types depend on the platform's heyoka
     "platform precision": r"this platform's heyoka offers",
 }
@@ -55,6 +57,10 @@ INEXPRESSIBLE = {
 NOT_IN_SCHEMA = {
     "precision without taylor": r"precision = .*: only method 'taylor' runs in another",
     "projection with scipy": r"project = true needs a compiled method",
+    # g = eps = 0 for a rubber case on a sphere: a branch of its own with g and eps left
+    # out (or const 0) makes schemathesis give up, so these cases take g and eps like the
+    # marble ones and the API refuses a nonzero value
+    "rubber potential on a sphere": r"a potential on a sphere is not modelled for rubber",
 }
 
 app = create_app(settings_for_tests(max_steps=20_000, deadline_s=120.0,
