@@ -7,6 +7,11 @@ NumPy field of solvers/models/reference.py, and reports the drift of every invar
 case carries. A run that meets a singularity returns what it computed up to there, with
 status "singular" and a message saying where: never NaN as a result.
 
+A rubber case (CaseSpec.constraint "rubber": no spin about the normal) runs the same
+way: its fields add the reaction of (omega, gamma) = 0, its scipy route runs the
+Lagrange-d'Alembert NumPy field (solvers/models/rubber_lagrange.py), and it reports the
+integral "spin", (omega, gamma), beside the energy and gamma^2.
+
 A plain run of a compiled Runge-Kutta method (dop853 or vern9, no projection) runs the
 case's generated field (solvers/kernels/generate.py) in its small kernel, any other run the
 general field (`field`, FIELDS): the route depends on the request, never on what happens

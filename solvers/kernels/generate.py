@@ -336,6 +336,7 @@ def _rubber_reaction(prog, Md, P, g, w, gd, r, rd, IQ, *, sphere, centred, disk,
     import sympy as sp
 
     m = P[L.MASS]
+    Md = [prog.let(x) for x in Md]   # N once: it enters lambda and the result
     if sphere:      # r = lam gamma + a, J dgamma/dt = lam dgamma/dt ((gamma, dgamma/dt) = 0)
         rt = [prog.let(lam * g[i] + P[L.A1 + i]) for i in range(3)]
         rdt = [prog.let(lam * x) for x in gd]

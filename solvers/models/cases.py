@@ -118,7 +118,10 @@ def cases() -> dict[str, CaseSpec]:
     """The cases `simulate` runs, by id, with their parameters and example values.
 
     The sixteen columns of the paper's Tables 1 (rolling on a plane) and 2 (rolling on a
-    sphere), then the cases the text only mentions (`CaseSpec.in_tables` False).
+    sphere), then the cases the text only mentions (`CaseSpec.in_tables` False), then the
+    rubber cases, beyond the paper: the same bodies rolling without slipping and without
+    spinning about the normal (`CaseSpec.constraint` "rubber", ids "rubber-plane/..." and
+    "rubber-sphere/...").
 
     Returns
     -------
@@ -136,6 +139,8 @@ def cases() -> dict[str, CaseSpec]:
     (16, False)
     >>> every["plane/round-disk"].required
     ['I1', 'I3', 'm', 'R']
+    >>> every["rubber-plane/round-disk"].constraint, every["rubber-plane/round-disk"].required
+    ('rubber', ['I1', 'I3', 'm', 'R'])
     """
     return {cid: spec.model_copy(deep=True) for cid, spec in registry().items()}
 
