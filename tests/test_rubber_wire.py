@@ -190,6 +190,14 @@ def test_api_takes_a_rubber_case():
             "state": registry()["plane/chaplygin-ball"].state})
         assert bad.status_code == 422, bad.text
         assert "does not spin" in bad.text
+        # the 3D scene integrates orientation and position beside the rubber field: the
+        # spin about the vertical stays zero, where the marble ball's does not
+        spins = {}
+        for cid in ("rubber-plane/chaplygin-ball", "plane/chaplygin-ball"):
+            sc = client.post("/api/scene", json={"case": cid, "example": True, "t_end": 20.0})
+            assert sc.status_code == 200, sc.text
+            spins[cid] = max(abs(v) for v in sc.json()["series"]["vertical_spin"])
+        assert spins["rubber-plane/chaplygin-ball"] < 1e-8 < 1e-2 < spins["plane/chaplygin-ball"]
 
 
 @pytest.mark.parametrize("kw", [dict(method="vern9"), dict(method="gauss4", step=0.02),
