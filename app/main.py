@@ -156,7 +156,7 @@ async def lifespan(app: FastAPI):
     why = await anyio.to_thread.run_sync(cache.check)
     warm_kernels = settings.warm_kernels and why is None
     if why is not None:
-        from solvers.kernels.jit import degrade
+        from solvers.kernels.module_cache import degrade
 
         degrade("the kernel cache", why)
         kernels.message = ("not run: the kernel cache cannot be written; runs use the "

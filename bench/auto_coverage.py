@@ -28,10 +28,17 @@ its total rhs calls over all its runs / the first choice's (a Taylor run counts 
 this ratio means little where auto moved to the Taylor backend) and its total integration
 time (every run's, compile excluded) / the first choice's. No time is asserted.
 
-    nice -n 10 .venv/bin/python bench/auto_coverage.py [--quick]
-        -> bench/results/auto_coverage.txt (--quick: auto_coverage_quick.txt, not kept)
+    nice -n 10 .venv/bin/python bench/auto_coverage.py [--quick] [--levels 1e-6,1e-8]
+        [--only CASE ...] [--seed S] [--extended-below E] [--tag T]
+        -> bench/results/auto_coverage<T>.txt (--quick: auto_coverage_quick.txt, not kept;
+           a run of --only cases writes a file only with --tag)
 --quick: 3 starts per case, T at most 100, levels 1e-6 and 1e-10 (a smoke run, seconds once
-the kernels are compiled).
+the kernels are compiled). --only: those cases, each with the starts of a whole run.
+--extended-below E: requests at or below E may run in long double (auto.EXTENDED_BELOW,
+1e-14 by default): the option of long double where double's floor is above the request,
+measured beside the default. Per level it also counts the runs that said met with the
+achieved error above the request, the runs that did not say met but reached it, and auto's
+integration time over the judged runs.
 """
 
 from __future__ import annotations
@@ -88,23 +95,46 @@ def q(xs, f):
     return f(xs) if xs else math.nan
 
 
-def run_case(case, n_starts, levels, t_cap, rng, say):
+def case_setup(case, n_starts, rng, t_cap=None) -> dict:
+    """One work-precision case as both auto benchmarks measure it: its parameters and
+    model, T (the case's, at most t_cap), the SAMPLES output times, n_starts random starts
+    drawn from rng (bench/limit.py random_starts) and the two long double Taylor
+    references (REF_TOL, and REF_CHECK_TOL for the reference's own error bound: reference
+    below)."""
     spec = registry()[case.id]
     prm = {**spec.example, **case.overrides}
     model = build(case.id, prm)
     T = min(case.t_end, t_cap) if t_cap else case.t_end
-    t = np.linspace(0.0, T, SAMPLES)
     starts = random_starts(case.id, prm, n_starts, rng)
-    ref = Taylor(model.model, model.p, starts[0], tol=REF_TOL, fp="longdouble",
-                 compact_mode=True)
-    ref_check = Taylor(model.model, model.p, starts[0], tol=REF_CHECK_TOL, fp="longdouble",
-                       compact_mode=True)
+    ref, ref_check = (Taylor(model.model, model.p, starts[0], tol=tol, fp="longdouble",
+                             compact_mode=True) for tol in (REF_TOL, REF_CHECK_TOL))
+    return {"params": prm, "model": model, "T": T, "t": np.linspace(0.0, T, SAMPLES),
+            "starts": starts, "ref": ref, "ref_check": ref_check}
+
+
+def draw_only(case, n_starts, rng) -> None:
+    """Draw a case's starts from rng and nothing else: a run of some cases draws the
+    skipped cases' starts all the same, so each case's starts are those of a whole run."""
+    spec = registry()[case.id]
+    random_starts(case.id, {**spec.example, **case.overrides}, n_starts, rng)
+
+
+def reference(setup, y0):
+    """(Y_ref, both reference runs succeeded, the reference's error bound: its difference
+    from the REF_CHECK_TOL run) at the case's output times."""
+    Yref, _, _, _, ok = setup["ref"].run(y0, setup["t"])
+    Ychk, _, _, _, ok2 = setup["ref_check"].run(y0, setup["t"])
+    return Yref, bool(ok and ok2), error(Ychk, Yref)
+
+
+def run_case(case, n_starts, levels, t_cap, rng, say):
+    setup = case_setup(case, n_starts, rng, t_cap)
+    prm, model, T, t = setup["params"], setup["model"], setup["T"], setup["t"]
     rows = []
-    for y0 in starts:
-        Yref, _, _, _, ok = ref.run(y0, t)
-        Ychk, _, _, _, ok2 = ref_check.run(y0, t)
+    for y0 in setup["starts"]:
+        Yref, ref_ok, bound = reference(setup, y0)
         row = {"y0": [float(v) for v in y0], "M": float(np.linalg.norm(y0[:3])),
-               "ref_ok": bool(ok and ok2), "ref_error_bound": error(Ychk, Yref), "levels": {}}
+               "ref_ok": ref_ok, "ref_error_bound": bound, "levels": {}}
         for E in levels:
             r = simulate(case.id, prm, list(y0), T, method="auto", rtol=E, atol=E,
                          samples=SAMPLES)
@@ -144,6 +174,10 @@ def run_case(case, n_starts, levels, t_cap, rng, say):
              "first_median": q(fst, np.median), "first_worst": q(fst, max),
              "est_median": q(est, np.median), "est_min": q(est, min), "est_max": q(est, max),
              "not_met": sum(not x["met"] for x in L), "cost_median": q(cost, np.median),
+             "met_but_missed": sum(x["met"] and x["achieved"] > E for x in L),
+             "unmet_but_within": sum(not x["met"] and x["achieved"] <= E for x in L),
+             "time_total": float(sum(x["wall_s_total"] for x in L)),
+             "time_median": q([x["wall_s_total"] for x in L], np.median),
              "wall_median": q(wall, np.median), "wall_worst": q(wall, max),
              "methods": sorted({x["method"] for x in L}), "runs": len(L),
              "not_measurable": len(bad), "not_measurable_flagged": sum(not x["met"] for x in bad)}
@@ -155,9 +189,12 @@ def run_case(case, n_starts, levels, t_cap, rng, say):
             f"{s['first_median']:.2g} worst {s['first_worst']:.2g}"
             f"  | estimate/achieved median {s['est_median']:.2g} [{s['est_min']:.2g}, "
             f"{s['est_max']:.2g}]  | estimate > E after {auto_mod.MAX_ROUNDS} rounds: "
-            f"{s['not_met']}"
+            f"{s['not_met']} (achieved <= E on {s['unmet_but_within']} of them), met but "
+            f"achieved > E: {s['met_but_missed']}"
             f"  | cost / the first choice's: rhs calls median {s['cost_median']:.2g}, "
-            f"integration time median {s['wall_median']:.2g} worst {s['wall_worst']:.2g}"
+            f"integration time median {s['wall_median']:.2g} worst {s['wall_worst']:.2g};"
+            f" auto's integration time median {s['time_median'] * 1e3:.3g} ms, total "
+            f"{s['time_total']:.3g} s"
             f"  ({', '.join(s['methods'])})"
             + (f"  | not measurable (reference bound > E/10): {s['not_measurable']}, auto's "
                f"estimate > E on {s['not_measurable_flagged']} of them" if bad else ""))
@@ -169,20 +206,34 @@ def run_case(case, n_starts, levels, t_cap, rng, say):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="3 starts, T <= 100, 1e-6 and 1e-10")
-    ap.add_argument("--only", nargs="*", help="case ids")
+    ap.add_argument("--only", nargs="*", help="case ids (each with the starts of a whole run)")
+    ap.add_argument("--levels", help="comma-separated requested errors (default "
+                    + ", ".join(f"{E:.0e}" for E in LEVELS) + ")")
+    ap.add_argument("--seed", type=int, default=SEED)
+    ap.add_argument("--extended-below", type=float, default=None,
+                    help="auto.EXTENDED_BELOW for this run: requests at or below it may run "
+                    "in long double (default auto's own, 1e-14): the option of allowing it")
+    ap.add_argument("--tag", default="", help="suffix of the output file")
     args = ap.parse_args()
     n_starts, levels, t_cap = (3, LEVELS[:2], 100.0) if args.quick else (20, LEVELS, None)
-    stem = "auto_coverage_quick" if args.quick else "auto_coverage"
-    rng = np.random.default_rng(SEED)
+    if args.levels:
+        levels = tuple(float(x) for x in args.levels.split(","))
+    if args.extended_below is not None:
+        auto_mod.EXTENDED_BELOW = args.extended_below
+    stem = ("auto_coverage_quick" if args.quick else "auto_coverage") + args.tag
+    seed = args.seed
+    rng = np.random.default_rng(seed)
     load0 = os.getloadavg()
-    out = {"quick": args.quick, "starts": n_starts, "levels": levels, "seed": SEED,
+    out = {"quick": args.quick, "starts": n_starts, "levels": levels, "seed": seed,
            "load_start": load0, "cases": {}}
-    text = [f"bench/auto_coverage.py{' --quick' if args.quick else ''}: method='auto' over "
-            f"{n_starts} random starts per case (bench/limit.py random_starts, seed {SEED}), "
+    cmd = " ".join(sys.argv[1:])
+    text = [f"bench/auto_coverage.py {cmd}: method='auto' over "
+            f"{n_starts} random starts per case (bench/limit.py random_starts, seed {seed}), "
             f"requested errors {', '.join(f'{E:.0e}' for E in levels)}; achieved error = max "
             "over 101 output times of |y - y_ref| / max(1, max|y_ref|), reference heyoka long "
             f"double tol {REF_TOL:g} (general expression system); coverage = fraction of runs "
-            "with achieved <= requested (target >= 90%)",
+            "with achieved <= requested (target >= 95%); requests at or below "
+            f"{auto_mod.EXTENDED_BELOW:g} may run in long double",
             f"load average at the start: {load0[0]:.2f} {load0[1]:.2f} {load0[2]:.2f} "
             f"({os.cpu_count()} cores)"]
     for line in text:
@@ -195,6 +246,7 @@ def main():
     t0 = time.perf_counter()
     for case in CASES:
         if args.only and case.id not in args.only:
+            draw_only(case, n_starts, rng)
             continue
         out["cases"][case.id] = run_case(case, n_starts, levels, t_cap, rng, say)
     cov = {}
@@ -206,13 +258,19 @@ def main():
         k1 = sum(round(c["summary"][key]["first_coverage"] * c["summary"][key]["runs"])
                  for c in out["cases"].values())
         nm = sum(c["summary"][key]["not_measurable"] for c in out["cases"].values())
-        cov[key] = {"covered": k, "runs": n, "first_covered": k1, "not_measurable": nm}
+        tot = {f: sum(c["summary"][key][f] for c in out["cases"].values())
+               for f in ("not_met", "unmet_but_within", "met_but_missed", "time_total")}
+        cov[key] = {"covered": k, "runs": n, "first_covered": k1, "not_measurable": nm, **tot}
+        met = n - tot["not_met"]
         say(f"\nall cases, E {key}: auto {k}/{n} = {k / n:.0%} within the requested error "
-            f"(the first choice alone: {k1}/{n} = {k1 / n:.0%}); {nm} runs not measurable")
+            f"(the first choice alone: {k1}/{n} = {k1 / n:.0%}); {nm} runs not measurable; "
+            f"met {met}/{n}, of which achieved > E: {tot['met_but_missed']}; not met "
+            f"{tot['not_met']}, of which achieved <= E: {tot['unmet_but_within']}; auto's "
+            f"integration time over the judged runs {tot['time_total']:.3g} s")
     out["coverage"] = cov
     say(f"total {time.perf_counter() - t0:.0f} s; load average at the end "
         f"{os.getloadavg()[0]:.2f}")
-    if not args.only:
+    if not args.only or args.tag:
         OUT.mkdir(exist_ok=True)
         (OUT / f"{stem}.txt").write_text("\n".join(text) + "\n")
 

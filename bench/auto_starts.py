@@ -68,7 +68,6 @@ LEVELS = (1e-6, 1e-8, 1e-10, 1e-12)
 RK_TOLS = tuple(10.0 ** (-k / 2) for k in range(10, 29))       # 1e-5 ... 1e-14
 TAYLOR_TOLS = tuple(10.0 ** (-k / 2) for k in range(12, 30))   # 1e-6 ... 10^-14.5
 METHODS = ("dop853", "vern9", "taylor")
-REF_TOL, REF_CHECK_TOL = 1e-19, 1e-18
 SEED = 19
 REPEATS = 3
 
@@ -406,29 +405,16 @@ def run_case(case, n_starts, rng, repeats, levels, say, on_fronts=None):
     """Phase 1: every start's singles (its fronts); on_fronts(case_id, T, rows) then (the
     choice data auto reads from then on); phase 2: auto at each level on every start, the
     singles that bracket its achieved error timed again beside it."""
-    from limit import random_starts
+    from auto_coverage import case_setup, reference
 
-    from solvers.integrate.auto import error_between
-    from solvers.integrate.taylor import Taylor
-    from solvers.models.cases import build, registry
-
-    spec = registry()[case.id]
-    prm = {**spec.example, **case.overrides}
-    model = build(case.id, prm)
-    T = case.t_end
-    t = np.linspace(0.0, T, SAMPLES)
-    starts = random_starts(case.id, prm, n_starts, rng)
-    ref = Taylor(model.model, model.p, starts[0], tol=REF_TOL, fp="longdouble",
-                 compact_mode=True)
-    ref_check = Taylor(model.model, model.p, starts[0], tol=REF_CHECK_TOL, fp="longdouble",
-                       compact_mode=True)
+    setup = case_setup(case, n_starts, rng)
+    prm, T, starts = setup["params"], setup["T"], setup["starts"]
     singles_jobs = [("single", m, tol) for m in METHODS
                     for tol in (TAYLOR_TOLS if m == "taylor" else RK_TOLS)]
     rows, refs = [], []
     for i, y0 in enumerate(starts):
-        Yref, _, _, _, ok = ref.run(y0, t)
-        Ychk, _, _, _, ok2 = ref_check.run(y0, t)
-        bound = error_between(Ychk, Yref) if ok and ok2 else math.inf
+        Yref, ok, bound = reference(setup, y0)
+        bound = bound if ok else math.inf
         singles = timed_jobs(case.id, prm, T, y0, Yref, singles_jobs, repeats, warm=i == 0)
         rows.append({"y0": [float(v) for v in y0], "ref_bound": bound,
                      "runs": list(singles.values())})
@@ -518,12 +504,9 @@ def main(argv=None):
         t0 = time.perf_counter()
         for case in CASES:
             if only and case.id not in only:
-                from limit import random_starts
+                from auto_coverage import draw_only
 
-                from solvers.models.cases import registry
-
-                spec = registry()[case.id]     # draw its starts all the same
-                random_starts(case.id, {**spec.example, **case.overrides}, args.starts, rng)
+                draw_only(case, args.starts, rng)
                 continue
             raw["cases"][case.id] = run_case(
                 case, args.starts, rng, args.repeats, levels, say,

@@ -28,8 +28,9 @@ CASES = ("plane/chaplygin-ball", "plane/round-disk", "sphere/flat-base")
 
 
 def _setup(case_id):
+    from solvers import compile_state
     from solvers.integrate import integrator as I
-    from solvers.kernels import generate
+    from solvers.kernels import field_modules
     from solvers.models.cases import build, registry
 
     c = registry()[case_id]
@@ -37,8 +38,9 @@ def _setup(case_id):
     p = np.array(model.p)
     y0 = np.array(c.state, dtype=float)
     t_out = np.linspace(0.0, 0.01, 3)
-    assert I.generated_ready(model.model, p), f"{case_id}: run python -m solvers.warmup"
-    kern = generate.generated_integrator(model.model, p).rk_integrate
+    assert compile_state.is_compiled(compile_state.generated_key(model.model, p)), \
+        f"{case_id}: run python -m solvers.warmup --generated"
+    kern = field_modules.generated_integrator(model.model, p).rk_integrate
     A, cc, b, E, P, meth = I.method_arrays("dop853")
     n = y0.size
     iopt = np.array([10_000_000, 0, 1, 0, 0, 1, 0], dtype=np.int64)

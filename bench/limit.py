@@ -7,8 +7,10 @@ a matched final-state error interpolated (log-log) on that front:
                Chaplygin ball, the disk and the body with a flat base (the gyrostat
                term S x omega of the flat base is zero in this example and left out).
                It is the independent baseline and stays a step of its own, apart from
-               the project's one Runge-Kutta step (solvers/kernels/rk.py and the kernels
-               made from it): a reference that shared that code could not show its cost;
+               the project's one Runge-Kutta step (the step control of
+               solvers/kernels/control.py, which the loop kernel rk.py and the small
+               kernels small.py both call): a reference that shared that code could
+               not show its cost;
   lean-dop853  the same hand-written DOP853 on the generated field of the case
                (solvers/kernels/generate.py): what the generated field alone buys;
   ours         the project's integrate(): general rk_integrate kernel, general field;
@@ -16,7 +18,7 @@ a matched final-state error interpolated (log-log) on that front:
                (solvers/kernels/small.py), what integrate() and simulate() run by default,
                through the Python entry;
   gen-loops    rk.py compiled against the case's generated field, inlined
-               (generate.generated_integrator: what generated=True runs with a section or
+               (field_modules.generated_integrator: what generated=True runs with a section or
                a projection), called directly (packed arrays reused: no entry);
   heyoka-lean  heyoka's Taylor integrator on the generated lean expressions;
   heyoka-gen   heyoka on the general expression system (solvers/integrate/taylor.py);
@@ -81,7 +83,8 @@ from solvers.integrate.integrator import (
 )
 from solvers.integrate.taylor import Taylor
 from solvers.kernels import layout as L
-from solvers.kernels.generate import generated, generated_integrator, heyoka_system
+from solvers.kernels.field_modules import generated, generated_integrator
+from solvers.kernels.heyoka_field import heyoka_system
 from solvers.models.cases import build, registry
 from solvers.models.reference import field as ref_field
 

@@ -37,7 +37,7 @@ c1, w1 = time.process_time(), time.perf_counter()
 if big:
     r = I.integrate(m.model, m.p, c.state, [0.0, 0.01], method=method, generated=True,
                     project_codes=(ENERGY,))
-    src = I._generated_module(m.model, np.asarray(m.p), (m.model, np.asarray(m.p).tobytes()))
+    src = I.generated_module(m.model, np.asarray(m.p))
 else:
     r = I.integrate(m.model, m.p, c.state, [0.0, 0.01], method=method)
     src = I.small_module(m.model, m.p, method)

@@ -52,7 +52,8 @@ from pathlib import Path
 import numpy as np
 
 from solvers.integrate import workprecision as wp
-from solvers.integrate.integrator import integrate, solve_ivp_reference
+from solvers.integrate.integrator import integrate
+from solvers.integrate.reference import solve_ivp_reference
 from solvers.integrate.taylor import Taylor
 from solvers.kernels.fields import rhs
 from solvers.models.cases import build, initial_state, registry

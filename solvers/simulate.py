@@ -28,7 +28,8 @@ from functools import cache
 import numpy as np
 
 from solvers.errors import InputError
-from solvers.integrate.integrator import integrate, output_times, solve_ivp_reference
+from solvers.integrate.integrator import integrate, output_times
+from solvers.integrate.reference import solve_ivp_reference
 from solvers.kernels.integrals import integral_table
 from solvers.models.cases import Model, build, initial_state
 from solvers.models.observables import Invariants, public_name

@@ -70,12 +70,12 @@ def warm_targets() -> list[tuple[str, dict]]:
 def pending(generated: bool = False,
             all_structures: bool = False) -> dict[tuple, list[tuple[str, dict]]]:
     """structure -> the (case, parameters) whose small kernels (generated: the big
-    generated integrators) are not compiled yet for some method: every case's example
-    parameters and EXTRA (all_structures: every one of them, compiled or not)."""
-    from solvers.integrate.integrator import generated_ready, small_ready
+    generated integrators) are not compiled yet for some method (solvers/compile_state.py
+    is_compiled): every case's example parameters and EXTRA (all_structures: every one of
+    them, compiled or not)."""
+    from solvers import compile_state as cs
     from solvers.kernels import generate
     from solvers.models.cases import build
-    from solvers.simulate import compiled_methods
 
     out: dict[tuple, list] = {}
     for cid, params in warm_targets():
@@ -85,11 +85,12 @@ def pending(generated: bool = False,
         if all_structures:
             ready = False
         elif generated:
-            ready = all(generated_ready(m.model, m.p, meth) for meth in compiled_methods())
+            ready = cs.is_compiled(cs.generated_key(m.model, m.p))
         else:
-            ready = all(small_ready(m.model, m.p, meth) for meth in _small_methods())
+            ready = all(cs.is_compiled(cs.small_key(m.model, m.p, meth))
+                        for meth in _small_methods())
         if not ready:
-            out.setdefault(generate.structure(m.model, m.p), []).append((cid, params))
+            out.setdefault(cs.structure(m.model, m.p), []).append((cid, params))
     return out
 
 
@@ -102,39 +103,41 @@ def _small_methods() -> tuple:
     return SMALL_METHODS if os.environ.get("ROLLING_WARMUP_ALL") else WARM_SMALL
 
 
-def compile_small(target) -> str:
-    """Run the small kernels of a case (an id, with its example parameters, or (id,
-    parameters)) once per warmed method, compiling them into the on-disk cache."""
+def _compile(target, method: str, kind: str, **over) -> str:
+    """Compile the kernel of kind `kind` that a request of the case (an id, with its
+    example parameters, or (id, parameters)) with `method` and `over` needs, by
+    solvers/compile_state.py, and check that it is compiled."""
+    from solvers import compile_state as cs
     from solvers.models.cases import registry
-    from solvers.simulate import simulate
 
     case_id, params = (target, None) if isinstance(target, str) else target
     case = registry()[case_id]
     params = case.example if params is None else params
+    req = cs.request(case_id, params, case.state, method=method, **over)
+    keys = cs.plan(req)
+    cs.compile(keys, req)
+    assert [k[0] for k in keys] == [kind] and all(map(cs.is_compiled, keys)), keys
+    return case_id
+
+
+def compile_small(target) -> str:
+    """Compile the small kernels of a case (an id, with its example parameters, or (id,
+    parameters)) for every warmed method into the on-disk cache."""
     for method in _small_methods():
-        r = simulate(case_id, params, case.state, 0.01, method=method, samples=3)
-        assert r.stats["kernel"] == "small", r.stats
+        case_id = _compile(target, method, "small")
     return case_id
 
 
 def compile_generated(target) -> str:
-    """Run the generated integrator of a case (an id, with its example parameters, or
-    (id, parameters)) once per compiled method, compiling it into the on-disk cache."""
-    from solvers.models.cases import registry
-    from solvers.simulate import compiled_methods, simulate
+    """Compile the generated integrator of a case (an id, with its example parameters, or
+    (id, parameters)) and its ensemble twin into the on-disk cache (one compile serves
+    every tableau: they are data)."""
+    from solvers.integrate.ensemble import integrate_ensemble
+    from solvers.models.cases import build, registry
 
-    case_id, params = (target, None) if isinstance(target, str) else target
+    case_id = _compile(target, "dop853", "generated", field="generated", project=True)
     case = registry()[case_id]
-    params = case.example if params is None else params
-    for method in compiled_methods():
-        r = simulate(case_id, params, case.state, 0.01, method=method, samples=3,
-                     field="generated")
-        simulate(case_id, params, case.state, 0.01, method=method, samples=3,
-                 project=True, field="generated")
-        assert r.stats["field"] == "generated", r.stats
-    from solvers.integrate.ensemble import integrate_ensemble  # and its ensemble twin
-    from solvers.models.cases import build
-
+    params = case.example if isinstance(target, str) else target[1]
     m = build(case_id, params)
     integrate_ensemble(m.model, m.p, [case.state] * 2, [0.0, 0.01], generated=True,
                        workers=2)

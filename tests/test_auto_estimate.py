@@ -153,10 +153,46 @@ def test_below_the_runge_kutta_floor_it_goes_to_the_taylor_backend_in_double():
                                   1000.0, 10_000, taylor_ok=True)
     ms = [(m, p) for m, _, p, _ in calls]
     assert ms[:2] == [("dop853", None)] * 2
-    # a request above 1e-14 never runs in extended precision
-    assert all(p == "double" for m, p in ms[2:]) and {m for m, _ in ms[2:]} == {"taylor"}
+    # a request above 1e-14 never runs in extended precision: the Taylor backend in double
+    assert ms[2:] == [("taylor", "double")] * 2
     assert info["returned"]["method"] == "taylor"
     assert info["returned"]["precision"] == "double"
+    # at double's floor, its estimate more than PAST_FLOOR_REACH times the request: nothing
+    # past the floor, and not met
+    assert info["error_estimate"] > auto.PAST_FLOOR_REACH * 1e-12 and not info["met"]
+
+
+def test_past_doubles_floor_a_compensated_pair_meets_in_double():
+    """A Taylor run at double's floor whose error (c x its order's tol) stays above the
+    request, a pair whose error is c x tol: the compensated pair at PAST_FLOOR_TOL is run,
+    checked by its own looser run, and meets the request in double."""
+    calls = []
+    E = 1e-10
+    choice = {**_choice("taylor", 1e-14, E), "precision": None}
+    res, info = auto.run_checked(choice, _fake_runner(calls, 1e4), 1000.0, 100_000,
+                                 taylor_ok=True)
+    kinds = [(x["method"], x["precision"], x["compensated"]) for x in info["rounds"]]
+    assert kinds == [("taylor", "double", False), (auto.PAST_FLOOR_METHOD, None, True)]
+    assert info["met"] and info["error_estimate"] <= E
+    assert info["returned"]["tol"] == auto.PAST_FLOOR_TOL
+    assert res.y[0, 0] == 1e4 * auto.PAST_FLOOR_TOL <= info["error_estimate"]
+
+
+def test_not_met_it_returns_the_run_of_the_least_estimate():
+    """Past double's floor the compensated pair may do worse than the Taylor run before
+    it: where nothing meets the request, the run returned is the one of the least
+    estimate, with that estimate."""
+    calls = []
+    choice = {**_choice("taylor", 1e-14, 5e-14), "precision": None}
+
+    def runner(rung, budget):       # the Taylor backend far better than the pair here
+        return _fake_runner(calls, 1.0 if rung["method"] == "taylor" else 1e5)(rung, budget)
+    res, info = auto.run_checked(choice, runner, 1000.0, 100_000, taylor_ok=True)
+    assert not info["met"] and len(info["rounds"]) >= 2
+    best = min(info["rounds"], key=lambda x: x["error_estimate"])
+    assert best["method"] == "taylor" and info["returned"]["method"] == "taylor"
+    assert info["error_estimate"] == best["error_estimate"]
+    assert res.y[0, 0] == auto.effective_tol(info["returned"])
 
 
 @pytest.mark.parametrize("requested", [1e-12, 2e-14])
@@ -168,7 +204,7 @@ def test_no_request_above_1e_14_runs_in_extended_precision(requested):
     choice = {**_choice("taylor", 1e-13, requested), "precision": None}
     _res, info = auto.run_checked(choice, _fake_runner(calls, 1e6), 1000.0, 10_000,
                                   taylor_ok=True)
-    assert calls and all(p == "double" for _, _, p, _ in calls), calls
+    assert calls and all(p in (None, "double") for _, _, p, _ in calls), calls
     assert not info["met"] and info["error_estimate"] > requested
 
 
@@ -183,11 +219,38 @@ def test_without_taylor_it_stops_at_the_floor_and_says_so():
     calls = []
     res, info = auto.run_checked(_choice("dop853", 1e-12, 1e-8), _fake_runner(calls, 1e8),
                                  1.0, 1000)
-    # 1e-12 misses (error 1e-4); the tighter run stops at RK_MIN_RUN, checked by 1e-12
+    # 1e-12 misses (error 1e-4); the tighter run stops at RK_MIN_RUN, checked by 1e-12;
+    # its estimate is far above the request: nothing past the floor
     assert sorted(t for _, t, _, _ in calls) == pytest.approx(
         [1e-14, 1e-12, 1e-12 * auto.CHECK_LOOSER])
     assert not info["met"] and info["returned"]["tol"] == 1e-14
     assert res.y[0, 0] == 1e8 * 1e-14
+    assert "as tight as auto runs" in info["error_estimate_method"]
+
+
+def test_near_the_floor_it_goes_past_it_compensated_and_says_when_rounds_run_out():
+    calls = []
+    E = 2e-10
+    res, info = auto.run_checked(_choice("dop853", 1e-12, E), _fake_runner(calls, 1e5),
+                                 1.0, 1000)
+    # the run at RK_MIN_RUN is estimated within PAST_FLOOR_REACH of the request: then the
+    # compensated pair at PAST_FLOOR_TOL with its own looser check
+    assert E < info["rounds"][1]["error_estimate"] <= auto.PAST_FLOOR_REACH * E
+    assert [t for _, t, _, _ in calls] == pytest.approx(
+        [1e-12, 1e-12 * auto.CHECK_LOOSER, 1e-14, auto.PAST_FLOOR_TOL,
+         auto.PAST_FLOOR_TOL * auto.CHECK_LOOSER])
+    assert [x["compensated"] for x in info["rounds"]] == [False, False, True]
+    # not met: the run of the least estimate comes back, the compensated one here
+    assert not info["met"] and info["returned"]["tol"] == auto.PAST_FLOOR_TOL
+    assert res.y[0, 0] == 1e5 * auto.PAST_FLOOR_TOL
+    assert f"{auto.MAX_ROUNDS} rounds spent" in info["error_estimate_method"]
+
+
+def test_a_compensated_pair_is_as_tight_as_auto_runs():
+    calls = []
+    choice = {**_choice("vern9", auto.PAST_FLOOR_TOL, 1e-8), "compensated": True}
+    _res, info = auto.run_checked(choice, _fake_runner(calls, 1e12), 1.0, 1000)
+    assert not info["met"] and len(info["rounds"]) == 1
     assert "as tight as auto runs" in info["error_estimate_method"]
 
 
@@ -218,7 +281,8 @@ def test_met_means_the_estimate_is_within_the_request(method, c, fail_below):
         est = info["error_estimate"]
         assert info["met"] == (est is not None and est <= E), (info, E)
         if est is not None:
-            assert info["rounds"][-1]["error_estimate"] == est
+            assert est in [x["error_estimate"] for x in info["rounds"]]
+            assert info["met"] <= (info["rounds"][-1]["error_estimate"] == est)
             true = c * auto.effective_tol(info["returned"])
             assert res.y[0, 0] == true
             if c * 1e-5 <= 1:     # the measure is absolute (no check above 1): est >= true
@@ -249,3 +313,31 @@ def test_a_front_point_in_long_double_is_not_taken_above_1e_14(monkeypatch):
     assert auto.plan(c, 1000.0)[0]["precision"] == "double"
     c = auto.choose(BALL, 1, 1e-15, 1000.0)
     assert c["precision"] == "long double"
+
+
+def test_the_check_joins_a_long_run_on_the_check_thread_and_follows_a_short_one():
+    """auto._pair: the check starts on the check thread once the run has gone on `defer`
+    seconds; a run that ends sooner has its check run after it on the caller's thread.
+    Which thread ran what is asserted, not how long it took."""
+    import threading
+    import time
+
+    def pair(run_s, defer):
+        where = {}
+
+        def runner(rung, budget):
+            where[rung["tol"]] = threading.current_thread()
+            if rung["tol"] == 1.0:
+                time.sleep(run_s)
+            return rung["tol"]
+        got = auto._pair(runner, {"tol": 1.0}, 1, {"tol": 2.0}, 1, defer=defer)
+        return got, where
+
+    me = threading.current_thread()
+    (ra, rb), where = pair(0.0, 5.0)             # the run ends long before the wait
+    assert (ra, rb) == (1.0, 2.0) and where[1.0] is me and where[2.0] is me
+    (ra, rb), where = pair(0.5, 0.01)            # the run goes on past the wait
+    assert (ra, rb) == (1.0, 2.0) and where[1.0] is me and where[2.0] is not me
+    assert where[2.0].name.startswith("auto-check")
+    (ra, rb), where = pair(0.0, -1.0)            # defer < 0: one after the other, no thread
+    assert where[2.0] is me

@@ -4,6 +4,7 @@ date), search results that link to the claim's anchor."""
 
 import html
 import re
+from typing import get_args
 
 import pytest
 from fastapi.testclient import TestClient
@@ -13,15 +14,15 @@ from app.main import create_app
 from app.services import reader_pages
 from app.testing import settings_for_tests
 from catalogue.load import load_catalogue
-from catalogue.schema import Reference
+from catalogue.schema import Reference, SourceKind
 
 pytestmark = pytest.mark.filterwarnings("ignore::DeprecationWarning")
 
 # entries resolved from a source that was read (catalogue/references.yaml, `checked_in`):
 # the API and the page must count what the data holds
 COMPLETE = sum(r.status == "complete" for r in load_catalogue().references)
-KINDS = ("the paper's published reference list", "another paper's reference list",
-         "the publisher's record", "a bibliographic database's record")
+# the kinds of source an entry may be checked in: the catalogue's own list, one definition
+KINDS = get_args(SourceKind)
 
 
 @pytest.fixture(scope="module")

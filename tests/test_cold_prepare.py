@@ -3,7 +3,7 @@ app/services/kernel_prepare.py), on a machine where nothing is compiled.
 
 Poincare maps and scenes run the general kernels (the compiled ensemble with sections, the
 scene model on the general field): numba caches those next to their sources
-(solvers/kernels/__pycache__; solvers/kernels/jit.py's locator comes before
+(solvers/kernels/__pycache__; solvers/kernels/numba_cache.py's locator comes before
 NUMBA_CACHE_DIR), not in ROLLING_KERNEL_CACHE. An empty kernel cache alone leaves them
 warm, so the server here runs from a fresh copy of the sources (no __pycache__), with an
 empty ROLLING_KERNEL_CACHE and NUMBA_CACHE_DIR, no background warm-up, nothing assumed
@@ -69,7 +69,7 @@ def test_taylor_and_auto_compile_outside_their_deadline(tmp_path):
     heyoka disk cache: XDG_CACHE_HOME). The numba kernels stay warm (the sources' own
     caches): these runs need none but the invariants'. rtol 1e-15 over t_end 100 runs in
     long double (a tiny run would have compiled double); auto runs Taylor rungs in long
-    double (its run and its check run: solvers/integrate/run_plan.py).
+    double (its run and its check run: solvers/compile_state.py rungs).
     Each must answer 200 within a 2 s deadline having compiled nothing itself."""
     env = {"ROLLING_KERNEL_CACHE": str(tmp_path / "kernels"),
            "XDG_CACHE_HOME": str(tmp_path / "xdg")}

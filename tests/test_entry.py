@@ -5,6 +5,7 @@ field, the default where it is compiled, agrees with the general field on every 
 import numpy as np
 import pytest
 
+from solvers import compile_state
 from solvers.errors import InputError
 from solvers.integrate import integrator as I
 from solvers.models.cases import build, case_ids, registry
@@ -159,16 +160,16 @@ def test_auto_on_a_new_structure_is_the_same_answer():
     on) runs its small kernel under field='auto' too (issue 19: the route depends on the
     request, not on the cache; the pinned rule before was "the general field until someone
     compiles it", whose numbers changed once it was compiled): the same bits as
-    field='generated', and no marker of the big generated integrator is left."""
+    field='generated', and the big generated integrator is not compiled by them."""
     params, state = _ball(S1=1e-3, S2=2e-3, S3=3e-3, g=0.5, eps=0.1)
     m = build(BALL, params)
-    marker = I._ready_marker(m.model, m.p, "dop853")
-    had = marker.exists()
+    key = compile_state.generated_key(m.model, m.p)
+    had = compile_state.is_compiled(key)
     r = simulate(BALL, params, state, 1.0, samples=3)
     assert (r.stats["field"], r.stats["kernel"]) == ("generated", "small") and r.ok
     g = simulate(BALL, params, state, 1.0, samples=3, field="generated")
     assert r.state.tobytes() == g.state.tobytes()
-    assert marker.exists() == had
+    assert compile_state.is_compiled(key) == had
 
 
 @pytest.mark.parametrize("case", case_ids())

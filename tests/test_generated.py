@@ -12,8 +12,10 @@ import pytest
 from conftest import random_states
 
 from solvers.kernels import layout as L
+from solvers.kernels.field_modules import generated
 from solvers.kernels.fields import rhs
-from solvers.kernels.generate import SLOT_NAMES, equations, generated, heyoka_system, numba_source
+from solvers.kernels.generate import SLOT_NAMES, equations, numba_source
+from solvers.kernels.heyoka_field import heyoka_system
 from solvers.models.cases import build, registry
 from solvers.models.reference import field as ref_field
 

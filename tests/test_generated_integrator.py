@@ -1,5 +1,5 @@
 """integrate(generated=True) and everything else that runs rk.py compiled against a case's
-generated field (solvers/kernels/generate.py generated_integrator, and its ensemble twin).
+generated field (solvers/kernels/field_modules.py generated_integrator, and its ensemble twin).
 These are the project's biggest kernels (~32 s a structure to compile on 2 cores), which
 no default route runs: they are all tested here, in one module, so that under
 pytest-xdist (--dist loadfile) each compiles once per test session instead of once in
@@ -19,7 +19,7 @@ import pytest
 from solvers.integrate import integrator
 from solvers.integrate.ensemble import integrate_ensemble
 from solvers.integrate.integrator import Section, integrate
-from solvers.kernels import generate
+from solvers.kernels import field_modules, generate
 from solvers.kernels.rk import CROSSINGS_DONE, MAX_STEPS
 from solvers.models.cases import build, registry
 from tests.test_ensemble import _case, _same
@@ -91,9 +91,9 @@ def test_integrate_and_the_ensemble_twin_run_one_module():
     c = registry()["plane/chaplygin-ball"]
     m = build(c.id, c.example)
     p = np.asarray(m.p, dtype=np.float64)
-    mod = integrator._generated_module(m.model, p, (m.model, p.tobytes()))
-    assert mod is generate.generated_integrator(m.model, p)
-    field = generate.generated(m.model, p)
+    mod = integrator.generated_module(m.model, p)
+    assert mod is field_modules.generated_integrator(m.model, p)
+    field = field_modules.generated(m.model, p)
     assert mod.rhs is field.rhs and rk.rhs is not field.rhs
     own = bind.jitted(rk)
     assert "rk_integrate" in own and "_stages" in own

@@ -18,8 +18,8 @@ from solvers.integrate.integrator import (
     initial_integrals,
     integrate,
     method_arrays,
-    solve_ivp_reference,
 )
+from solvers.integrate.reference import solve_ivp_reference
 from solvers.kernels import layout as L
 from solvers.kernels import rk
 from solvers.kernels.integrals import ENERGY, GEOM

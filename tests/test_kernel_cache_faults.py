@@ -59,7 +59,7 @@ def _serve(cache: str, tmp: Path, read_only_from: Path | None = None):
                   cache]
     log = tmp / "server.log"
     # the warm-up is asked for: on an unwritable cache it must not run; no warning said by
-    # a parent process (jit.WARNED_ENV empty)
+    # a parent process (module_cache.WARNED_ENV empty)
     with live_server(timeout=120, prefix=prefix, log_path=log,
                      extra_env={"ROLLING_KERNEL_CACHE": cache,
                                 "ROLLING_KERNEL_CACHE_WARNED": ""},
@@ -121,11 +121,11 @@ def test_the_health_of_a_writable_cache_is_ok(tmp_path):
 
 LOST_MID_RUN = '''
 import shutil
-from solvers.kernels import generate, jit
+from solvers.kernels import jit, module_cache  # noqa: F401 (jit installs numba's cache)
 
 src = "import numba\\n\\n@numba.njit(cache=True)\\ndef f(x):\\n    return x + 1\\n"
-first = generate.cached_module("faults_probe_a", lambda: src)
-cache = generate.cache_dir()
+first = module_cache.cached_module("faults_probe_a", lambda: src)
+cache = module_cache.cache_dir()
 # numba's files of the module can no longer be written nor read: a file in their place
 shutil.rmtree(cache / "__pycache__", ignore_errors=True)
 (cache / "__pycache__").write_text("not a directory")
@@ -135,9 +135,9 @@ for p in cache.iterdir():
     p.unlink()
 cache.rmdir()
 cache.write_text("gone")
-second = generate.cached_module("faults_probe_b", lambda: src.replace("+ 1", "+ 2"))
+second = module_cache.cached_module("faults_probe_b", lambda: src.replace("+ 1", "+ 2"))
 assert second.f(1) == 3
-print(sorted(jit.DEGRADED))
+print(sorted(module_cache.DEGRADED))
 '''
 
 

@@ -1,6 +1,6 @@
 """The `rolling` command line: one entry point per job, one module per group of commands
 (run: cases, simulate, methods; checks: verify, errata; serve; maps: poincare, sweep;
-benches: bench), registered here in the order `rolling --help` lists them.
+benches: bench; kernels: kernels), registered here in the order `rolling --help` lists them.
 
 Errors in the input print one line `error: ...` on stderr and exit with code 2 (no
 traceback, whatever fails); a run that reaches a singularity or its step budget prints what
@@ -13,11 +13,13 @@ import sys
 from app.cli.benches import BENCHES, QUICK, SETTINGS, bench
 from app.cli.checks import errata, exact_summary, verify, verify_tables
 from app.cli.common import EXIT_INPUT, EXIT_SINGULAR, cli
+from app.cli.kernels import kernels
 from app.cli.maps import poincare, sweep
 from app.cli.run import cases, methods, simulate
 from app.cli.serve import serve
 
-for _command in (cases, simulate, verify, errata, methods, serve, poincare, sweep):
+for _command in (cases, simulate, verify, errata, methods, serve, poincare, sweep,
+                 kernels):
     cli.command()(_command)
 cli.command(**SETTINGS)(bench)
 

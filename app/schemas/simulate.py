@@ -48,15 +48,33 @@ EXAMPLE = {"case": "plane/chaplygin-ball",
            "t_end": 100, "method": "dop853", "rtol": 1e-10, "atol": 1e-12, "samples": 201}
 
 
+# the methods by what they take besides rtol and atol (solvers/simulate.py checks the same):
+# a Gauss method a `step` and no projection (it is symmetric: it holds the integrals without
+# one), taylor a `precision` and no projection, a scipy method neither (projection happens
+# inside a compiled step), the compiled adaptive ones (and auto, and no method: dop853) a
+# projection but no precision
 GAUSS = [m for m in METHODS if m.startswith("gauss")]
+SCIPY = [m for m in METHODS if m.startswith("scipy-")]
+ADAPTIVE = [m for m in METHODS if m not in GAUSS and m not in SCIPY and m != "taylor"]
 # the rules between fields, in the schema (JSON Schema 2020-12, as OpenAPI 3.1 has it), so
-# that a request valid by the schema is not refused for them: `step` goes with
-# the Gauss methods and only with them, and they take no projection; without example =
-# true, params and state are required; each case's parameter names and their bounds (also
-# in GET /api/cases/{id}: runnable.params). The rules between numbers (I1 = I2, the
-# triangle inequality, |gamma| = 1, the step budget) JSON Schema cannot say: those stay
-# refusals of validation alone (tests/test_schema_valid_accepted.py lists them).
-NOT_EXAMPLE = {"not": {"properties": {"example": {"const": True}}, "required": ["example"]}}
+# that a request valid by the schema is not refused for them: what each method takes (above);
+# without example = true, params and state are required; each case's parameter names and
+# their bounds (also in GET /api/cases/{id}: runnable.params). The rules between numbers
+# (I1 = I2, the triangle inequality, |gamma| = 1, the step budget) JSON Schema cannot say:
+# those stay refusals of validation alone (tests/test_schema_valid_accepted.py lists them).
+METHOD_RULES = {"anyOf": [
+    {"required": ["method", "step"],
+     "properties": {"method": {"enum": GAUSS}, "step": {"type": "number"},
+                    "project": {"const": False}, "precision": {"type": "null"}}},
+    {"required": ["method"],
+     "properties": {"method": {"const": "taylor"}, "step": {"type": "null"},
+                    "project": {"const": False}}},
+    {"required": ["method"],
+     "properties": {"method": {"enum": SCIPY}, "step": {"type": "null"},
+                    "project": {"const": False}, "precision": {"type": "null"}}},
+    {"properties": {"method": {"enum": ADAPTIVE}, "step": {"type": "null"},
+                    "precision": {"type": "null"}}},
+]}
 
 
 def param_schema(kind: str, symmetry: str) -> dict[str, dict]:
@@ -78,9 +96,15 @@ def param_schema(kind: str, symmetry: str) -> dict[str, dict]:
 def case_rules(with_state: bool = True) -> dict:
     """Per case, what JSON Schema can say of its inputs (the names of solvers.models.cases):
     the parameter names it takes, their lower bounds (param_schema), the ones it requires
-    unless example = true, and the length of its state (5 for the flat-base cases, 6 for the others). One anyOf of two
-    branches a case (with example = true, or without it), not an if/then a case: the
-    schema's generators expand each if/then into two, and 17 of them into 2^17."""
+    unless example = true, and the length of its state (5 for the flat-base cases, 6 for the
+    others), required too unless example = true (with_state).
+
+    Two branches a case (with example = true, or without it), not an if/then a case: the
+    schema's generators expand each if/then into two, and 17 of them into 2^17. The branches
+    exclude each other (by case and by example), so they are a oneOf: schemathesis's
+    canonical form multiplies an anyOf beside another anyOf (METHOD_RULES) out into one list
+    of every pair and gives up past a budget, where it leaves a oneOf standing and meets its
+    branches one at a time while drawing."""
     from solvers.models.cases import registry
 
     branches = []
@@ -93,30 +117,25 @@ def case_rules(with_state: bool = True) -> dict:
             props["state"] = {"minItems": n, "maxItems": n}
         branches.append({"required": ["example"],
                          "properties": {**props, "example": {"const": True}}})
-        branches.append({"required": ["params"], "properties": {
-            **props, "example": {"const": False},
-            "params": {**props["params"], "required": list(c.required)}}})
-    return {"anyOf": branches}
+        without_example = {**props, "example": {"const": False},
+                           "params": {**props["params"], "required": list(c.required)}}
+        if with_state:
+            without_example["state"] = {**props["state"], "type": "array"}
+        branches.append({"required": ["params", "state"] if with_state else ["params"],
+                         "properties": without_example})
+    return {"oneOf": branches}
 
 
-CROSS_FIELD_RULES = [
-    {"if": {"properties": {"method": {"enum": GAUSS}}, "required": ["method"]},
-     # a Gauss method is symmetric: it holds the integrals without projection
-     "then": {"required": ["step"], "properties": {"step": {"type": "number"},
-                                                   "project": {"const": False}}},
-     "else": {"properties": {"step": {"type": "null"}}}},
-    {"if": NOT_EXAMPLE, "then": {"required": ["params", "state"],
-                                 "properties": {"state": {"type": "array"}}}},
-    case_rules(),
-]
+CROSS_FIELD_RULES = [METHOD_RULES, case_rules()]
 
 
 class SimulateRequest(BaseModel):
     """A run, as `rolling simulate`: the case, its named parameters, the initial state
     (M, gamma) or (M, r1, r2) and the final time. Rules between fields: `step` is given
-    with the Gauss methods (gauss4/6/8) and only with them; `params` and `state` are
-    required unless `example` is true; the parameter names are the case's own (GET
-    /api/cases/{id}: runnable.params)."""
+    with the Gauss methods (gauss4/6/8) and only with them; `precision` only with method
+    taylor; `project` = true only with the compiled adaptive methods and auto (GET
+    /api/methods); `params` and `state` are required unless `example` is true; the
+    parameter names are the case's own (GET /api/cases/{id}: runnable.params)."""
 
     # strict: a string "1.5" or 0 for false is a mistake to report, not to guess around
     model_config = ConfigDict(extra="forbid", strict=True,

@@ -12,7 +12,6 @@ import csv
 import io
 import os
 
-from app.services.kernel_prepare import prepare_run
 from app.services.payloads import arrow_bytes, csv_header, dumps, finite, json_bytes
 from app.services.worker_run import lower_priority, run_request
 
@@ -48,27 +47,19 @@ def warm_imports() -> int:
 
 
 def prepare_kernels(req: dict) -> int:
-    """Compile (or load) the kernels a simulate request will run, on a tiny run of the same
-    case, parameters, method and options (no request pays a compile inside its deadline;
-    the route runs this without a deadline: app/services/kernel_prepare.py);
-    methods "taylor" and "auto": kernel_prepare.prepare_run. A tiny run that fails (bad input) is
-    left to the request itself to report. Returns how many runs completed."""
+    """Compile (or load) the kernels a simulate request will run (no request pays a
+    compile inside its deadline; the route runs this without a deadline:
+    app/services/kernel_prepare.py): solvers/compile_state.py plans them from the request
+    and compiles each on a tiny run of it. A request that fails (bad input) is left to its
+    own run to report. Returns how many kernels are ready."""
     lower_priority()
-    if req["method"] in ("taylor", "auto"):     # the rungs the request fixes (run_plan.py)
-        return prepare_run(req)
-    from solvers.integrate.integrator import SMALL_METHODS
+    from solvers import compile_state
 
-    step = req.get("step")
-    tiny = {**req, "samples": 2, "t_end": 2.0 * step if step else 1e-6}
-    methods = SMALL_METHODS if req["method"] == "auto" else (req["method"],)
-    done = 0
-    for method in methods:
-        try:
-            run_request({**tiny, "method": method}, 1000)
-            done += 1
-        except Exception:   # the request's own run reports it
-            pass
-    return done
+    try:
+        keys = compile_state.plan(req)
+    except Exception:   # the request's own run reports it
+        return 0
+    return compile_state.compile(keys, req)
 
 
 def prepare_scene(req: dict) -> int:

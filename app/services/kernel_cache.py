@@ -1,11 +1,11 @@
 """The kernel cache as the server sees it: whether generated kernels can be written to it
-(solvers/kernels/generate.py cache_dir: ROLLING_KERNEL_CACHE, else
+(solvers/kernels/module_cache.py cache_dir: ROLLING_KERNEL_CACHE, else
 ~/.cache/rolling-hierarchy/kernels).
 
 A cache that cannot be written (a read-only mount, a full disk, a path under a file, a
 directory removed while the server runs) degrades the service, it does not stop it: the
 kernels compile in memory in each process and the runs use the general kernels
-(solvers/kernels/jit.py), the background warm-up does not run (it would compile into a
+(solvers/kernels/numba_cache.py), the background warm-up does not run (it would compile into a
 cache nobody can read back), and /api/health says "degraded" with the reason. The check
 writes a small file; it runs at start and then at most every PROBE_EVERY_S seconds, when
 /api/health asks.
@@ -26,8 +26,8 @@ class KernelCache:
 
     def check(self) -> str | None:
         """Probe the cache now: None when it takes a written file, else why not."""
-        # imported here: generate.py loads numba, which the server's process imports late
-        from solvers.kernels.generate import cache_dir, cache_probe
+        # imported here, not at start-up: the solvers' package loads numba on import
+        from solvers.kernels.module_cache import cache_dir, cache_probe
 
         self.reason = cache_probe()
         self.path = str(cache_dir())

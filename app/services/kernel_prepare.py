@@ -4,13 +4,10 @@ A route with a deadline first names the kernels its job needs (a key) and, the f
 this server sees that key while they may not be compiled, runs a prepare job in the pool
 WITHOUT a deadline: the job's own kernels on a tiny run (app.services.jobs.prepare_*,
 app.services.poincare_jobs.prepare), which compiles them into the on-disk caches or loads
-them. Then the request's job starts and its deadline counts. Keys:
+them. Then the request's job starts and its deadline counts. A simulate request's keys and
+their compile are solvers/compile_state.py's (plan, compile: "small", "generated",
+"general", "taylor"); the routes add:
 
-  ("small", model, structure, method)   a plain run's small kernel (solvers/kernels/small.py)
-  ("general", model, method, project, fixed)   the general rk.py kernel of a simulation
-  ("taylor", structure, k > 0, precision, tol)   heyoka's integrator of a "taylor" run, or
-                                        of a rung of an "auto" run (solvers/integrate/
-                                        run_plan.py: the rungs the request fixes)
   ("map", case, method)                 a Poincare map's general kernel (sections)
   ("small-sections", case, params, method)   a large map's small kernel with sections
                                         (solvers/maps/poincare.py map_kernel: compiled on
@@ -39,7 +36,6 @@ import anyio
 import numpy as np
 
 from app.services.kernel_warmup import KernelWarmup
-from app.services.worker_run import lower_priority, run_request
 
 # The solvers are imported inside the functions below: they load numba (and heyoka for the
 # Taylor rungs), which the server's process must not wait for at start-up.
@@ -67,80 +63,12 @@ def _warmed() -> set:
 
 
 def simulate_keys(resolved: dict) -> list[tuple]:
-    """The kernels a simulate request runs (integrator.is_plain decides small or general;
-    methods "taylor" and "auto": the rungs of run_plan.rungs, from the request alone).
-    Not on the event loop: planning "auto" reads the measured front and imports heyoka."""
-    from solvers.integrate.integrator import SMALL_METHODS
-    from solvers.integrate.run_plan import TAYLOR, rungs
+    """The kernels a simulate request runs: solvers/compile_state.py plan(), from the
+    request alone. Not on the event loop: planning "auto" reads the measured front and
+    imports heyoka."""
+    from solvers import compile_state
 
-    model = resolved["_model"]
-    project = bool(resolved["project"])
-    fixed = resolved.get("step") is not None
-    plain = resolved.get("field", "auto") != "general" and not project and not fixed
-    keys = []
-    for rung in _plan(resolved, rungs):
-        m = rung["method"]
-        if m == TAYLOR:
-            from solvers.integrate.taylor_backend import cache_key
-
-            keys.append(("taylor", *cache_key(model.model, model.p, rung["precision"],
-                                              rung["tol"])))
-        elif plain and m in SMALL_METHODS and _has_generated(model.model):
-            keys.append(("small", *structure(model), m))
-        else:
-            keys.append(("general", model.model, m, project, fixed))
-    return list(dict.fromkeys(keys))
-
-
-def _plan(req: dict, rungs) -> list[dict]:
-    model = req.get("_model")
-    if model is None:
-        from solvers.models.cases import build
-
-        model = build(req["case"], req["params"], allow_any_inertia=req["allow_any_inertia"])
-    return rungs(req["case"], model, req["method"], float(req["rtol"]), float(req["t_end"]),
-                 project=bool(req["project"]), step=req.get("step"),
-                 precision=req.get("precision"))
-
-
-MIN_RTOL = 1e-16     # simulate's smallest rtol (solvers/simulate.py)
-
-
-def prepare_run(req: dict) -> int:
-    """The prepare job of a simulate request of method "taylor" or "auto", in a worker:
-    compile (or load) each rung's code on a tiny run of that rung (which also loads what
-    every run needs, the invariants' kernels): a Taylor rung's heyoka integrator, stored on
-    disk for whichever worker runs the request (taylor_backend.compiled; a check rung
-    tighter than simulate's smallest rtol is compiled directly), a Runge-Kutta rung's
-    kernel. A rung that fails (bad input) is left to the request itself to report.
-    Returns how many rungs are ready."""
-    from solvers.integrate.run_plan import TAYLOR, rungs
-
-    lower_priority()
-    try:
-        plan = _plan(req, rungs)
-    except Exception:   # the request's own run reports it
-        return 0
-    done = 0
-    for rung in plan:
-        try:
-            tiny = {**req, "samples": 2, "t_end": 1e-6, "method": rung["method"],
-                    "precision": rung["precision"], "step": None}
-            if rung["method"] == TAYLOR and rung["tol"] < MIN_RTOL:
-                from solvers.integrate.taylor_backend import compiled
-                from solvers.models.cases import build
-
-                m = build(req["case"], req["params"], allow_any_inertia=req["allow_any_inertia"])
-                compiled(m.model, m.p, rung["precision"], rung["tol"])
-            elif rung["method"] == TAYLOR:     # rtol = the compiled tol (snap_tol keeps it)
-                run_request({**tiny, "rtol": rung["tol"], "atol": rung["tol"]}, 1000)
-            else:       # as jobs.prepare_kernels: a fixed step fits twice in the run
-                step = req.get("step")
-                run_request({**tiny, "step": step, "t_end": 2.0 * step if step else 1e-6}, 1000)
-            done += 1
-        except Exception:   # the request's own run reports it
-            pass
-    return done
+    return compile_state.plan(resolved)
 
 
 def map_key(job: dict) -> tuple:
@@ -150,12 +78,6 @@ def map_key(job: dict) -> tuple:
         return ("small-sections", job["case"], tuple(sorted(job["params"].items())),
                 spec["method"])
     return ("map", job["case"], spec["method"])
-
-
-def _has_generated(model_code: int) -> bool:
-    from solvers.kernels import generate
-
-    return model_code in generate.GENERATED_MODELS
 
 
 def needed(kernels: KernelWarmup, assumed_warm: bool, keys: list[tuple]) -> bool:
@@ -170,7 +92,7 @@ def needed(kernels: KernelWarmup, assumed_warm: bool, keys: list[tuple]) -> bool
         # (tests/test_warm_covers_requests.py: their default requests enter no numba
         # specialization the warm-up's tasks do not)
         return any((k[0] == "small" and k not in _warmed())
-                   or k[0] in ("taylor", "small-sections") for k in todo)
+                   or k[0] in ("taylor", "small-sections", "generated") for k in todo)
     return True
 
 

@@ -12,8 +12,9 @@ the request needs. Projection has no Taylor form, so with project = true only do
 vern9 compete; without heyoka the Taylor candidate is left out, and the reason says so.
 
 The error estimate (run_checked): the run returned is the TIGHTER of two runs of the same
-method; the other runs CHECK_LOOSER looser, on a second thread at the same time where the
-run is expected to take PARALLEL_MIN_S or more (the numba kernels are nogil and heyoka's
+method; the other runs CHECK_LOOSER looser: where the choice expects PARALLEL_MIN_S or
+more, on a second thread beside it once the run has gone on CHECK_DEFER_S, else after it
+(_pair: the numba kernels are nogil and heyoka's
 propagation releases the GIL too: a Python loop on another thread keeps its pace beside
 it). For a method whose global error
 goes as tol^alpha, the two errors are e and e * F^alpha (F = CHECK_LOOSER), so their
@@ -23,13 +24,16 @@ rho = F^-alpha. alpha is taken LOWER than the error's measured growth with tol
 makes the estimate larger than the error: an upper estimate by extrapolation, not a bound.
 A run whose estimate exceeds the request is followed by a tighter one (error ~ tol^alpha,
 aiming at AIM of the request) checked against the run before it, which is looser by the
-same argument, at most MAX_ROUNDS runs of the returned kind; the run returned is always
-the last one that has an estimate.
+same argument, at most MAX_ROUNDS runs of the returned kind; the run returned is the
+last one that has an estimate where that meets the request, else the one of the least
+estimate (a run past double's floor may do worse than the one before it).
 
 A Runge-Kutta pair is not run tighter than RK_MIN_RUN (round-off, not the tolerance, sets
 its error there): a tighter run goes to the Taylor backend. A request above
 EXTENDED_BELOW never runs in extended precision: the Taylor backend stays in double, down
-to its double floor (taylor_backend.floor), and says so when that is not enough.
+to its double floor (taylor_backend.floor); past it one run of PAST_FLOOR_METHOD with
+compensated sums at PAST_FLOOR_TOL (_past_floor), and met is false when that is not
+enough either.
 """
 
 from __future__ import annotations
@@ -50,9 +54,11 @@ TAYLOR_CHECK_ORDERS = 2         # a Taylor check run is this many orders lower
 MIN_TIGHTEN = 10.0 ** 0.5       # a tighter round is at least this much tighter
 CHECK_MAX_TOL = 1e-5            # no looser check than this: errors there are not a power of tol
 # the exponent of the error's growth with tol, taken low (module doc): below q/(q+1) for
-# the pairs' orders (8, 9); the Taylor backend's error is far less regular in its order's
-# tol, so its exponent is taken lower still (the measured exponents: bench/auto_starts.py)
-ALPHA = {"dop853": 0.85, "vern9": 0.85, wp.TAYLOR: 0.6}
+# the pairs' orders (8, 9), near the few-percent quantile of the exponents measured between
+# a run and its check over the many-start benchmark (bench/auto_starts.py prints them): at
+# 0.85 a run on the flat base said met at 1.1 times the request; the Taylor backend's
+# error is far less regular in its order's tol, so its exponent is taken lower still
+ALPHA = {"dop853": 0.75, "vern9": 0.75, wp.TAYLOR: 0.6}
 # within FLOOR_MARGIN of its precision's round-off floor (taylor_backend.floor) a Taylor
 # run's error is round-off as much as truncation and does not shrink with tol: there the
 # estimate is the difference itself (factor 1), not its extrapolation
@@ -65,8 +71,24 @@ AIM = 0.5                       # a tightened run aims at this fraction of the r
 RK_MIN_TOL = 1e-16              # simulate's smallest rtol
 RK_MIN_RUN = 1e-14              # the tightest Runge-Kutta run auto returns
 EXTENDED_BELOW = 1e-14          # only requests at or below this may run in long double
+# past double's floor of the runs above (a request above EXTENDED_BELOW): the most accurate
+# pair with compensated summation at this tol, and no tighter: at 1e-16 round-off makes its
+# error no longer fall with tol (on the round disk over T = 1000 it rose 3x on one start)
+PAST_FLOOR_METHOD = "vern9"
+PAST_FLOOR_TOL = 1e-15
+# ... and only where the run at the floor was estimated within this factor of the request:
+# compensated sums take back the update's round-off, not the field's; on the round disk
+# they gained 15x over the Taylor backend's floor, while on a flat-base start whose floor
+# run was 110x above the request the pair's estimate fell 18x under its error
+PAST_FLOOR_REACH = 30.0
 CHECK_SHARE = 0.4               # the looser check run's share of the step budget
-PARALLEL_MIN_S = 0.005          # a run expected to take less runs its check after it, not beside
+# the check starts beside the run once the run has gone on this long (bench/auto_diagnose.py
+# measures the pair three ways): a shorter run ends first and its check runs after it
+CHECK_DEFER_S = 0.0005
+# ... and only where the choice expects PARALLEL_MIN_S or more (its median over the
+# measured starts): handing a check to the thread costs a short run about 0.05 ms of wall,
+# as much as the overlap could give it
+PARALLEL_MIN_S = 0.005
 TAYLOR_MIN_TOL = 10.0 ** -18.5
 
 
@@ -162,7 +184,7 @@ def choose(case_id: str, model: int, rtol: float, t_end: float, project: bool = 
             "tol": max(tol, RK_MIN_TOL), "compensated": False, "requested_rtol": rtol,
             "reason": "; ".join([reason, *notes]), "taylor_allowed": wp.TAYLOR in allowed,
             # the run's CPU time on the measured starts (median), None where not measured:
-            # run_checked runs the check beside the run only where that is worth a thread
+            # run_checked hands the check to a thread only where it expects PARALLEL_MIN_S
             "expected_s": expected}
 
 
@@ -204,12 +226,27 @@ def _rung(method: str, tol: float, precision: str | None, compensated: bool,
 
 
 def _tighter(rung: dict, tol: float, t_end: float, taylor_ok: bool, extended: bool) -> dict:
-    """The run at `tol`: the same method, or the Taylor backend below RK_MIN_RUN."""
-    if rung["method"] != wp.TAYLOR and tol < RK_MIN_RUN * (1 - 1e-9):
+    """The run at `tol`: the same method, or the Taylor backend below RK_MIN_RUN (a
+    compensated pair, past double's floor, stays at PAST_FLOOR_TOL: _past_floor)."""
+    if rung["method"] != wp.TAYLOR and rung["compensated"]:
+        tol = max(tol, PAST_FLOOR_TOL)
+    elif rung["method"] != wp.TAYLOR and tol < RK_MIN_RUN * (1 - 1e-9):
         if taylor_ok:
             return _rung(wp.TAYLOR, tol, None, False, t_end, extended)
         tol = RK_MIN_RUN
     return _rung(rung["method"], tol, rung["precision"], rung["compensated"], t_end, extended)
+
+
+def _past_floor(rung: dict) -> dict | None:
+    """The run after `rung` where it is as tight as its kind runs in double (the Taylor
+    backend at double's floor, a pair at RK_MIN_RUN): PAST_FLOOR_METHOD with compensated
+    summation at PAST_FLOOR_TOL; None after a compensated pair. Where a truncation error,
+    not round-off, is what stays above the request (a fast start over a long T), this
+    pair's tighter tol still buys accuracy in double (bench/auto_coverage.py); run_checked
+    takes it only within PAST_FLOOR_REACH of the request."""
+    if rung["method"] != wp.TAYLOR and rung["compensated"]:
+        return None
+    return _rung(PAST_FLOOR_METHOD, PAST_FLOOR_TOL, None, True, 0.0)
 
 
 def taylor_order(tol: float) -> int:
@@ -260,7 +297,7 @@ def scale(method: str, tol_run: float, tol_check: float) -> float:
 
 
 def plan(choice: dict, t_end: float) -> list[dict]:
-    """The runs a request fixes before it runs (solvers/integrate/run_plan.py): the
+    """The runs a request fixes before it runs (solvers/compile_state.py rungs): the
     first run and its check; a tighter round depends on the estimate."""
     extended = choice["requested_rtol"] <= EXTENDED_BELOW
     first = _rung(choice["method"], choice["tol"], choice["precision"],
@@ -270,7 +307,8 @@ def plan(choice: dict, t_end: float) -> list[dict]:
 
 def _describe(r: dict) -> str:
     return (f"{r['method']} at tol {r['tol']:.3g}"
-            + (f" in {r['precision']}" if r["precision"] else ""))
+            + (f" in {r['precision']}" if r["precision"] else "")
+            + (" with compensated sums" if r.get("compensated") else ""))
 
 
 _pool: list = []
@@ -287,15 +325,35 @@ def _checker():
         return _pool[0][1]
 
 
-def _pair(runner, a: dict, budget_a: int, b: dict, budget_b: int, parallel: bool = True):
-    """Run a and b, b on a second thread at the same time where parallel; both results."""
-    if not parallel:
+def _pair(runner, a: dict, budget_a: int, b: dict, budget_b: int,
+          defer: float | None = None):
+    """Run a here and b beside it on a check thread once a has run for `defer` seconds
+    (CHECK_DEFER_S); where a ends first, b runs here after it. The start's own run
+    decides: a short run (where a thread's wake-up and the GIL's hand-over cost as much
+    as the overlap gains) runs its check after it, a long one beside it. defer < 0: one
+    after the other, no thread. Both results, a's first."""
+    defer = CHECK_DEFER_S if defer is None else defer
+    if defer < 0:
         return runner(a, budget_a), runner(b, budget_b)
-    fut = _checker().submit(runner, b, budget_b)
+    done, claim = threading.Event(), threading.Lock()
+
+    def late():
+        # b is run by whichever side takes `claim` first: this thread once the wait is
+        # over with a still running, else the caller after a
+        if done.wait(defer) or not claim.acquire(blocking=False):
+            return None
+        return runner(b, budget_b)
+
+    fut = _checker().submit(late)
     try:
         ra = runner(a, budget_a)
     finally:
-        rb = fut.result()      # waits for it (and re-raises its error) either way
+        done.set()
+        here = claim.acquire(blocking=False)
+        if not here:
+            rb = fut.result()      # the thread runs b: wait for it (and its error)
+    if here:
+        rb = runner(b, budget_b)
     return ra, rb
 
 
@@ -347,8 +405,8 @@ def run_checked(choice: dict, runner, t_end: float, max_steps: int, taylor_ok: b
     def checked_run(want, budget):
         """Run `want` with a check: a looser earlier run of its kind (the closest in
         tol, within CHECK_MAX_TOL) or else a check run beside it."""
-        kin = [(r, x) for r, x in done if (r["method"], r["precision"]) ==
-               (want["method"], want["precision"])
+        kin = [(r, x) for r, x in done if (r["method"], r["precision"], r["compensated"]) ==
+               (want["method"], want["precision"], want["compensated"])
                and effective_tol(want) < effective_tol(r, x) <= CHECK_MAX_TOL * (1 + 1e-9)]
         if kin:
             chk, ref = min(kin, key=lambda rx: effective_tol(*rx))
@@ -357,8 +415,9 @@ def run_checked(choice: dict, runner, t_end: float, max_steps: int, taylor_ok: b
         else:
             chk = _looser(want, t_end)
             b = max(int(budget * CHECK_SHARE), 1)
+            long = (choice.get("expected_s") or np.inf) >= PARALLEL_MIN_S
             res, ref = _pair(runner, want, max(budget - b, 1), chk, b,
-                             parallel=(choice.get("expected_s") or np.inf) >= PARALLEL_MIN_S)
+                             defer=None if long else -1.0)
             runs.extend([res, ref])
             if ref.success:
                 done.append((chk, ref))
@@ -376,6 +435,7 @@ def run_checked(choice: dict, runner, t_end: float, max_steps: int, taylor_ok: b
     else:
         checked = (res, rung, est, how)
         rounds.append({**rung, "check": _describe(chk), "error_estimate": est})
+    results = [checked] if checked is not None else []
     while checked is not None and checked[2] > requested and len(rounds) < MAX_ROUNDS:
         res0, rung0, est0, _ = checked
         factor = max((est0 / (AIM * requested)) ** (1.0 / ALPHA[rung0["method"]]),
@@ -386,8 +446,13 @@ def run_checked(choice: dict, runner, t_end: float, max_steps: int, taylor_ok: b
         want = _tighter(rung0, eff, t_end, taylor_ok, extended)
         if (want["method"] == rung0["method"] and want["precision"] == rung0["precision"]
                 and effective_tol(want) >= effective_tol(rung0, res0) * (1 - 1e-9)):
-            why = f"{_describe(rung0)} is as tight as auto runs here"
-            break
+            # as tight as its kind runs: past double's floor (above EXTENDED_BELOW), where
+            # the floor is near enough the request
+            want = (None if extended or est0 > PAST_FLOOR_REACH * requested
+                    else _past_floor(rung0))
+            if want is None:
+                why = f"{_describe(rung0)} is as tight as auto runs here"
+                break
         budget = max_steps - spent()
         if budget <= 0:
             why = "the step budget was spent before a tighter run"
@@ -398,10 +463,13 @@ def run_checked(choice: dict, runner, t_end: float, max_steps: int, taylor_ok: b
             break
         checked = (new, want, est, how)
         rounds.append({**want, "check": _describe(chk), "error_estimate": est})
+        results.append(checked)
     else:
         if checked is not None and checked[2] > requested and not why:
             why = f"{MAX_ROUNDS} rounds spent"
     if checked is not None:
+        if checked[2] > requested:    # not met: the run of the least estimate, not the last
+            checked = min(results, key=lambda c: c[2])
         res, rung, estimate, how = checked
         if estimate > requested and why:
             how += f"; no further round: {why}"

@@ -44,8 +44,9 @@ from solvers.integrate.integrator import (
     status_message,
 )
 from solvers.integrate.options import Projection, RunOptions
+from solvers.integrate.result import result
 from solvers.kernels import ensemble as kernels
-from solvers.kernels import generate, rk
+from solvers.kernels import field_modules, generate, module_cache, rk
 from solvers.kernels import layout as L
 
 _LAUNCH = threading.Lock()
@@ -81,7 +82,7 @@ def _small_ensemble(model, p, Y0, T, counts, steps, compensated, FOPT, atol_v, m
     (a Poincare map's runs), as integrate() runs them."""
     from concurrent.futures import ThreadPoolExecutor
 
-    from solvers.integrate.integrator import SMALL_SECTIONS, _result
+    from solvers.integrate.integrator import SMALL_SECTIONS
 
     run = small_module(model, p, method, sections=sec is not None).run
     n = Y0.shape[1]
@@ -109,7 +110,7 @@ def _small_ensemble(model, p, Y0, T, counts, steps, compensated, FOPT, atol_v, m
                                  cross_t, cross_y)
             kind = SMALL_SECTIONS
         wall = time.perf_counter() - t0
-        return _result(t_out, Y, y_stop, stats, status, t_stop, wall, method, cross_t,
+        return result(t_out, Y, y_stop, stats, status, t_stop, wall, method, cross_t,
                        cross_y, "generated", kind)
 
     idx = range(Y0.shape[0])
@@ -121,12 +122,12 @@ def _small_ensemble(model, p, Y0, T, counts, steps, compensated, FOPT, atol_v, m
 
 def generated_ensemble(model: int, p):
     """The ensemble loop (solvers/kernels/ensemble.py) bound to the case's generated
-    `rk_integrate` (generate.generated_integrator; generate.bound_module: the same code,
+    `rk_integrate` (field_modules.generated_integrator; module_cache.bound_module: the same code,
     another callee). Its name follows the integrator module's, which already hashes the
     structure and every kernel source."""
-    rk_mod = generate.generated_integrator(model, p)
+    rk_mod = field_modules.generated_integrator(model, p)
     name = f"ens_{rk_mod.__name__}"
-    return generate.bound_module(name, kernels, {"rk_integrate": rk_mod.rk_integrate},
+    return module_cache.bound_module(name, kernels, {"rk_integrate": rk_mod.rk_integrate},
                                  f"solvers/kernels/ensemble.py's loop on {rk_mod.__name__}")
 
 
@@ -233,8 +234,8 @@ def integrate_ensemble(model, p, Y0, t_out, *, method="dop853", rtol=1e-10, atol
     # integrate()'s rule (is_plain): a plain run with generated=None runs the small kernel,
     # any other the general field unless generated=True (then the generated twin); the
     # route depends on the request only, never on what is compiled
-    if generated is None and kernel is None and not generate.disk_cache_ok():
-        generated = False   # no kernel cache to write: the general kernels (jit.py)
+    if generated is None and kernel is None and not module_cache.disk_cache_ok():
+        generated = False   # no kernel cache to write: the general kernels
     plain = generated is not False and is_plain(
         model, method, project=bool(codes.size), section=section, compensated=compensated,
         fixed=fixed, dense_output=dense_output)
@@ -287,7 +288,7 @@ def integrate_ensemble(model, p, Y0, t_out, *, method="dop853", rtol=1e-10, atol
         # one thread: the serial kernel row by row, which is what the parallel loop runs
         # per trajectory (the same bits), without compiling that loop: the explorer's maps
         # run so (one trajectory slice per worker process, app/services/poincare_jobs.py)
-        serial = (generate.generated_integrator(model, p)
+        serial = (field_modules.generated_integrator(model, p)
                   if gen else rk).rk_integrate
         packed = sec.packed(n)
         for i in range(n_traj):

@@ -8,15 +8,13 @@ solvers/integrate/options.py), which `run_options` packs into the float/int arra
 kernel takes (poliastro style) only at the compiled call, and the kernel's status code
 becomes a message; the kernel knows nothing of it.
 
-`solve_ivp_reference` runs scipy's solve_ivp on the same field, as an independent check.
+What a run returns is solvers/integrate/result.py's; scipy's run of the same problem,
+the independent check, solvers/integrate/reference.py's; whether a kernel is compiled,
+solvers/compile_state.py's.
 """
 
-import math
-import operator
 import time
-from dataclasses import dataclass, field
 from functools import cache
-from pathlib import Path
 
 import numpy as np
 
@@ -28,49 +26,16 @@ from solvers.integrate.options import (
     StepControl,
     fopt,
 )
-from solvers.kernels import baked, gauss, generate, rk, small
+from solvers.integrate.result import OK_TEXT, IntegrationResult, result, status_message
+from solvers.integrate.times import (
+    TRUSTED_TIMES,
+    checked_times,
+    f64,
+    output_times,  # noqa: F401 (its callers import it from here)
+    trusted_or_checked,
+)
+from solvers.kernels import baked, field_modules, gauss, generate, module_cache, rk, small
 from solvers.kernels import layout as L
-from solvers.kernels.fields import rhs
-
-
-@dataclass(slots=True)   # not frozen: a frozen init costs more per call (the thin entry)
-class IntegrationResult:
-    t: np.ndarray                 # output times reached (a prefix of t_out)
-    y: np.ndarray                 # (len(t), n) states there
-    status: int
-    message: str
-    t_stop: float                 # where the integration stopped
-    y_stop: np.ndarray
-    steps: int
-    rejected: int
-    rhs_calls: int
-    wall_s: float
-    method: str
-    crossings_t: np.ndarray = field(default_factory=lambda: np.empty(0))
-    crossings_y: np.ndarray = field(default_factory=lambda: np.empty((0, 0)))
-    vector_field: str = "general"   # what the kernel ran: generated | general
-    kernel: str = "rk"              # which compiled form: small | rk (rk.py's, general
-                                    # or generated) | gauss
-
-    @property
-    def success(self) -> bool:
-        return self.status in rk.SUCCESS
-
-    @property
-    def budget_exhausted(self) -> bool:
-        return self.status == rk.MAX_STEPS
-
-
-_INTEGRATOR_STATUS_TEXT = {**rk.STATUS_TEXT, **gauss.STATUS_TEXT}
-
-
-def status_message(status: int) -> str:
-    if 0 <= status < len(L.STATUS_TEXT):
-        return L.STATUS_TEXT[status]
-    return _INTEGRATOR_STATUS_TEXT.get(status, f"unknown status {status}")
-
-
-_OK_TEXT = L.STATUS_TEXT[L.OK]
 
 
 def method_arrays(name: str):
@@ -107,78 +72,7 @@ _NO_CODES = np.zeros(0, dtype=np.int64)
 _NO_VALUES = np.zeros(0)
 _NO_SECTION: dict = {}   # state dimension -> zero section coefficients
 _CACHE_MAX = 1024
-
-
-def _f64(x) -> np.ndarray:
-    """x as a fresh 1-D writable C float64 array (the one type the kernels are compiled
-    for: a read-only or strided input would be another numba specialization, compiled anew); a 1-D
-    input's copy as it is (ravel only where there is something to flatten)."""
-    a = np.array(x, dtype=np.float64)
-    return a if a.ndim == 1 else a.ravel()
-
-
-def _checked_times(t_out) -> np.ndarray:
-    if type(t_out) is list and len(t_out) <= _FEW_TIMES:
-        # a short list of Python floats (a run to T: [t0, T]) checked as it stands, before
-        # any array exists, in place of the array, its list and the checks below: with p's
-        # bytes as the plan's key, the plain entry is shorter at a short run
-        # (docs/performance.md)
-        prev = -math.inf
-        for x in t_out:
-            if type(x) is not float or not x > prev:
-                break
-            prev = x
-        else:
-            if t_out and prev < math.inf:
-                return np.array(t_out)
-    t = _f64(t_out)
-    # strictly increasing (a NaN fails the comparison) with finite ends: all finite. A few
-    # times (a run to T: [t0, T]) are compared as Python floats: NumPy's slices, ufunc and
-    # reduction cost most of a short run's entry (bench/limit.py --gap; docs/performance.md)
-    if t.size <= _FEW_TIMES:
-        v = t.tolist()
-        ok = bool(v) and math.isfinite(v[0]) and math.isfinite(v[-1]) \
-            and all(map(operator.lt, v, v[1:]))
-    else:
-        ok = math.isfinite(t[0]) and math.isfinite(t[-1]) and bool((t[1:] > t[:-1]).all())
-    if not ok:
-        raise ValueError("t_out must be finite and strictly increasing; t_out[0] is t0")
-    return t
-
-
-_FEW_TIMES = 8
 _F64 = np.dtype(np.float64)
-
-
-# output times validated once: id -> (the read-only array handed out, a private writable
-# twin for the kernel, which only reads it); the strong reference keeps the id unique
-_TRUSTED_TIMES: dict = {}
-
-
-def output_times(t_end: float, samples: int) -> np.ndarray | None:
-    """linspace(0, t_end, samples) as a read-only array that integrate() trusts without
-    checking it again, memoized; None if the samples are not distinct."""
-    key = (float(t_end), int(samples))
-    hit = _TRUSTED_TIMES.get(key)
-    if hit is not None:
-        return hit
-    t = np.linspace(0.0, float(t_end), int(samples))
-    if not (math.isfinite(t[-1]) and bool((t[1:] > t[:-1]).all())):
-        return None
-    twin = t.copy()
-    t.setflags(write=False)
-    if len(_TRUSTED_TIMES) > 2 * _CACHE_MAX:
-        _TRUSTED_TIMES.clear()
-    _TRUSTED_TIMES[key] = t
-    _TRUSTED_TIMES[id(t)] = (t, twin)
-    return t
-
-
-def _times(t_out) -> np.ndarray:
-    hit = _TRUSTED_TIMES.get(id(t_out))
-    if hit is not None and hit[0] is t_out:
-        return hit[1]
-    return _checked_times(t_out)
 
 
 # the option vectors of a call, memoized on their values (the kernel only reads them)
@@ -196,75 +90,23 @@ def _option_arrays(iopt: tuple, fopt: tuple):
     return hit
 
 
-# generated integrators: (model, p bytes) -> module, and whether a structure's compiled
-# code is ready (True), or not (the monotonic time until which that answer stands)
-# (rk.py's tableau loops on the generated field: the dop853 and vern9 stages written out
-# as straight-line code saved little time per rhs call on this opt-in path for twice the
-# compile, so they are not used: see docs/performance.md)
+# generated integrators: (model, p bytes) -> module (whether one is compiled is
+# solvers/compile_state.py's question). rk.py's tableau loops on the generated field: the
+# dop853 and vern9 stages written out as straight-line code saved little time per rhs call
+# on this opt-in path for twice the compile, so they are not used (docs/performance.md)
 _GEN_MODULES: dict = {}
-_GEN_READY: dict = {}
-NOT_READY_RECHECK_S = 30.0
 
 
-def _generated_module(model: int, p: np.ndarray, key):
+def generated_module(model: int, p: np.ndarray):
+    """rk.py's kernels on the case's generated field (field_modules.generated_integrator),
+    memoized per parameter vector."""
+    key = (int(model), p.tobytes())
     mod = _GEN_MODULES.get(key)
     if mod is None:
         if len(_GEN_MODULES) > _CACHE_MAX:
             _GEN_MODULES.clear()
-        mod = _GEN_MODULES[key] = generate.generated_integrator(model, p)
+        mod = _GEN_MODULES[key] = field_modules.generated_integrator(model, p)
     return mod
-
-
-def _ready_marker(model: int, p, method: str) -> Path:
-    """The file saying the generated integrator of this structure and tableau has been
-    compiled into numba's on-disk cache (written after its first successful run)."""
-    return generate.cache_dir() / f"{generate.module_name(model, p)}.{method}.ready"
-
-
-def _numba_cache_holds(mod, name: str = "rk_integrate") -> bool:
-    """Whether numba's on-disk index of the module's kernel `name` has a fresh entry for
-    this machine (a marker alone would not see a wiped or stale __pycache__)."""
-    disp = getattr(mod, name, None)
-    try:
-        if disp.signatures:
-            return True
-        magic = disp.targetctx.codegen().magic_tuple()
-        return any(k[1] == magic for k in disp._cache._cache_file._load_index())
-    except Exception:   # not a numba dispatcher (or numba changed its internals)
-        return True     # trust the marker
-
-
-def generated_ready(model: int, p, method: str = "dop853") -> bool:
-    """True when `integrate(..., generated=None)` would run the case's generated field:
-    the model has one and its integrator for this tableau is compiled (in this process or
-    in the on-disk cache, as solvers/warmup.py leaves it), so the call pays no compile."""
-    if model not in generate.GENERATED_MODELS or not generate.disk_cache_ok():
-        return False
-    p = np.asarray(p, dtype=np.float64)
-    return _ready((int(model), p.tobytes(), method), model, p)
-
-
-def _ready(key, model, p) -> bool:
-    ready = _GEN_READY.get(key)
-    if ready is True:
-        return True
-    if ready is not None and time.monotonic() < ready:
-        return False
-    ok = _ready_marker(model, p, key[2]).exists()
-    if ok:
-        ok = _numba_cache_holds(_generated_module(model, p, key[:2]))
-    if len(_GEN_READY) > _CACHE_MAX:
-        _GEN_READY.clear()
-    _GEN_READY[key] = True if ok else time.monotonic() + NOT_READY_RECHECK_S
-    return ok
-
-
-def _mark_ready(model: int, p, key) -> None:
-    try:
-        _ready_marker(model, p, key[2]).touch()
-    except OSError:     # a read-only cache: this process still knows
-        pass
-    _GEN_READY[key] = True
 
 
 # The tableaux with small kernels (solvers/kernels/small.py): a plain run of a model with a
@@ -293,13 +135,6 @@ def small_module(model: int, p, method: str, sections: bool = False,
         mod = _SMALL_MODULES[key] = small.small_kernel(model, p, method, bool(sections),
                                                        bool(projection))
     return mod
-
-
-def small_ready(model: int, p, method: str = "dop853") -> bool:
-    """Whether the small kernel of the structure and tableau is compiled (in this process
-    or in numba's on-disk cache for this machine): the warm-up's test, never the route's."""
-    mod = small_module(model, p, method)
-    return _numba_cache_holds(mod, "run")
 
 
 def is_plain(model, method, *, project=False, section=None, compensated=False,
@@ -361,8 +196,8 @@ def integrate(model, p, y0, t_out, *, method="dop853", rtol=1e-10, atol=1e-12,
     A run with a section or a projection takes it only when asked (a Poincare map decides
     by its size: solvers/maps/poincare.py map_kernel): it compiles once per structure.
     """
-    if generated is None and kernel is None and not generate.disk_cache_ok():
-        generated = False   # no kernel cache to write: the general kernels (jit.py)
+    if generated is None and kernel is None and not module_cache.disk_cache_ok():
+        generated = False   # no kernel cache to write: the general kernels
     if (kernel is None and generated is not False and method in SMALL_METHODS
             and h_fixed is None and section is None and dense_output
             and project_values is None and not len(project_codes) and project_every >= 1
@@ -442,7 +277,7 @@ def run_options(model, p, y0, t_out, opts: RunOptions, *, generated=None,
         status, t_stop = run(p, y0, t_out, int(max_steps), bool(compensated), fopt_v, atol_v,
                              Y, y_stop, stats)
         wall = time.perf_counter() - t0
-        return _result(t_out, Y, y_stop, stats, status, t_stop, wall, method, cross_t,
+        return result(t_out, Y, y_stop, stats, status, t_stop, wall, method, cross_t,
                        cross_y, "generated", "small")
     if kernel == "small":   # a section or a projection: the small kernel with it
         if (generated is False or (section is not None and codes.size) or not small_fits(
@@ -462,27 +297,18 @@ def run_options(model, p, y0, t_out, opts: RunOptions, *, generated=None,
                                  int(project_every))
             used = SMALL_PROJECTION
         wall = time.perf_counter() - t0
-        return _result(t_out, Y, y_stop, stats, status, t_stop, wall, method, cross_t,
+        return result(t_out, Y, y_stop, stats, status, t_stop, wall, method, cross_t,
                        cross_y, "generated", used)
-    kern, used, fresh = rk.rk_integrate, "general", None
+    kern, used = rk.rk_integrate, "general"
     if generated and model in generate.GENERATED_MODELS:
-        key = (int(model), p.tobytes(), method)
-        if generated or _ready(key, model, p):
-            kern, used = _generated_module(model, p, key[:2]).rk_integrate, "generated"
-            fresh = None if _GEN_READY.get(key) is True else key
+        kern, used = generated_module(model, p).rk_integrate, "generated"
     t0 = time.perf_counter()
     status, t_stop = kern(int(model), p, y0, t_out, A, c, b, E, P, meth, iopt, fopt_v,
                           atol_v, codes, vals, sec_coef, Y, cross_t, cross_y, y_stop, stats)
     wall = time.perf_counter() - t0
-    if fresh is not None:   # compiled now: later calls (and processes) may use it
-        _mark_ready(model, p, fresh)
-    return _result(t_out, Y, y_stop, stats, status, t_stop, wall, method, cross_t, cross_y,
+    return result(t_out, Y, y_stop, stats, status, t_stop, wall, method, cross_t, cross_y,
                    used, "rk")
 
-
-_S_ORDER = (rk.S_ACCEPTED, rk.S_REJECTED, rk.S_RHS, rk.S_SAMPLES, rk.S_CROSSINGS)
-if _S_ORDER != (0, 1, 2, 3, 4):     # _result unpacks the counters in this order
-    raise ImportError(f"rk.py's stats indices changed: {_S_ORDER}")
 
 # A plain run's entry. The same checks, options and kernel as the general entry's route to
 # the small kernel, with what a plain run does not use left out: no tableau arrays, section
@@ -527,8 +353,8 @@ def _plain_atol(atol, n: int) -> np.ndarray:
 def _inputs(model, p, y0, t_out):
     """The output times, the start and a private float64 copy of p, checked against the
     model's state dimension: (t_out, y0, p, n), for both entries of integrate()."""
-    t_out = _times(t_out)
-    y0 = _f64(y0)
+    t_out = trusted_or_checked(t_out)
+    y0 = f64(y0)
     p = np.array(p, dtype=np.float64)
     n = y0.size
     if n != L.STATE_DIM[model]:
@@ -550,19 +376,19 @@ def _plain_plan(model, p, method, rtol, atol, control) -> tuple:
     if cross_y is None:
         cross_y = _NO_CROSSINGS_Y[n] = np.empty((0, n))
         cross_y.setflags(write=False)
-    p = _f64(p)     # the plan's private copy
+    p = f64(p)     # the plan's private copy
     return (control, small_module(model, p, method).run, _plain_fopt(rtol, control),
             _plain_atol(atol, n), n, cross_y, p)
 
 
 def _integrate_small(model, p, y0, t_out, method, rtol, atol, max_steps, compensated,
                      control) -> IntegrationResult:
-    hit = _TRUSTED_TIMES.get(id(t_out))
+    hit = TRUSTED_TIMES.get(id(t_out))
     if hit is not None and hit[0] is t_out:
         t_out, private = hit[1], False      # the shared twin: copied for the result
     else:
-        t_out, private = _checked_times(t_out), True     # a fresh array of this call
-    y0 = _f64(y0)
+        t_out, private = checked_times(t_out), True     # a fresh array of this call
+    y0 = f64(y0)
     n = y0.size
     if type(atol) is float or type(atol) is int:
         # keyed on p's values as float64 bytes: a float64 array's own bytes, with no copy
@@ -590,31 +416,11 @@ def _integrate_small(model, p, y0, t_out, method, rtol, atol, max_steps, compens
     wall = time.perf_counter() - t0
     accepted, rejected, calls, m, _ = stats.tolist()   # rk.py's S_* order (_S_ORDER)
     if status == L.OK and m == N:       # every sample reached: the result as it stands
-        return IntegrationResult(t_out if private else t_out.copy(), Y, 0, _OK_TEXT,
+        return IntegrationResult(t_out if private else t_out.copy(), Y, 0, OK_TEXT,
                                  float(t_stop), y_stop, accepted, rejected, calls, wall,
                                  method, _NO_CROSSINGS_T, cross_y, "generated", "small")
-    return _result(t_out, Y, y_stop, stats, status, t_stop, wall, method, _NO_CROSSINGS_T,
+    return result(t_out, Y, y_stop, stats, status, t_stop, wall, method, _NO_CROSSINGS_T,
                    cross_y, "generated", "small", copy_crossings=False)
-
-
-def _result(t_out, Y, y_stop, stats, status, t_stop, wall, method, cross_t, cross_y, used,
-            kernel, copy_crossings=True) -> IntegrationResult:
-    # the counters as Python ints in one call, the fields positional, Y whole when every
-    # sample was reached: shorter than five int() of NumPy scalars, keywords and views
-    # (a short plain run's entry, bench/limit.py --gap)
-    accepted, rejected, calls, m, k = stats.tolist()      # rk.py's S_* order (_S_ORDER)
-    if copy_crossings:
-        cross_t, cross_y = cross_t[:k].copy(), cross_y[:k].copy()
-    message = status_message(status)
-    if status != L.OK:
-        message += f" (stopped at t = {t_stop:.17g})"
-    whole = m == t_out.shape[0]
-    # IntegrationResult(t, y, status, message, t_stop, y_stop, steps, rejected, rhs_calls,
-    # wall_s, method, crossings_t, crossings_y, vector_field, kernel)
-    return IntegrationResult(
-        t_out.copy() if whole else t_out[:m].copy(), Y if whole else Y[:m], int(status),
-        message, float(t_stop), y_stop, accepted, rejected, calls, wall, method, cross_t,
-        cross_y, used, kernel)
 
 
 def _integrate_symmetric(model, p, y0, t_out, method, h, max_steps, max_iter=60):
@@ -637,62 +443,3 @@ def _integrate_symmetric(model, p, y0, t_out, method, h, max_steps, max_iter=60)
         t=t_out[:k].copy(), y=Y[:k], status=int(status), message=message,
         t_stop=float(t_stop), y_stop=y_stop, steps=int(stats[gauss.G_STEPS]), rejected=0,
         rhs_calls=int(stats[gauss.G_RHS]), wall_s=wall, method=method, kernel="gauss")
-
-
-SCIPY_CALLS_PER_STEP = 16
-
-
-class _Singular(Exception):
-    pass
-
-
-def solve_ivp_reference(model, p, y0, t_out, method="DOP853", rtol=1e-10, atol=1e-12,
-                        fun=None, max_steps=None) -> IntegrationResult:
-    """scipy.integrate.solve_ivp on the same problem. `fun(t, y) -> dy/dt` defaults to a
-    plain-Python wrapper of the compiled rhs (the lead's independent numpy field can be
-    passed instead). max_steps bounds the work as for the compiled kernels: solve_ivp has
-    no step budget, so the run stops with MAX_STEPS once its rhs calls exceed max_steps
-    steps' worth (SCIPY_CALLS_PER_STEP calls a step: DOP853's 12 stages, or an implicit
-    method's Newton iterations and a finite-difference Jacobian of the 6 to 12 variables)."""
-    from scipy.integrate import solve_ivp  # lazily: scipy's import is slow to start
-
-    t_out = np.asarray(t_out, dtype=np.float64)
-    p = np.ascontiguousarray(p, dtype=np.float64)
-    calls = [0]
-    last_t = [float(t_out[0])]
-    if fun is None:
-        def fun(t, y):
-            dy = np.empty_like(y)
-            st = rhs(model, t, np.ascontiguousarray(y), p, dy)
-            if st != L.OK:
-                raise _Singular(st)
-            return dy
-
-    max_calls = None if max_steps is None else SCIPY_CALLS_PER_STEP * int(max_steps)
-
-    def counted(t, y):
-        calls[0] += 1
-        last_t[0] = t
-        if max_calls is not None and calls[0] > max_calls:
-            raise _Singular(rk.MAX_STEPS)
-        dy = fun(t, y)
-        if not np.all(np.isfinite(dy)):
-            raise _Singular(L.SING_NONFINITE)
-        return dy
-
-    t0 = time.perf_counter()
-    try:
-        sol = solve_ivp(counted, (t_out[0], t_out[-1]), np.asarray(y0, dtype=np.float64),
-                        method=method, t_eval=t_out, rtol=rtol, atol=atol)
-        status = L.OK if sol.status == 0 else rk.STEP_UNDERFLOW
-        t, y, message = sol.t, sol.y.T, sol.message
-        steps = int(sol.t.size)
-    except _Singular as exc:
-        status, t, y, steps = exc.args[0], t_out[:0], np.empty((0, len(y0))), 0
-        message = f"{status_message(status)} (stopped at t = {last_t[0]:.17g})"
-    wall = time.perf_counter() - t0
-    return IntegrationResult(
-        t=t, y=y, status=int(status), message=message,
-        t_stop=float(t[-1]) if len(t) else float(t_out[0]),
-        y_stop=y[-1] if len(t) else np.asarray(y0, dtype=np.float64), steps=steps,
-        rejected=0, rhs_calls=calls[0], wall_s=wall, method=f"scipy-{method}")

@@ -1,7 +1,7 @@
 """`method="taylor"`: heyoka's adaptive Taylor integrator as a runtime backend of simulate().
 
 The system is the case's lean generated field (solvers/kernels/generate.py,
-`heyoka_system(fold=False)`): the same sympy equations as the generated numba field
+`heyoka_field.heyoka_system(fold=False)`): the same sympy equations as the generated numba field
 ((1.1)-(1.3), (3.16)-(3.17)), zero terms dropped, the nonzero parameters heyoka runtime
 parameters `par[slot]`, so one compiled integrator serves every parameter value of a case
 *structure*. heyoka compiles it with LLVM (seconds a case, `bench/taylor_compile.py`); heyoka
@@ -194,7 +194,7 @@ def cache_key(model: int, p, precision: str, tol: float) -> tuple:
 def disk_dir() -> Path:
     """Where compiled integrators are kept between processes: beside the generated numba
     kernels (ROLLING_KERNEL_CACHE, else ~/.cache/rolling-hierarchy/kernels), in taylor/."""
-    from solvers.kernels.generate import cache_dir
+    from solvers.kernels.module_cache import cache_dir
 
     d = cache_dir() / "taylor"
     with contextlib.suppress(OSError):    # not writable: compiled integrators stay in memory
@@ -210,10 +210,10 @@ def _build_stamp() -> str:
     import heyoka as hy
     import llvmlite.binding as ll
 
-    from solvers.kernels.generate import _sources_stamp
+    from solvers.kernels.module_cache import sources_hash
 
     h = hashlib.sha256()
-    for part in (_sources_stamp(), Path(__file__).read_bytes(), hy.__version__,
+    for part in (sources_hash(), Path(__file__).read_bytes(), hy.__version__,
                  np.__version__, ll.get_host_cpu_name(), ll.get_host_cpu_features().flatten()):
         h.update(part if isinstance(part, bytes) else str(part).encode())
     return h.hexdigest()[:16]
@@ -296,7 +296,7 @@ def clear_cache(disk: bool = False) -> None:
 
 
 def _compile(model: int, p, precision: str, tol: float) -> Compiled:
-    from solvers.kernels.generate import heyoka_system
+    from solvers.kernels.heyoka_field import heyoka_system
 
     hy = heyoka()
     fp = _fp(hy, precision)
@@ -356,7 +356,7 @@ class TaylorRun:
 def run(model: int, p, y0, t_out, *, rtol: float, precision: str | None = None,
         max_steps: int = 50_000_000, wall_limit: float | None = None) -> TaylorRun:
     """Integrate from (t_out[0], y0), states at t_out (float64); see the module doc."""
-    from solvers.integrate.integrator import status_message
+    from solvers.integrate.result import status_message
     from solvers.kernels.generate import GENERATED_MODELS
 
     hy = heyoka()

@@ -19,9 +19,9 @@ load from the on-disk cache in another process: each process would compile it ag
 numba's cache finds a function's files by the file its code names (co_filename) and keys
 it by its qualified name, signature and bytecode, which the bound functions share with the
 originals: so their code objects name the module's own file, a short stub in the kernel
-cache (generate.bound_module writes it: its docstring says what was bound), and numba
+cache (module_cache.bound_module writes it: its docstring says what was bound), and numba
 keeps their machine code beside it. Without a writable kernel cache the module is made in
-memory, its code names no file, and numba compiles it in memory (jit.py).
+memory, its code names no file, and numba compiles it in memory (numba_cache.py).
 """
 
 from __future__ import annotations

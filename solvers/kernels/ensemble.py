@@ -12,7 +12,7 @@ and its own projection values. Statuses, stop times, final states, crossings and
 come back per trajectory: a singular trajectory stops alone.
 
 The generated twin (the same loop compiled against a case's generated `rk_integrate`) is
-this module's function bound to that kernel (generate.bound_module, solvers/kernels/bind.py);
+this module's function bound to that kernel (module_cache.bound_module, solvers/kernels/bind.py);
 see solvers/integrate/ensemble.py. parallel=True needs a threading layer; the Python entry
 picks one and serialises launches (numba's workqueue layer is not thread-safe).
 """

@@ -26,11 +26,11 @@ user's choice (`solvers.integrate.integrator.integrate(method="gauss8", h_fixed=
 import numpy as np
 
 from solvers.kernels import layout as L
+from solvers.kernels.control import MAX_STEPS, advance, finish
 from solvers.kernels.fields import rhs
 from solvers.kernels.jit import kernel
-from solvers.kernels.rk import MAX_STEPS
 
-NO_CONVERGENCE = 25       # an integrator status (rk.py holds 20..24)
+NO_CONVERGENCE = 25       # an integrator status (control.py holds 20..24)
 STATUS_TEXT = {NO_CONVERGENCE: "the implicit stages could not be solved: their fixed-point "
                                "iteration stalled or diverged, or a stage value left the "
                                "field's domain (take a smaller step; if that persists, the "
@@ -70,9 +70,7 @@ def gauss_integrate(model, p, y0, t_out, A, b, c, X, h_req, max_steps, max_iter,
         for step in range(m):
             t = t_out[k] + step * h
             if stats[G_STEPS] >= max_steps:
-                for j in range(n):
-                    y_stop[j] = y[j]
-                return MAX_STEPS, t
+                return finish(y, y_stop, MAX_STEPS, t)
             # starting values
             if have_old:
                 for i in range(s):
@@ -85,9 +83,7 @@ def gauss_integrate(model, p, y0, t_out, A, b, c, X, h_req, max_steps, max_iter,
                 st = rhs(model, t, y, p, f0)
                 stats[G_RHS] += 1
                 if st != L.OK:
-                    for j in range(n):
-                        y_stop[j] = y[j]
-                    return st, t
+                    return finish(y, y_stop, st, t)
                 for i in range(s):
                     for j in range(n):
                         K[i, j] = f0[j]
@@ -107,9 +103,7 @@ def gauss_integrate(model, p, y0, t_out, A, b, c, X, h_req, max_steps, max_iter,
                     st = rhs(model, t + c[i] * h, Ys, p, f0)
                     stats[G_RHS] += 1
                     if st != L.OK:        # a stage outside the field's domain
-                        for j in range(n):
-                            y_stop[j] = y[j]
-                        return NO_CONVERGENCE, t
+                        return finish(y, y_stop, NO_CONVERGENCE, t)
                     for j in range(n):
                         d = abs(f0[j] - K[i, j])
                         if d > dmax:
@@ -122,23 +116,16 @@ def gauss_integrate(model, p, y0, t_out, A, b, c, X, h_req, max_steps, max_iter,
                 if dmax == 0.0 or (dmax >= prev and dmax <= 1e-10 * (ymax + 1e-300)):
                     break             # converged: the update no longer decreases
                 if it >= max_iter or (it >= 3 and dmax >= prev):   # stalled or diverging
-                    for j in range(n):
-                        y_stop[j] = y[j]
-                    return NO_CONVERGENCE, t
+                    return finish(y, y_stop, NO_CONVERGENCE, t)
                 prev = dmax
-            # update with compensated summation
+            # update with compensated summation (control.advance)
             for j in range(n):
                 acc = 0.0
                 for i in range(s):
                     acc += b[i] * K[i, j]
-                inc = h * acc + comp[j]
-                ynew = y[j] + inc
-                comp[j] = inc - (ynew - y[j])
-                y[j] = ynew
-                if not np.isfinite(ynew):
-                    for q in range(n):
-                        y_stop[q] = y[q]
-                    return L.SING_NONFINITE, t
+                y[j], comp[j] = advance(y[j], h * acc, comp[j], True)
+                if not np.isfinite(y[j]):
+                    return finish(y, y_stop, L.SING_NONFINITE, t)
             for i in range(s):
                 for j in range(n):
                     Kold[i, j] = K[i, j]
@@ -149,6 +136,4 @@ def gauss_integrate(model, p, y0, t_out, A, b, c, X, h_req, max_steps, max_iter,
         for j in range(n):
             Y[k + 1, j] = y[j]
         stats[G_SAMPLES] += 1
-    for j in range(n):
-        y_stop[j] = y[j]
-    return L.OK, t
+    return finish(y, y_stop, L.OK, t)

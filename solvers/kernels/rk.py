@@ -29,9 +29,12 @@ project_every), so that every output lies on the integral manifold.
 Fixed-step mode (fopt[F_H] > 0 with iopt[I_FIXED]) has no error control: it is for order
 studies and will step over a singularity it does not land on.
 
-The projection (projection.py) and the section's value and crossing tests (sections.py)
-call no field: one compiled copy serves every field. The functions here call the field;
-a case's generated field gets them bound to it (solvers/kernels/bind.py).
+What the step decides from its numbers (the starting step, the step's length, the error
+norm, the controller, the compensated sums, the section's crossing test) is control.py's,
+shared with the small kernels (small.py), which write the same step on scalars. The
+projection (projection.py), the section's value and crossing tests (sections.py) and the
+step control call no field: one compiled copy serves every field. The functions here call
+the field; a case's generated field gets them bound to it (solvers/kernels/bind.py).
 
 The kernel allocates its work arrays once per call; the step loop allocates nothing (the
 model's rhs is another matter: see fields.py).
@@ -40,6 +43,28 @@ model's rhs is another matter: see fields.py).
 import numpy as np
 
 from solvers.kernels import layout as L
+from solvers.kernels.control import (  # noqa: F401 (callers import these from here)
+    CROSSINGS_DONE,
+    ERR_DOP853,
+    ERR_EMBEDDED,
+    GRAZE_H,
+    MAX_STEPS,
+    SECTION_TANGENT,
+    STEP_UNDERFLOW,
+    advance,
+    clip_step,
+    crosses,
+    error_sums,
+    finish,
+    first_guess,
+    first_step,
+    first_step_singular,
+    grow,
+    halve,
+    shrink,
+    step_end,
+    time_compensation,
+)
 from solvers.kernels.fields import rhs
 from solvers.kernels.jit import kernel
 from solvers.kernels.layout import EPS
@@ -60,11 +85,7 @@ from solvers.kernels.sections import (  # noqa: F401 (callers import these from 
     section_value,
 )
 
-# --- status codes added by the integrator (0..5 are the rhs codes of layout.py) --------
-MAX_STEPS = 20
-STEP_UNDERFLOW = 21
-SECTION_TANGENT = 22
-CROSSINGS_DONE = 24       # a success: the requested number of crossings was found
+# --- what the integrator's status codes (control.py) say -------------------------------
 STATUS_TEXT = {
     MAX_STEPS: "the step budget (max_steps attempts) ran out before the last output time",
     STEP_UNDERFLOW: "step size underflow: the error test cannot be met with h > 16 ulp(t)",
@@ -81,9 +102,6 @@ I_MAX_STEPS, I_COMPENSATED, I_PROJECT_EVERY, I_SECTION, I_DIRECTION, I_MAX_CROSS
     I_FIXED = range(7)                                                 # iopt (int64)
 F_RTOL, F_H, F_HMAX, F_SAFETY, F_FACMIN, F_FACMAX, F_BETA = range(7)   # fopt (float64)
 S_ACCEPTED, S_REJECTED, S_RHS, S_SAMPLES, S_CROSSINGS = range(5)      # stats (int64)
-ERR_EMBEDDED, ERR_DOP853 = 0, 1
-
-GRAZE_H = 1e-9            # grazing section crossings are resolved down to h = GRAZE_H |t|
 
 
 @kernel
@@ -104,58 +122,26 @@ def _stages(model, p, t, y, h, A, c, i0, i1, K, ytmp, stats):
 
 
 @kernel
-def _error(E, K, s, h, y, ynew, atol, rtol, errkind):
-    """Scaled RMS norm of the error estimate (Hairer's combination for DOP853)."""
-    n = y.shape[0]
-    e1 = 0.0
-    e2 = 0.0
-    for m in range(n):
-        sc = atol[m] + rtol * max(abs(y[m]), abs(ynew[m]))
-        a = 0.0
-        for i in range(s):
-            a += E[0, i] * K[i, m]
-        e1 += (a / sc) ** 2
-        if errkind == ERR_DOP853:
-            a = 0.0
-            for i in range(s):
-                a += E[1, i] * K[i, m]
-            e2 += (a / sc) ** 2
-    if errkind == ERR_DOP853:
-        if e1 == 0.0 and e2 == 0.0:
-            return 0.0
-        return abs(h) * e1 / np.sqrt((e1 + 0.01 * e2) * n)
-    return abs(h) * np.sqrt(e1 / n)
-
-
-@kernel
 def _initial_step(model, p, t, y, f0, order, rtol, atol, span, hmax, y1, f1, stats):
-    """Hairer's starting step (Solving ODEs I, Sec. II.4)."""
+    """Hairer's starting step (Solving ODEs I, Sec. II.4; control.py) from its sums."""
     n = y.shape[0]
-    d0 = 0.0
-    d1 = 0.0
+    q0 = 0.0
+    q1 = 0.0
     for m in range(n):
         sc = atol[m] + rtol * abs(y[m])
-        d0 += (y[m] / sc) ** 2
-        d1 += (f0[m] / sc) ** 2
-    d0 = np.sqrt(d0 / n)
-    d1 = np.sqrt(d1 / n)
-    h0 = 1e-6 if (d0 < 1e-5 or d1 < 1e-5) else 0.01 * d0 / d1
-    h0 = min(h0, span)
+        q0 += (y[m] / sc) ** 2
+        q1 += (f0[m] / sc) ** 2
+    h0, d1 = first_guess(q0, q1, n, span)
     for m in range(n):
         y1[m] = y[m] + h0 * f0[m]
     stats[S_RHS] += 1
     if rhs(model, t + h0, y1, p, f1) != L.OK:
-        return min(h0 * 1e-3, hmax)
-    d2 = 0.0
+        return first_step_singular(h0, hmax)
+    q2 = 0.0
     for m in range(n):
         sc = atol[m] + rtol * abs(y[m])
-        d2 += ((f1[m] - f0[m]) / sc) ** 2
-    d2 = np.sqrt(d2 / n) / h0
-    if max(d1, d2) <= 1e-15:
-        h1 = max(1e-6, h0 * 1e-3)
-    else:
-        h1 = (0.01 / max(d1, d2)) ** (1.0 / (order + 1))
-    return min(100.0 * h0, h1, span, hmax)
+        q2 += ((f1[m] - f0[m]) / sc) ** 2
+    return first_step(h0, d1, q2, n, 1.0 / (order + 1), span, hmax)
 
 
 @kernel
@@ -342,8 +328,7 @@ def rk_integrate(model, p, y0, t_out, A, c, b, E, P, meth, iopt, fopt, atol, pro
     stats[S_RHS] = 1
     status = rhs(model, t, y, p, K[0])
     if status != L.OK or N == 1:
-        y_stop[:] = y
-        return status, t
+        return finish(y, y_stop, status, t)
     if fixed or fopt[F_H] > 0.0:
         h = fopt[F_H]
     else:
@@ -361,12 +346,8 @@ def rk_integrate(model, p, y0, t_out, A, c, b, E, P, meth, iopt, fopt, atol, pro
             break
         attempts += 1
         target = t_end if has_dense else t_out[j]
-        h = min(h, hmax)
-        h_proposed = h
-        landing = t + 1.01 * h >= target
-        if landing:
-            h = target - t
-        elif not (h > 16.0 * EPS * abs(t)):
+        h, h_proposed, landing, ok = clip_step(h, hmax, t, target)
+        if not ok:
             status = STEP_UNDERFLOW if status == L.OK else status
             break
         status = L.OK
@@ -378,20 +359,14 @@ def rk_integrate(model, p, y0, t_out, A, c, b, E, P, meth, iopt, fopt, atol, pro
                 acc = 0.0
                 for i in range(s):
                     acc += b[i] * K[i, m]
-                d = h * acc
-                if compensated:
-                    d += comp[m]
-                    ynew[m] = y[m] + d
-                    comp_new[m] = d - (ynew[m] - y[m])
-                else:
-                    ynew[m] = y[m] + d
+                ynew[m], comp_new[m] = advance(y[m], h * acc, comp[m], compensated)
             # 3. error test
             if not fixed:
-                err = _error(E, K, s, h, y, ynew, atol, rtol, errkind)
+                err = error_sums(E, K, s, h, y, ynew, atol, rtol, errkind)
                 if code == SECTION_ANDOYER_G:   # step control near the section (sections.py)
                     err = max(err, section_step_error(y, ynew, sec_coef, q))
             if err <= 1.0:
-                t_new = target if landing else t + (h + t_comp if compensated else h)
+                t_new = step_end(t, h, t_comp, target, landing, compensated)
                 if new >= s:
                     stats[S_RHS] += 1
                     st = rhs(model, t_new, ynew, p, K[new])
@@ -406,8 +381,7 @@ def rk_integrate(model, p, y0, t_out, A, c, b, E, P, meth, iopt, fopt, atol, pro
         if not (err <= 1.0):      # error test failed (or NaN)
             stats[S_REJECTED] += 1
             rejected_last = True
-            fac = safety * err ** (-1.0 / (q + 1)) if np.isfinite(err) else 0.0
-            h = h * min(1.0, max(fopt[F_FACMIN], fac))
+            h = shrink(h, err, -1.0 / (q + 1), safety, fopt[F_FACMIN])
             continue
         # a step whose ends misread the section (a grazing pair of crossings inside, or s
         # not monotone towards its crossing) is halved until they do; below GRAZE_H the
@@ -416,17 +390,14 @@ def rk_integrate(model, p, y0, t_out, A, c, b, E, P, meth, iopt, fopt, atol, pro
         if code != SECTION_NONE:
             from_start = crossing_start(code, sec_coef, y, K[0], ynew, K[new], h, grad,
                                          direction)
-            if from_start == 2 and not fixed and abs(h) > GRAZE_H * max(1.0, abs(t)):
+            if not fixed and halve(from_start, h, t):
                 stats[S_REJECTED] += 1
                 rejected_last = True
                 h = 0.5 * h
                 continue
         # 4. accepted
         stats[S_ACCEPTED] += 1
-        if compensated and not landing:
-            t_comp = (h + t_comp) - (t_new - t)
-        else:
-            t_comp = 0.0
+        t_comp = time_compensation(t, h, t_comp, t_new, landing, compensated)
         projected = nproj > 0 and stats[S_ACCEPTED] % project_every == 0
         if projected:
             status = project(model, p, ynew, proj_codes, proj_vals, G, Mw, rw, lam, yc)
@@ -482,8 +453,7 @@ def rk_integrate(model, p, y0, t_out, A, c, b, E, P, meth, iopt, fopt, atol, pro
         # section crossing between (t, y) and (t_new, ynew)
         if code != SECTION_NONE:
             s_new = section_value(code, ynew, sec_coef, grad)
-            if (direction >= 0 and s_old < 0.0 <= s_new) or \
-                    (direction <= 0 and s_old > 0.0 >= s_new):
+            if crosses(s_old, s_new, direction):
                 k = stats[S_CROSSINGS]
                 if from_start != -1:    # the end s runs monotonically from (see above)
                     status = locate_crossing(model, p, t, y, K[0], s_old, A, c, b, s, code,
@@ -514,17 +484,7 @@ def rk_integrate(model, p, y0, t_out, A, c, b, E, P, meth, iopt, fopt, atol, pro
         if fixed:
             h = fopt[F_H]
         else:
-            if err == 0.0:
-                fac = fopt[F_FACMAX]
-            else:
-                fac = safety * err ** (-expo) * err_old ** beta
-                fac = min(fopt[F_FACMAX], max(fopt[F_FACMIN], fac))
-            if rejected_last:
-                fac = min(fac, 1.0)
-            err_old = max(err, 1e-4)
-            h = h * fac
-            if landing and h < h_proposed:
-                h = h_proposed    # a step clipped to an output time says little of h
+            h, err_old = grow(h, err, err_old, expo, beta, safety, fopt[F_FACMIN],
+                              fopt[F_FACMAX], rejected_last, landing, h_proposed)
         rejected_last = False
-    y_stop[:] = y
-    return status, t
+    return finish(y, y_stop, status, t)

@@ -156,7 +156,7 @@ def map_kernel(model: Model, spec: MapSpec, trajectories: int) -> str:
     if spec.kernel != "auto":
         return spec.kernel
     from solvers.integrate.integrator import small_fits
-    from solvers.kernels.generate import disk_cache_ok
+    from solvers.kernels.module_cache import disk_cache_ok
 
     fits = (spec.generated is not False and small_fits(model.model, spec.method)
             and disk_cache_ok())

@@ -173,7 +173,7 @@ def check_state(model, p, state, *, shell=False):
     if model == L.MODEL_FLAT:
         return
     g = np.asarray(state[3:6], dtype=float)
-    n = math.sqrt(float(g @ g))
+    n = math.hypot(*g)   # no overflow warning for huge components: inf, refused below
     if abs(n - 1.0) > 1e-9:
         raise InputError(f"|gamma| = {n!r}: gamma is a unit vector, |gamma| must be 1 "
                          "(normalise g1, g2, g3)")

@@ -207,7 +207,11 @@ def scene(case: str, params: dict | None, state0, t_end: float, *, frames: int =
     body = _Body(model)
     n = model.dim
     k = float(model.p[L.CURV])
-    _, r0, g0 = body(y0)
+    try:
+        _, r0, g0 = body(y0)
+    except _Singular as exc:   # no first frame to draw: the input's fault, said as such
+        raise InputError("the initial state is singular for this body: "
+                         f"{L.STATUS_TEXT[exc.args[0]]}") from None
     Q0 = rotation_taking(g0, -E3)
     xP0 = np.zeros(3) if k == 0.0 else Q0 @ g0 / k
     z0 = np.concatenate([y0, Q0.ravel(), xP0 - Q0 @ r0])

@@ -93,24 +93,28 @@ async def errata_page(settings: SettingsDep, verdicts: VerdictsDep,
     return HTMLResponse(pages.get("/errata", stamp, build))
 
 
+def _errata_export(request: Request, settings, verdicts, written, media_type: str,
+                   filename: str) -> Response:
+    """The misprints as a file: `written(rows, base_url)` served inline as `filename`."""
+    ers, _, _ = _errata_rows(verdicts, settings)
+    return Response(written(ers, _base_url(request, settings)), media_type=media_type,
+                    headers={"Content-Disposition": f'inline; filename="{filename}"'})
+
+
 @router.get("/errata.csv")
 async def errata_csv(request: Request, settings: SettingsDep,
                      verdicts: VerdictsDep) -> Response:
     """The misprints' table, one line per row (the verdicts computed so far)."""
-    ers, _, _ = _errata_rows(verdicts, settings)
-    return Response(errata_pages.errata_csv(ers, _base_url(request, settings)),
-                    media_type="text/csv; charset=utf-8",
-                    headers={"Content-Disposition": 'inline; filename="errata.csv"'})
+    return _errata_export(request, settings, verdicts, errata_pages.errata_csv,
+                          "text/csv; charset=utf-8", "errata.csv")
 
 
 @router.get("/errata.bib")
 async def errata_bib(request: Request, settings: SettingsDep,
                      verdicts: VerdictsDep) -> Response:
     """The paper's BibTeX entry and one @misc per misprint (the explorer's erratum)."""
-    ers, _, _ = _errata_rows(verdicts, settings)
-    return Response(errata_pages.errata_bibtex(ers, _base_url(request, settings)),
-                    media_type="application/x-bibtex; charset=utf-8",
-                    headers={"Content-Disposition": 'inline; filename="errata.bib"'})
+    return _errata_export(request, settings, verdicts, errata_pages.errata_bibtex,
+                          "application/x-bibtex; charset=utf-8", "errata.bib")
 
 
 @router.get("/vendor/plotly.min.js")

@@ -1,0 +1,35 @@
+"""The modules of a case's generated field, in the kernel cache (module_cache.py): the field
+itself (generate.py's text for the case's structure) and rk.py's kernels bound to it (the
+generated integrator). Each is named by the structure and the content hash of the sources
+of solvers/kernels: any edit of them gives other names, never a stale module."""
+
+from __future__ import annotations
+
+import hashlib
+
+from solvers.kernels import generate, rk
+from solvers.kernels.module_cache import bound_module, cached_module, sources_hash
+
+
+def module_name(model: int, p, fold: bool = False) -> str:
+    key = repr((generate.structure(model, p, fold), sources_hash()))
+    return "gen_" + hashlib.sha256(key.encode()).hexdigest()[:20]
+
+
+def generated(model: int, p, fold: bool = False):
+    """The generated module of the case (written on first use, then loaded from the cache):
+    it holds `field(p, y, dydt)` and `rhs(model, t, y, p, dydt)`."""
+    return cached_module(module_name(model, p, fold),
+                         lambda: generate.numba_source(model, p, fold))
+
+
+def generated_integrator(model: int, p, fold: bool = False):
+    """solvers/kernels/rk.py's kernels bound to the case's generated field instead of the
+    general `fields.rhs` (bound_module): the same code (tableau as data, dense output,
+    projection, sections, statuses), every stage call the lean field, inlined.
+    `rk_integrate` has rk.py's signature. One numba compile per structure (a long one),
+    then numba's on-disk cache."""
+    field_mod = generated(model, p, fold)
+    name = f"rk{field_mod.__name__[3:]}_loops"
+    return bound_module(name, rk, {"rhs": field_mod.rhs},
+                        f"solvers/kernels/rk.py's kernels on the field {field_mod.__name__}")
