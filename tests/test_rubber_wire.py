@@ -11,7 +11,7 @@ import pytest
 
 import solvers
 from solvers.errors import InputError
-from solvers.kernels import generate
+from solvers.kernels import field_modules
 from solvers.kernels import layout as L
 from solvers.kernels.fields import rhs
 from solvers.models import rubber_bodies as rb
@@ -120,7 +120,7 @@ def test_declared_integrals_hold_on_the_rubber_manifold(cid):
 
 
 def _generated_field(model):
-    f = generate.generated(model.model, model.p).field
+    f = field_modules.generated(model.model, model.p).field
 
     def field(y):
         d = np.empty(6)
