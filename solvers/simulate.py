@@ -7,6 +7,11 @@ NumPy field of solvers/models/reference.py, and reports the drift of every invar
 case carries. A run that meets a singularity returns what it computed up to there, with
 status "singular" and a message saying where: never NaN as a result.
 
+A rubber case (CaseSpec.constraint "rubber": no spin about the normal) runs the same
+way: its fields add the reaction of (omega, gamma) = 0, its scipy route runs the
+Lagrange-d'Alembert NumPy field (solvers/models/rubber_lagrange.py), and it reports the
+integral "spin", (omega, gamma), beside the energy and gamma^2.
+
 A plain run of a compiled Runge-Kutta method (dop853 or vern9, no projection) runs the
 case's generated field (solvers/kernels/generate.py) in its small kernel, any other run the
 general field (`field`, FIELDS): the route depends on the request, never on what happens
@@ -326,12 +331,20 @@ def _integrate(model: Model, y0, t_out, method, rtol, atol, project, max_steps, 
         return taylor_backend.run(model.model, model.p, y0, t_out, rtol=rtol,
                                   precision=precision, max_steps=max_steps)
 
-    if method in SCIPY_METHODS:
+    if method in SCIPY_METHODS and model.case.constraint == "rubber":
+        from solvers.models import rubber_lagrange
+        from solvers.models.rubber_bodies import from_vector
+
+        body = from_vector(model.p)
+
+        def fun(t, y):   # the Lagrange-d'Alembert derivation, independent of the kernels
+            return rubber_lagrange.field(body, y)
+    elif method in SCIPY_METHODS:
         from solvers.models.reference import field as ref_field
 
         def fun(t, y):
             return ref_field(model.model, model.p, y)
-
+    if method in SCIPY_METHODS:
         with np.errstate(all="ignore"):
             return solve_ivp_reference(model.model, model.p, y0, t_out,
                                        method=SCIPY_METHODS[method], rtol=rtol, atol=atol,

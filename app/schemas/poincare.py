@@ -11,10 +11,12 @@ from app.schemas.simulate import CaseId, case_rules
 
 
 def _map_cases() -> list[str]:
-    """The cases with the state (M, gamma): the flat-base ones (M, r1, r2) have no map."""
+    """The cases with the state (M, gamma): the flat-base ones (M, r1, r2) have no map, nor
+    the rubber ones (solvers.maps.poincare.map_model: starts off (omega, gamma) = 0)."""
     from solvers.models.cases import registry
 
-    return [cid for cid, c in registry().items() if len(c.state) == 6]
+    return [cid for cid, c in registry().items()
+            if len(c.state) == 6 and c.constraint == "marble"]
 
 MAX_TRAJECTORIES = 32
 MAX_POINTS = 5000

@@ -22,10 +22,14 @@ ROUTH = 6       # omega3 / rho, rho = (I1 I3 + m (r, I r))^-1/2         (2.20) (
 GYRO_M2 = 7     # (M + S)^2                                       (2.38) (Markeev)
 GYRO_AREA = 8   # (M + S, gamma)                                  (2.38) (Markeev)
 BORISOV_FEDOROV = 9  # (M, Abar gamma), Abar = E - 2 (I + D)/tr(I + D), D = m R^2   (3.11)
-N_INTEGRAL_CODES = 10
+SPIN = 10       # (omega, gamma): the rubber constraint, zero on rubber motions
+# rubber integrals, exact on the rubber manifold (solvers/models/rubber_exact.py):
+RUBBER_BALL = 11   # |M x gamma|^2 = M^2 - (M, gamma)^2: balanced rubber ball, plane
+RUBBER_ROUTH = 12  # N omega3, N^2 = I1 g3^2 + I3 (g1^2 + g2^2) + m (r, gamma)^2: rubber Routh
+N_INTEGRAL_CODES = 13
 
 NAMES = ("energy", "gamma2", "M2", "area", "unbalanced_F", "jellett", "routh",
-         "gyro_M2", "gyro_area", "borisov_fedorov")
+         "gyro_M2", "gyro_area", "borisov_fedorov", "spin", "rubber_ball_F", "rubber_routh")
 
 
 @kernel
@@ -109,6 +113,16 @@ def integral_at(code, model, y, p, w0, w1, w2, r0, r1, r2):
         for i in range(3):
             acc += y[i] * (1.0 - 2.0 * (p[L.I1 + i] + D) / tr) * y[3 + i]
         return acc
+    if code == SPIN:
+        return w[0] * y[3] + w[1] * y[4] + w[2] * y[5]
+    if code == RUBBER_BALL:
+        Mg = M0 * y[3] + M1 * y[4] + M2_ * y[5]
+        return MM - Mg * Mg
+    if code == RUBBER_ROUTH:
+        rg = r[0] * y[3] + r[1] * y[4] + r[2] * y[5]
+        n2 = (p[L.I1] * y[5] * y[5] + p[L.I3] * (y[3] * y[3] + y[4] * y[4])
+              + m * rg * rg)
+        return w[2] * np.sqrt(n2)
     return np.nan + 0.0 * y[0]
 
 
