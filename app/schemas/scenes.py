@@ -25,6 +25,9 @@ class ScenePreset(BaseModel):
                                           "that change the physics: name, label, symbol "
                                           "(TeX), units, param or state, min, max, step, "
                                           "factor (run value = shown value * factor)")
+    beside: dict[str, Any] | None = Field(None, description="a second body rolled from the "
+                                          "same start beside the scene's own: case (the "
+                                          "same run on it), label, main_label")
 
 
 class SceneCheck(BaseModel):
