@@ -325,12 +325,20 @@ def _integrate(model: Model, y0, t_out, method, rtol, atol, project, max_steps, 
         return taylor_backend.run(model.model, model.p, y0, t_out, rtol=rtol,
                                   precision=precision, max_steps=max_steps)
 
-    if method in SCIPY_METHODS:
+    if method in SCIPY_METHODS and model.case.constraint == "rubber":
+        from solvers.models import rubber_lagrange
+        from solvers.models.rubber_bodies import from_vector
+
+        body = from_vector(model.p)
+
+        def fun(t, y):   # the Lagrange-d'Alembert derivation, independent of the kernels
+            return rubber_lagrange.field(body, y)
+    elif method in SCIPY_METHODS:
         from solvers.models.reference import field as ref_field
 
         def fun(t, y):
             return ref_field(model.model, model.p, y)
-
+    if method in SCIPY_METHODS:
         with np.errstate(all="ignore"):
             return solve_ivp_reference(model.model, model.p, y0, t_out,
                                        method=SCIPY_METHODS[method], rtol=rtol, atol=atol,

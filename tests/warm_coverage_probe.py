@@ -51,7 +51,9 @@ def clicks() -> None:
         jobs.simulate_json(simulate_route._job(projected), steps)
         scene = simulate_route.resolve(SceneRequest(case=cid, example=True, t_end=1.0), steps)
         jobs.scene_json(simulate_route._job(scene), 20, steps)
-        if run["_model"].model != L.MODEL_FULL:
+        # no map of the flat-base cases ((M, r1, r2)) nor of the rubber ones (starts off
+        # (omega, gamma) = 0): solvers.maps.poincare.map_model refuses them
+        if run["_model"].model != L.MODEL_FULL or run["_model"].case.constraint == "rubber":
             continue
         req = poincare_route.PoincareRequest(case=cid, example=True, energy=1.0,
                                              trajectories=2, points=2)

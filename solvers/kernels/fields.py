@@ -8,6 +8,7 @@ Full model (CONVENTIONS.md), state (M, gamma):
   (E - k J) dgamma/dt = gamma x omega,  dr/dt = J dgamma/dt                (1.2) / (1.3)
   dM/dt = (M + S) x omega + m dr/dt x (omega x r) + M_Q                   (1.1)
   M_Q = gamma x (E - k J^T)^-1 dU/dgamma,  U = m g (r, gamma) + eps/2 (I gamma, gamma)
+  rubber (p[RUBBER] = 1): dM/dt gains lambda gamma, the reaction of (omega, gamma) = 0
 Flat base on a sphere, state (M, r1, r2), gamma = e3 fixed, r = (r1, r2, z):
   0 = gamma x omega + k dr/dt  =>  dr/dt = (omega2, -omega1, 0) / k     (3.17)
   (the paper prints (3.17) with k = +1/R for the outside of the sphere, i.e. with gamma
@@ -152,7 +153,39 @@ def full_field_wr(p, y, dydt):
     dydt[3] = gd0
     dydt[4] = gd1
     dydt[5] = gd2
+    if p[L.RUBBER] != 0.0:
+        if not rubber_reaction(p, y, dydt, w0, w1, w2, r0, r1, r2, rd0, rd1, rd2):
+            return L.SING_INERTIA, w0, w1, w2, r0, r1, r2
     return L.OK, w0, w1, w2, r0, r1, r2
+
+
+@kernel
+def rubber_reaction(p, y, dydt, w0, w1, w2, r0, r1, r2, rd0, rd1, rd2):
+    """Add the no-spin reaction lambda gamma to dM/dt = N in dydt[0:3] (rubber rolling,
+    solvers/models/rubber_lagrange.py): lambda from d/dt (omega, gamma) = 0 with
+    omega = I_Q^-1 M,
+        lambda = -[(I_Q^-1 gamma, N - (dI_Q/dt) omega) + (omega, dgamma/dt)]
+                 / (I_Q^-1 gamma, gamma),
+    (dI_Q/dt) omega = m (2 (r, dr/dt) omega - dr/dt (r, omega) - r (dr/dt, omega)).
+    False when I_Q is singular."""
+    g0, g1, g2 = y[3], y[4], y[5]
+    m = p[L.MASS]
+    det, a0, a1, a2 = omega_s(p, g0, g1, g2, r0, r1, r2)   # I_Q^-1 gamma
+    den = a0 * g0 + a1 * g1 + a2 * g2
+    if det == 0 or den == 0:
+        return False
+    rrd = r0 * rd0 + r1 * rd1 + r2 * rd2
+    rw = r0 * w0 + r1 * w1 + r2 * w2
+    rdw = rd0 * w0 + rd1 * w1 + rd2 * w2
+    e0 = dydt[0] - m * (2.0 * rrd * w0 - rd0 * rw - r0 * rdw)
+    e1 = dydt[1] - m * (2.0 * rrd * w1 - rd1 * rw - r1 * rdw)
+    e2 = dydt[2] - m * (2.0 * rrd * w2 - rd2 * rw - r2 * rdw)
+    lam = -((a0 * e0 + a1 * e1 + a2 * e2) + (w0 * dydt[3] + w1 * dydt[4] + w2 * dydt[5])) \
+        * (1.0 / den)
+    dydt[0] = dydt[0] + lam * g0
+    dydt[1] = dydt[1] + lam * g1
+    dydt[2] = dydt[2] + lam * g2
+    return True
 
 
 @kernel

@@ -22,10 +22,11 @@ ROUTH = 6       # omega3 / rho, rho = (I1 I3 + m (r, I r))^-1/2         (2.20) (
 GYRO_M2 = 7     # (M + S)^2                                       (2.38) (Markeev)
 GYRO_AREA = 8   # (M + S, gamma)                                  (2.38) (Markeev)
 BORISOV_FEDOROV = 9  # (M, Abar gamma), Abar = E - 2 (I + D)/tr(I + D), D = m R^2   (3.11)
-N_INTEGRAL_CODES = 10
+SPIN = 10       # (omega, gamma): the rubber constraint, zero on rubber motions
+N_INTEGRAL_CODES = 11
 
 NAMES = ("energy", "gamma2", "M2", "area", "unbalanced_F", "jellett", "routh",
-         "gyro_M2", "gyro_area", "borisov_fedorov")
+         "gyro_M2", "gyro_area", "borisov_fedorov", "spin")
 
 
 @kernel
@@ -109,6 +110,8 @@ def integral_at(code, model, y, p, w0, w1, w2, r0, r1, r2):
         for i in range(3):
             acc += y[i] * (1.0 - 2.0 * (p[L.I1 + i] + D) / tr) * y[3 + i]
         return acc
+    if code == SPIN:
+        return w[0] * y[3] + w[1] * y[4] + w[2] * y[5]
     return np.nan + 0.0 * y[0]
 
 

@@ -20,7 +20,11 @@ BALL_C = 16                   # c: ball part (radius R of a ball, offset surface
 DISK_D = 17                   # d: sharp-edged disk part (radius R of a disk)
 A1, A2, A3 = 18, 19, 20       # a: from the centre of mass to the geometric centre
 FLAT_Z = 21                   # z: flat-base offset, r = (r1, r2, z)
-N_PARAMS = 22
+# rubber: 1 adds the no-spin constraint (omega, gamma) = 0 to the full model, its reaction
+# lambda gamma with lambda from d/dt (omega, gamma) = 0 (solvers/models/rubber_lagrange.py);
+# 0 the marble model
+RUBBER = 22
+N_PARAMS = 23
 
 # --- models: which state and which vector field ---------------------------------------
 MODEL_TEST_OSC = 0            # y'' = -y in R^2 (integrator tests)

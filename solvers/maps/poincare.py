@@ -322,6 +322,10 @@ def map_model(case: str, params: dict | None, *, allow_any_inertia=False) -> Mod
     if model.model != L.MODEL_FULL:
         raise InputError(f"case {case}: the Andoyer-Deprit map needs the state (M, gamma); "
                          "the flat-base cases have (M, r1, r2)")
+    if model.case.constraint == "rubber":
+        raise InputError(f"case {case}: the Andoyer-Deprit map samples its starts on the marble "
+                         "energy level; a rubber body's states also keep (omega, gamma) = 0, "
+                         "which these starts do not")
     return model
 
 

@@ -61,6 +61,11 @@ class CaseSpec(BaseModel):
     in_tables : bool
         Whether the case is a column of the paper's Tables 1-2 (with claims in
         catalogue/); False for a case the text only mentions, such as the rattleback.
+    constraint : {"marble", "rubber"}
+        "marble": rolling without slipping (the paper's model); "rubber": also without
+        spinning about the normal, (omega, gamma) = 0 (solvers/models/rubber_lagrange.py).
+        A rubber case's state lies on (omega, gamma) = 0, |gamma| = 1, and it carries the
+        integral "spin", (omega, gamma).
     param_names : list of str
         required, then the optional ones.
 
@@ -92,6 +97,7 @@ class CaseSpec(BaseModel):
     in_tables: bool = True
     # for a case beyond the tables: what its page says it is, instead of a table column
     note: str | None = None
+    constraint: Literal["marble", "rubber"] = "marble"
 
     @property
     def param_names(self) -> list[str]:
@@ -142,6 +148,11 @@ def table_case_ids() -> list[str]:
 def beyond_table_ids() -> list[str]:
     """The runnable cases that are no column of Tables 1-2 (no claims in the catalogue)."""
     return [cid for cid, c in registry().items() if not c.in_tables]
+
+
+def rubber_case_ids() -> list[str]:
+    """The cases that roll without slipping and without spinning (constraint "rubber")."""
+    return [cid for cid, c in registry().items() if c.constraint == "rubber"]
 
 
 def get_case(case_id: str) -> CaseSpec:
@@ -215,10 +226,16 @@ def build(case_id: str, params: dict | None = None, *, allow_any_inertia: bool =
         raise InputError(f"k = {float(p[L.CURV])!r}: a flat base rolls on the outside of a fixed "
                          "ball, so k = -1/R0 < 0 (CONVENTIONS.md; the paper's eq3.15 writes "
                          "k = +1/R with gamma pointing out of the support)")
+    if case.constraint == "rubber":
+        _rubber_checks(case_id, model, p)
+        p[L.RUBBER] = 1.0
     names, codes = ["energy"], [Q.ENERGY]
     if model == L.MODEL_FULL:
         names.append("gamma2")
         codes.append(Q.GEOM)
+    if case.constraint == "rubber":
+        names.append("spin")
+        codes.append(Q.SPIN)
     for spec in case.integrals:
         nonzero = not spec.any_nonzero or any(prm.get(c, 0.0) != 0.0 for c in spec.any_nonzero)
         if nonzero and all(prm.get(c, 0.0) == 0.0 for c in spec.when):
@@ -227,6 +244,22 @@ def build(case_id: str, params: dict | None = None, *, allow_any_inertia: bool =
     p.setflags(write=False)
     return Model(case, {k: v for k, v in prm.items() if v is not None}, model, p,
                  tuple(names), tuple(codes))
+
+
+def _rubber_checks(case_id: str, model: int, p: np.ndarray) -> None:
+    """What the rubber equations cover (solvers/models/rubber_bodies.py): the full model,
+    a support function without off-diagonal B, no potential on a sphere."""
+    if model != L.MODEL_FULL or any(p[s] != 0.0 for s in (L.B12, L.B13, L.B23)):
+        raise InputError(f"case {case_id}: the rubber constraint is modelled for the (M, gamma) "
+                         "bodies with principal-axes ellipsoids only")
+    if p[L.CURV] != 0.0 and (p[L.GRAV] != 0.0 or p[L.BRUN] != 0.0):
+        raise InputError(f"case {case_id}: a potential on a sphere is not modelled for rubber "
+                         "bodies: g and eps must be 0 when k != 0")
+
+
+# |(omega, gamma)| a rubber state may have, relative to |omega| (and at least this absolute):
+# a state written with 16 digits keeps it
+RUBBER_STATE_TOL = 1e-12
 
 
 def initial_state(model: Model, state) -> np.ndarray:
@@ -243,7 +276,24 @@ def initial_state(model: Model, state) -> np.ndarray:
     y0 = np.array([_finite(n, v) for n, v in zip(labels, values, strict=True)])
     check_state(model.model, model.p, y0, shell=model.case.fixed_k is not None)
     check_derived(model, y0)
+    if model.case.constraint == "rubber":
+        check_no_spin(model, y0)
     return y0
+
+
+def check_no_spin(model: Model, y0: np.ndarray) -> None:
+    """A rubber state lies on (omega, gamma) = 0 (omega = I_Q^-1 M, eq1.6)."""
+    from solvers.kernels.fields import full_kinematics
+
+    y = np.ascontiguousarray(y0, dtype=float)
+    r, J, w, gd = np.empty(3), np.empty((3, 3)), np.empty(3), np.empty(3)
+    full_kinematics(model.p, y[0:3], y[3:6], r, J, w, gd)
+    spin = float(w @ y[3:6])
+    if not abs(spin) <= RUBBER_STATE_TOL * max(1.0, float(np.linalg.norm(w))):
+        raise InputError(
+            f"(omega, gamma) = {spin:.3g}: a rubber body does not spin about the normal, so "
+            "its state needs omega = I_Q^-1 M orthogonal to gamma (M = I_Q omega with "
+            "(omega, gamma) = 0; I_Q = I + m (r^2 E - r r^T), eq1.6)")
 
 
 def check_derived(model: Model, y0: np.ndarray, blame: str | None = None) -> None:

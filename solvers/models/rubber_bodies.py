@@ -159,6 +159,21 @@ CASES: dict[str, dict] = {
 }
 
 
+def from_vector(p) -> RubberBody:
+    """The RubberBody of a kernel parameter vector p (solvers/kernels/layout.py), as
+    solvers.models.cases.build fills it for a rubber case: the NumPy derivations then run
+    the registry's cases (simulate's reference route, the comparison tests)."""
+    from solvers.kernels import layout as L
+
+    p = [float(x) for x in p]
+    if any(p[s] != 0.0 for s in (L.B12, L.B13, L.B23)) or p[L.FLAT_Z] != 0.0:
+        raise InputError("only principal-axes ellipsoids, balls and disks are rubber bodies here")
+    return RubberBody(I=tuple(p[L.I1:L.I3 + 1]), m=p[L.MASS], k=p[L.CURV], g=p[L.GRAV],
+                      eps=p[L.BRUN], S=tuple(p[L.S1:L.S3 + 1]),
+                      B=(p[L.B11], p[L.B22], p[L.B33]), c=p[L.BALL_C], d=p[L.DISK_D],
+                      a=tuple(p[L.A1:L.A3 + 1]))
+
+
 def body(case_id: str, **override) -> RubberBody:
     """The RubberBody of a named case, with any parameter overridden."""
     if case_id not in CASES:
