@@ -18,7 +18,13 @@ import numpy as np
 import pytest
 
 from solvers.models.cases import build
-from solvers.models.observables import RUBBER, omega, rubber_integrals, series
+from solvers.models.observables import (
+    RUBBER,
+    RUBBER_INTEGRALS,
+    omega,
+    rubber_integrals,
+    series,
+)
 from solvers.scenes.rerun import moved
 from solvers.scenes.scene_checks import _run, run_checks
 from solvers.scenes.teaching import PATH, load_scenes, parse
@@ -147,3 +153,21 @@ def _run_case(cid):
 
     spec = get_case(cid)
     return simulate(cid, spec.example, spec.state, 50.0, samples=501, rtol=1e-11, atol=1e-13)
+
+
+@pytest.mark.parametrize("cid", sorted(RUBBER_INTEGRALS))
+def test_each_rubber_integral_a_page_plots_is_constant_along_its_case(cid):
+    """The integrals the rubber case pages plot (observables.RUBBER_INTEGRALS), along a run
+    of the case's example: constant to 1e-8 (rtol 1e-11), while the state moves."""
+    from solvers.models.cases import get_case
+
+    spec = get_case(cid)
+    names = rubber_integrals(cid, spec.example)
+    assert names, cid
+    res = _run_case(cid)
+    assert res.ok, res.message
+    got = series(build(cid, spec.example), res.state, [*names, "spin", "gamma_norm_defect"])
+    for n in names:
+        assert _rel_change(got[n]) < 1e-8, (cid, n, _rel_change(got[n]))
+    assert np.max(np.abs(got["spin"])) < 1e-8 and np.max(np.abs(got["gamma_norm_defect"])) < 1e-8
+    assert np.ptp(res.state[:, 5]) > 1e-3            # the body does move
