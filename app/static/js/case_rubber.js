@@ -22,7 +22,7 @@ export function showRubber() {
   box.className = "beyond-paper";
   box.id = "beyond-paper";
   box.dataset.testid = "beyond-paper";
-  box.innerHTML = `<p><strong>Beyond the 2002 paper.</strong> ${escapeHtml(R.sentence)}</p>
+  box.innerHTML = `<p>${escapeHtml(R.sentence)}</p>
     <p><a href="${escapeHtml(R.equations_href)}" id="rubber-equations">The rubber equations (guide: Rubber rolling)</a>
     · <a href="${escapeHtml(R.table_href)}" id="rubber-table">the rubber table on the home page</a></p>`;
   $("facts").after(box);
