@@ -47,8 +47,10 @@ function thin(run) {
 function lines(el, title, ytitle, series, note) {
   const traces = series.map(([name, x, y], j) => ({ type: "scatter", mode: "lines", x, y, name,
     line: { width: 1.8, color: COLORS[j % COLORS.length] } }));
-  const layout = base(title, { xaxis: { title: { text: "t" } },
-    yaxis: { title: { text: ytitle }, exponentformat: "power" }, height: 380,
+  // automargin: the tick labels (1.5×10⁻¹⁰) and the axis titles keep their own room
+  const layout = base(title, { xaxis: { title: { text: "t", standoff: 8 }, automargin: true },
+    yaxis: { title: { text: ytitle, standoff: 6 }, exponentformat: "power", automargin: true },
+    height: 400,
     annotations: note ? [{ text: note, xref: "paper", yref: "paper", x: 1, y: 1.02,
       xanchor: "right", yanchor: "bottom", showarrow: false, font: { size: 11, color: "#57606a" } }] : [] });
   return window.Plotly.react(el, traces, layout, CONFIG);
