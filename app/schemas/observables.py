@@ -4,7 +4,7 @@ solvers/models/observables.py, so that a page plots them under the one name each
 
 from typing import Annotated
 
-from pydantic import BaseModel, Field
+from pydantic import BaseModel, ConfigDict, Field
 
 from app.schemas.common import FiniteFloat
 from app.schemas.simulate import CaseId
@@ -17,6 +17,8 @@ Row = Annotated[list[FiniteFloat], Field(min_length=6, max_length=6)]
 
 
 class ObservablesRequest(BaseModel):
+    # strict: a string "1.5" or false for 0 is a mistake to report, not to guess around
+    model_config = ConfigDict(extra="forbid", strict=True)
     case: CaseId
     params: dict[str, FiniteFloat] = Field(description="the run's parameters (as given to "
                                            "POST /api/simulate; the case's example fills "
