@@ -188,3 +188,21 @@ def test_api_takes_a_rubber_case():
             "state": registry()["plane/chaplygin-ball"].state})
         assert bad.status_code == 422, bad.text
         assert "does not spin" in bad.text
+
+
+@pytest.mark.parametrize("kw", [dict(method="vern9"), dict(method="gauss4", step=0.02),
+                                dict(method="taylor"), dict(method="auto"),
+                                dict(method="dop853", project=True)],
+                         ids=["vern9", "gauss4", "taylor", "auto", "projected"])
+def test_every_kind_of_method_runs_the_rubber_field(kw):
+    """Each route (small kernel, Gauss collocation, heyoka's Taylor integrator on the
+    generated equations, auto, rk.py with projection) follows the scipy run of the
+    Lagrange-d'Alembert field and keeps (omega, gamma) = 0."""
+    spec = registry()["rubber-sphere/ball-inside"]
+    ref = solvers.simulate(spec.id, spec.example, spec.state, t_end=10.0, samples=11,
+                           method="scipy-dop853", rtol=1e-12, atol=1e-14)
+    res = solvers.simulate(spec.id, spec.example, spec.state, t_end=10.0, samples=11,
+                           **({"rtol": 1e-11, "atol": 1e-13} if "step" not in kw else {}), **kw)
+    assert res.ok, res.message
+    assert np.max(np.abs(res.invariants["spin"])) < 1e-9
+    assert np.max(np.abs(res.state - ref.state)) < 1e-6

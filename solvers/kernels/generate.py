@@ -164,6 +164,9 @@ def equations(model: int, p, fold: bool = False):
             P.append(sp.Float(float(p[i]), 17) if float(p[i]) != 1.0 else sp.Integer(1))
         else:
             P.append(sp.Symbol(name, real=True))
+    # the rubber slot is a flag of the structure (the reaction is added or not), no value
+    # the equations read
+    P[L.RUBBER] = sp.Integer(0)
     prog = Program()
     m, k = P[L.MASS], P[L.CURV]
     S = P[L.S1:L.S3 + 1]
