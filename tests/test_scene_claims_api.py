@@ -66,6 +66,14 @@ def test_every_check_passes_and_its_plot_is_its_data(patient_client, sid, k):
         assert times[0] == d["value"] <= check.before
         avg = _values(claim[0])
         assert avg[0] > 0 > avg[-1] or avg[0] < 0 < avg[-1]   # it changed sign
+    elif check.kind == "no_spin":
+        # (omega, gamma) of both bodies: the rubber one's (beside) is the value, at zero;
+        # the marble one's leaves zero
+        run = {tr["run"]: tr for tr in p["traces"]}
+        assert run["beside"]["role"] == "claim"
+        assert np.nanmax(np.abs(_values(run["beside"]))) == d["value"] <= check.tol
+        assert np.nanmax(np.abs(_values(run["main"]))) >= check.marble_min
+        assert _values(run["main"])[0] == pytest.approx(0.0, abs=1e-12)   # the same start
     elif check.expect == "condenses":
         y = _values(claim[0])
         ratio = np.median(y[:100]) / np.median(y[-100:])

@@ -7,6 +7,7 @@ from app.api.routes import (
     catalogue,
     errata,
     health,
+    observables,
     poincare,
     reader,
     scenes,
@@ -22,6 +23,6 @@ from app.schemas.common import GUARD_RESPONSES, PROBLEM_RESPONSES
 # (and 400, which the Host allow-list answers to any request)
 api_router = APIRouter(prefix="/api", responses={**PROBLEM_RESPONSES,
                                                  400: GUARD_RESPONSES[400]})
-for module in (health, reader, cases, tables, simulate, verify, errata, catalogue, poincare, scenes,
-               work_precision):
+for module in (health, reader, cases, tables, simulate, observables, verify, errata, catalogue,
+               poincare, scenes, work_precision):
     api_router.include_router(module.router)

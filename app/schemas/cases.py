@@ -138,6 +138,12 @@ class CasePublic(CaseHead):
         "(catalogue/since_2002.yaml): record, kind, note, found_later, access, project, "
         "references resolved to their citations")
     verification: str = Field(description="done | running | idle | unavailable | failed")
+    rubber: dict[str, Any] | None = Field(None, description="for a rubber case (rolling "
+                                          "without slipping or spinning, beyond the 2002 "
+                                          "paper): sentence, equations_href, table_href, "
+                                          "cells (its rubber table cells: row, mark, "
+                                          "statement, href), quantities (name, label) "
+                                          "plotted along a run (POST /api/observables)")
     notation: list[SymbolRef] = Field(default_factory=list, description="every symbol of the "
                                       "page's typeset formulas (cells, claims, corrected "
                                       "forms), each with its entry on /notation")

@@ -82,13 +82,18 @@ def prepare_scene_check(scene_id: str) -> int:
     from solvers.models.cases import registry
     from solvers.scenes.teaching import load_scenes
 
-    run = load_scenes()[scene_id].scene
-    case = registry()[run.case]
-    req = {"case": run.case, "params": {**case.example, **run.params},
-           "state": list(run.state or case.state), "rtol": run.rtol, "atol": run.atol,
-           "allow_any_inertia": True, "method": "dop853", "project": False,
-           "precision": None, "field": "auto"}
-    return prepare_scene(req) + prepare_kernels(req)
+    preset = load_scenes()[scene_id]
+    run = preset.scene
+    n = 0
+    # a body rolled beside the scene's own (marble against rubber) runs the same declaration
+    for cid in (run.case, *((preset.beside.case,) if preset.beside else ())):
+        case = registry()[cid]
+        req = {"case": cid, "params": {**case.example, **run.params},
+               "state": list(run.state or case.state), "rtol": run.rtol, "atol": run.atol,
+               "allow_any_inertia": True, "method": "dop853", "project": False,
+               "precision": None, "field": "auto"}
+        n += prepare_scene(req) + prepare_kernels(req)
+    return n
 
 
 def simulate_json(req: dict, max_steps: int, prov: dict | None = None) -> bytes:

@@ -276,12 +276,50 @@ def _cited_model(case: Case) -> dict:
             "conditions_text": phrases(conds)}
 
 
+RUBBER_SENTENCE = (
+    "Beyond the 2002 paper: this body rolls without slipping and without spinning about the "
+    "normal, (ω, γ) = 0 (the rubber model). The paper's Tables 1 and 2 treat only rolling "
+    "without slipping; the equations, their two derivations and the checks are the "
+    "project's, with the literature each cell cites.")
+RUBBER_EQUATIONS = "/guide/rubber/#equations"
+
+
+def rubber_block(spec: CaseSpec) -> dict | None:
+    """What a rubber case's page adds: that it is beyond the 2002 paper, where its equations
+    are (the guide's docs/rubber.md), its cells in the rubber tables of the home page, and
+    the quantities its run plots (solvers/models/observables.py RUBBER)."""
+    if getattr(spec, "constraint", "marble") != "rubber":
+        return None
+    from app.services.anchors import claim_anchor
+    from catalogue.rubber_schema import load_rubber
+    from solvers.models.observables import RUBBER, rubber_integrals
+
+    _sources, *tables = load_rubber()
+    cells = []
+    table_id = f"rubber_{spec.surface}"
+    for t in tables:
+        for c in t.cases:
+            if c.model != spec.id:
+                continue
+            table_id = t.id
+            cells += [{"case": c.id, "row": row.value, "mark": cell.mark.value,
+                       "statement": cell.statement,
+                       "href": "/#" + claim_anchor(f"{c.id}/cell/{row.value}")}
+                      for row, cell in c.cells.items()]
+    names = ["spin", "gamma_norm_defect", *rubber_integrals(spec.id, spec.example)]
+    return {"sentence": RUBBER_SENTENCE, "equations_href": RUBBER_EQUATIONS,
+            "table_href": f"/#tbl-{table_id}", "cells": cells,
+            "quantities": [{"name": "energy", "label": "energy H = (M, ω)/2 + U"}]
+            + [{"name": n, "label": RUBBER[n][0]} for n in names]}
+
+
 def beyond_detail(spec: CaseSpec) -> dict:
     """A case beyond the tables as its page and GET /api/cases/{id} show it: what runs,
-    and the note in place of cells and claims (nothing to check: verification done)."""
+    and the note in place of cells and claims (nothing to check: verification done); a
+    rubber case also its `rubber` block (rubber_block)."""
     run = runnable(spec)
     note = spec.note or "Not a case of the paper's Tables 1 and 2."
-    return {**beyond_summary(spec),
+    return {**beyond_summary(spec), "rubber": rubber_block(spec),
             "model": {"support": spec.surface, "body": spec.body,
                       "state": (StateVariables.M_GAMMA.value if len(run["state_labels"]) == 6
                                 else ", ".join(run["state_labels"])), "equations": [],

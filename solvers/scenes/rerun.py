@@ -1,5 +1,6 @@
 """A teaching scene run again with its sliders moved (catalogue/scenes.yaml `sliders`):
-the preset with the new parameter or initial-state values, validated as a preset is,
+the preset with the new parameter or initial-state values, validated as a preset is (a
+scene with a body beside keeps its start's omega and gamma, `same_omega`),
 and every check of the scene evaluated on that new run (POST /api/scenes/{id}/run), so
 that the verdict a class sees after moving a slider is measured, never carried over.
 
@@ -41,10 +42,35 @@ def moved(preset, values: dict[str, float]):
             decl["params"][s.param] = float(v) * s.factor
         else:
             decl["state"][s.state] = float(v) * s.factor
+    if preset.beside is not None:
+        decl["state"] = same_omega(preset, decl["params"])
     try:
         return Scene(**{**preset.model_dump(mode="json"), "scene": decl})
     except ValueError as exc:
         raise InputError(f"scene {preset.id!r} with {values}: {exc}") from None
+
+
+def same_omega(preset, params: dict) -> list[float]:
+    """The preset's start with new parameters for a scene with a body beside (marble
+    against rubber): gamma and the angular velocity omega of the preset's start kept, so
+    (omega, gamma) = 0 still holds (the rubber manifold), and M = I_Q omega under the new
+    parameters. Changing only I or m leaves the start's motion, not its momentum, alone."""
+    import numpy as np
+
+    from solvers.kernels.fields import contact_inertia, full_kinematics
+    from solvers.models.cases import build
+    from solvers.models.observables import omega
+
+    sc = preset.scene
+    w = omega(build(sc.case, sc.params), sc.state)[0]
+    new = build(sc.case, params)
+    g = np.ascontiguousarray(sc.state[3:6], dtype=float)
+    r, J, w_, gd, IQ = np.empty(3), np.empty((3, 3)), np.empty(3), np.empty(3), np.empty((3, 3))
+    full_kinematics(new.p, np.ascontiguousarray(sc.state[0:3], dtype=float), g, r, J, w_, gd)
+    contact_inertia(new.p, r, IQ)
+    if not np.all(np.isfinite(w)) or not np.all(np.isfinite(r)):
+        raise InputError(f"scene {preset.id!r}: the start is singular with {params}")
+    return [*map(float, IQ @ w), *map(float, g)]
 
 
 def rerun_json(scene_id: str, values: dict[str, float]) -> dict:

@@ -14,6 +14,8 @@ from dataclasses import asdict, dataclass, field
 import numpy as np
 
 from solvers.models.cases import build
+from solvers.models.observables import RUBBER
+from solvers.models.observables import series as observed
 from solvers.simulate import simulate
 
 # what a reader calls each integral (the plot's legend); the keys are
@@ -23,6 +25,7 @@ PRETTY = {
     "jellett": "Jellett (M, r)", "routh": "Routh integral",
     "unbalanced_F": "M² − m r² (M, ω)", "borisov_fedorov": "Borisov–Fedorov (M, Aγ)",
     "gyro_M2": "(M+S)²", "gyro_area": "(M+S, γ)",
+    **{n: label for n, (label, _f) in RUBBER.items()},
 }
 
 
@@ -44,10 +47,22 @@ def _list(a) -> list:
     return [float(v) if np.isfinite(v) else None for v in np.asarray(a, dtype=float)]
 
 
-def _run(preset, samples=2001):
+def _run(preset, samples=2001, which="main"):
+    """The scene's run, or (which = "beside") the same run of the body beside it."""
     sc = preset.scene
-    return simulate(sc.case, sc.params, sc.state, sc.t_end, samples=samples,
+    case = preset.beside.case if which == "beside" else sc.case
+    return simulate(case, sc.params, sc.state, sc.t_end, samples=samples,
                     rtol=1e-11, atol=1e-13)
+
+
+def _values(scene, res, names, which="main") -> dict:
+    """The named quantities along the run: the kernels' integrals as the run reports them,
+    the others (solvers/models/observables.py RUBBER) from its states."""
+    case = scene.beside.case if which == "beside" else scene.scene.case
+    other = [n for n in names if n not in res.invariants]
+    extra = observed(build(case, scene.scene.params), res.state, other) if other else {}
+    return {n: np.asarray(res.invariants[n] if n in res.invariants else extra[n], dtype=float)
+            for n in names}
 
 
 def _drift_series(v) -> np.ndarray:
@@ -91,12 +106,12 @@ def check_integrals(scene, check, res=None) -> CheckResult:
 def check_conserved(scene, check, res=None) -> CheckResult:
     """The integrals themselves against time on linear axes: flat lines beside gamma3,
     which moves; the verdict is that of check_integrals, taken from these values."""
-    res = res or _run(scene)
-    missing = [n for n in check.names if n not in res.invariants]
+    res = res or _run(scene, which=check.run)
+    missing = [n for n in check.names if n not in res.invariants and n not in RUBBER]
     if missing:
         return CheckResult("conserved", False, float("nan"),
                            f"the case does not carry {missing} with these parameters")
-    values = {n: np.asarray(res.invariants[n], dtype=float) for n in check.names}
+    values = _values(scene, res, check.names, check.run)
     worst = max(float(_drift_series(v).max()) for v in values.values())
     ok = res.ok and worst <= check.tol
     t = res.t
@@ -137,6 +152,33 @@ def check_stays_up(scene, check, res=None) -> CheckResult:
     return CheckResult("stays_up", ok, low, f"min sqrt(g1^2 + g2^2) = {low:.4f} over "
                        f"t <= {res.t[-1]:g} (needs >= {check.min_tilt}): tilt at most "
                        f"{tilt.max():.1f} deg", plot)
+
+
+def check_no_spin(scene, check, res=None, res_beside=None) -> CheckResult:
+    """(omega, gamma) of both bodies against time: the rubber body's (beside) stays at zero
+    within tol, the marble body's (the scene's own) leaves zero by marble_min."""
+    res = res or _run(scene)
+    res_beside = res_beside or _run(scene, which="beside")
+    marble = _values(scene, res, ["spin"])["spin"]
+    rubber = _values(scene, res_beside, ["spin"], "beside")["spin"]
+    m_max, r_max = float(np.nanmax(np.abs(marble))), float(np.nanmax(np.abs(rubber)))
+    ok = (res.ok and res_beside.ok and r_max <= check.tol and m_max >= check.marble_min
+          and bool(np.all(np.isfinite(rubber))))
+    b = scene.beside
+    traces = [{"name": f"{b.main_label}", "x": _list(res.t), "y": _list(marble),
+               "role": "contrast", "quantity": "spin", "run": "main"},
+              {"name": f"{b.label}", "x": _list(res_beside.t), "y": _list(rubber),
+               "role": "claim", "quantity": "spin", "run": "beside"}]
+    plot = {"title": "Spin about the normal (ω, γ)", "x_title": "time t",
+            "y_title": "(ω, γ)", "log_y": False, "traces": traces, "cursor": {"axis": "t"},
+            "headline": (f"{b.label}: zero (|(ω, γ)| ≤ {r_max:.0e}); {b.main_label}: up to "
+                         f"{m_max:.2f}")}
+    stopped = [f"{name} run stopped: {r.message}" for name, r in
+               ((b.main_label, res), (b.label, res_beside)) if not r.ok]
+    return CheckResult("no_spin", ok, r_max, f"max |(omega, gamma)| of the {b.label}: "
+                       f"{r_max:.2e} (needs <= {check.tol:g}); of the {b.main_label}: "
+                       f"{m_max:.3g} (needs >= {check.marble_min:g})"
+                       + "".join(f"; {m}" for m in stopped), plot)
 
 
 def averaged(t, y, window: float) -> tuple[np.ndarray, np.ndarray]:
@@ -248,35 +290,45 @@ _RUN_BASED = {"integrals": check_integrals, "conserved": check_conserved,
               "spin_reversal": check_spin_reversal}
 
 
-def run_check(scene, check, res=None) -> CheckResult:
+def _needs(check) -> tuple[str, ...]:
+    """The runs a check reads: the scene's own ("main"), the body's beside, or none (map)."""
+    if check.kind == "map":
+        return ()
+    if check.kind == "no_spin":
+        return ("main", "beside")
+    return (getattr(check, "run", "main"),)
+
+
+def run_check(scene, check, runs: dict | None = None) -> CheckResult:
+    """Check `check` of `scene`; `runs` ("main", "beside" -> a run) are reused, the
+    missing ones computed (and added to it)."""
+    runs = {} if runs is None else runs
+    for which in _needs(check):
+        if which not in runs:
+            runs[which] = _run(scene, which=which)
     if check.kind == "map":
         return check_map(scene, check)
-    return _RUN_BASED[check.kind](scene, check, res or _run(scene))
+    if check.kind == "no_spin":
+        return check_no_spin(scene, check, runs["main"], runs["beside"])
+    return _RUN_BASED[check.kind](scene, check, runs[_needs(check)[0]])
 
 
 def run_checks(scene) -> list[CheckResult]:
-    """Every check of the scene (one run of the scene shared by the run-based checks)."""
-    res = None
-    out = []
-    for c in scene.checks:
-        if c.kind != "map":
-            res = res or _run(scene)
-        out.append(run_check(scene, c, res))
-    return out
+    """Every check of the scene (each run of the scene shared by the run-based checks)."""
+    runs: dict = {}
+    return [run_check(scene, c, runs) for c in scene.checks]
 
 
-_runs: dict[str, object] = {}
+_runs: dict[str, dict] = {}
 
 
 def check_json(scene_id: str, k: int) -> dict:
     """Check k of scene `scene_id` with its plot, for GET /api/scenes/{id}/checks/{k}
-    (a worker process: the scene's run is kept for its other checks)."""
+    (a worker process: the scene's runs are kept for its other checks)."""
     from solvers.scenes.teaching import load_scenes
 
     scene = load_scenes()[scene_id]
     check = scene.checks[k]
-    res = None
-    if check.kind != "map":
-        res = _runs.get(scene_id) or _runs.setdefault(scene_id, _run(scene))
-    return {**run_check(scene, check, res).to_json(), "caption": check.caption,
+    runs = _runs.setdefault(scene_id, {})
+    return {**run_check(scene, check, runs).to_json(), "caption": check.caption,
             "index": k, "count": len(scene.checks)}

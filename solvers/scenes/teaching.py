@@ -7,7 +7,9 @@ the catalogue itself imports no solver.
 Each preset is a short explanation for a class, the claim it demonstrates, the paper's
 labels, the run itself as the scene planner's declaration (`scene`: a
 `solvers.scenes.scenes.Scene` with the case, all its parameters, the initial state, t_end, what
-is shown and how many samples / frames), and the checks that show the claim on that run
+is shown and how many samples / frames), optionally a second body rolled from the same start
+beside it (`beside`: the same run on another case, a rubber ball beside a marble one), and
+the checks that show the claim on that run
 (`checks`, run by solvers.scenes.scene_checks and tests/test_scenes_catalogue.py). The schema is
 strict (extra="forbid"); `load_scenes()` also builds every model and validates every state.
 
@@ -27,6 +29,7 @@ from catalogue.load import DATA_DIR
 from solvers.errors import InputError
 from solvers.kernels.integrals import NAMES
 from solvers.models.cases import build, get_case, initial_state
+from solvers.models.observables import RUBBER
 from solvers.scenes.scenes import Scene as SceneDeclaration
 
 PATH = DATA_DIR / "scenes.yaml"
@@ -85,15 +88,28 @@ class MapCheck(_Check):
 class ConservedCheck(_Check):
     """The named integrals as values against time on linear axes (what a class reads: a
     flat line), with the same verdict as `integrals`: max |F(t) - F(0)| / max(|F(0)|, 1)
-    <= tol, measured on the plotted values."""
+    <= tol, measured on the plotted values. A name is a kernel integral
+    (solvers/kernels/integrals.py NAMES) or a rubber quantity (solvers/models/observables.py
+    RUBBER); `run` says whose run: the scene's own, or that of the body rolled beside it."""
 
     kind: Literal["conserved"]
     names: list[str] = Field(min_length=1)
     tol: float = Field(1e-8, gt=0)
+    run: Literal["main", "beside"] = "main"
+
+
+class NoSpinCheck(_Check):
+    """Marble against rubber from the same start: the spin about the normal (omega, gamma)
+    of the body beside (rubber) stays within `tol` of zero, while that of the scene's own
+    body (marble) leaves zero by at least `marble_min` (both on the plotted values)."""
+
+    kind: Literal["no_spin"]
+    tol: float = Field(1e-8, gt=0)
+    marble_min: float = Field(gt=0)
 
 
 Check = Annotated[IntegralsCheck | ConservedCheck | StaysUpCheck | SpinReversalCheck
-                  | MapCheck, Field(discriminator="kind")]
+                  | MapCheck | NoSpinCheck, Field(discriminator="kind")]
 
 
 class Slider(_Strict):
@@ -122,6 +138,16 @@ class Slider(_Strict):
         return self
 
 
+class Beside(_Strict):
+    """A second body rolled beside the scene's own, in the same 3D view's time: the same run
+    (parameters, initial state, t_end, frames) on another case (a rubber case beside its
+    marble one). `label` names each body under its view."""
+
+    case: str
+    label: str = Field(min_length=3, description="the body beside, in plain words")
+    main_label: str = Field(min_length=3, description="the scene's own body, in plain words")
+
+
 class Scene(_Strict):
     id: str = Field(pattern=r"^[a-z0-9]+(-[a-z0-9]+)*$")
     title: str
@@ -139,6 +165,8 @@ class Scene(_Strict):
                           "presentation mode of /scenes")
     sliders: list[Slider] = Field(default_factory=list, max_length=2, description="what "
                                   "a class may change and run again")
+    beside: Beside | None = Field(None, description="a second body rolled from the same "
+                                  "start beside the scene's own (marble against rubber)")
 
     @model_validator(mode="after")
     def _runnable(self):
@@ -150,11 +178,16 @@ class Scene(_Strict):
                 raise InputError(f"give every required parameter ({missing} missing) and "
                                  "the state: a preset does not lean on the case's example")
             initial_state(build(sc.case, sc.params), sc.state)
+            if self.beside is not None:
+                initial_state(build(self.beside.case, sc.params), sc.state)
         except InputError as exc:
             raise ValueError(f"scene {self.id}: {exc}") from None
         if "animation" not in sc.shows:
             raise ValueError(f"scene {self.id}: a teaching scene plays: shows must "
                              "include animation")
+        if self.beside is not None and any(sl.state is not None for sl in self.sliders):
+            raise ValueError(f"scene {self.id}: a scene with a body beside takes parameter "
+                             "sliders only (its start is kept on the rubber manifold)")
         for sl in self.sliders:
             now = sc.params.get(sl.param) if sl.param else sc.state[sl.state]
             if sl.param and sl.param not in sc.params:
@@ -165,9 +198,14 @@ class Scene(_Strict):
                                  f"range [{sl.min}, {sl.max}]")
         for c in self.checks:
             if isinstance(c, IntegralsCheck | ConservedCheck):
-                bad = [n for n in c.names if n not in NAMES]
+                known = (*NAMES, *RUBBER) if isinstance(c, ConservedCheck) else NAMES
+                bad = [n for n in c.names if n not in known]
                 if bad:
                     raise ValueError(f"scene {self.id}: unknown integrals {bad}")
+            if (isinstance(c, NoSpinCheck) or getattr(c, "run", "main") == "beside") \
+                    and self.beside is None:
+                raise ValueError(f"scene {self.id}: a {c.kind} check on the body beside "
+                                 "needs `beside`")
         return self
 
 

@@ -60,7 +60,7 @@ BODY_BOX = """async (sel) => {
 }"""
 
 
-def claimed_names(check) -> set[str]:
+def claimed_names(check, scene) -> set[str]:
     """The legend entries of the quantity the check is about."""
     if check.kind in ("integrals", "conserved"):
         return {PRETTY[n] for n in check.names}
@@ -68,6 +68,8 @@ def claimed_names(check) -> set[str]:
         return {"tilt"}
     if check.kind == "spin_reversal":
         return {f"spin averaged over {check.window:g}"}
+    if check.kind == "no_spin":
+        return {scene.beside.label, scene.beside.main_label}
     return {"returns (l, L/G)"} if check.expect == "curve" else {
         f"|x(n+{check.period}) − x(n)|"}
 
@@ -91,7 +93,7 @@ def plots_its_claim(page, scene_id):
         el = plots.nth(k)
         el.locator(".main-svg").first.wait_for(state="attached")
         names = set(el.evaluate("e => e.data.map((t) => t.name)"))
-        assert claimed_names(check) <= names, (k, names)
+        assert claimed_names(check, s) <= names, (k, names)
         # the plotted numbers are the check's own (the API answer the verdict came from)
         same = el.evaluate(f"""async (e) => {{
             const d = await (await fetch('/api/scenes/{scene_id}/checks/{k}')).json();
@@ -125,7 +127,9 @@ def in_the_projectors_view(page):
 
 
 def frames_the_body(page, scene_id):
-    b = page.evaluate(BODY_BOX, "#scene-plot")
+    # two bodies side by side (a scene with `beside`): the first view
+    pair = SCENES[scene_id].beside is not None
+    b = page.evaluate(BODY_BOX, "#scene-plot .pair-view" if pair else "#scene-plot")
     assert b["body"] >= 0 and b["x1"] > b["x0"] and b["y1"] > b["y0"], b
     w, h = (b["x1"] - b["x0"]) / b["W"], (b["y1"] - b["y0"]) / b["H"]
     # the body spans a good part of the view one way or the other (a long stone lies

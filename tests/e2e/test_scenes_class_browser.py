@@ -191,7 +191,8 @@ def slider_reruns(page, sid):
     assert float(q["t_end"][0]) == s.scene.t_end
 
 
-@pytest.mark.parametrize("sid", list(SCENES))
+# a scene with a body beside (two 3D views) has its own test: tests/e2e/test_rubber_scene_browser.py
+@pytest.mark.parametrize("sid", [sid for sid, s in SCENES.items() if s.beside is None])
 def test_a_scene_for_a_class(page, server, sid):
     page.set_viewport_size({"width": W, "height": H})
     opens_and_plays(page, server, sid)

@@ -5,11 +5,8 @@ parameters, initial state and t_end of its `scene` declaration, frames = its sam
 
 from __future__ import annotations
 
-from typing import Any
-
 from fastapi import APIRouter, HTTPException, Request
 from fastapi.responses import HTMLResponse, Response
-from pydantic import BaseModel, Field
 
 from app.api.deps import JSON_ONLY, PoolDep, SettingsDep
 from app.core.disconnect import cancel_on_disconnect
@@ -19,31 +16,12 @@ from app.schemas.common import (
     GUARD_RESPONSES,
     PROBLEM_RESPONSES,
 )
+from app.schemas.scene_rerun import RerunRequest, RerunResponse
+from app.schemas.scenes import SceneCheck, ScenePreset
 from app.services.reader_pages import static_page
 
 router = APIRouter(tags=["scenes"])
 pages = APIRouter(include_in_schema=False)
-
-
-class ScenePreset(BaseModel):
-    id: str
-    title: str
-    explanation: str
-    claim: str
-    paper: list[str]
-    paper_numbers: list[str] = Field(default_factory=list, description="`paper` as the "
-                                     "printed paper numbers it: (2.24), Fig. 3")
-    scene: dict[str, Any] = Field(description="the run as the scene planner declares it "
-                                  "(solvers/scenes/scenes.py): case, params, state, t_end, shows, "
-                                  "samples (the frames of the animation)")
-    checks: list[dict[str, Any]]
-    plot: str | None = Field(None, description="the series of POST /api/scene plotted "
-                             "against time beside the animation")
-    sentence: str = Field("", description="the claim in one plain sentence (presentation)")
-    sliders: list[dict[str, Any]] = Field(default_factory=list, description="controls "
-                                          "that change the physics: name, label, symbol "
-                                          "(TeX), units, param or state, min, max, step, "
-                                          "factor (run value = shown value * factor)")
 
 
 def _public(s) -> dict:
@@ -73,20 +51,6 @@ async def scene_preset(scene_id: str) -> dict:
         raise HTTPException(404, f"unknown scene {scene_id!r}; known scenes: "
                             + ", ".join(load_scenes()))
     return _public(s)
-
-
-class SceneCheck(BaseModel):
-    kind: str
-    passed: bool
-    value: float | None
-    detail: str
-    caption: str = Field(description="plain words: what to look for in the plot")
-    index: int
-    count: int = Field(description="how many checks the scene has")
-    plot: dict[str, Any] | None = Field(description="the data the verdict was taken from: "
-                                        "title, x_title, y_title, log_y, traces [{name, x, y, "
-                                        "role: claim | contrast | limit | raw | event}], "
-                                        "headline")
 
 
 # the presets are fixed: a check's answer is computed once per server process
@@ -121,19 +85,6 @@ async def scene_check(scene_id: str, k: int, request: Request, pool: PoolDep,
             check_json, scene_id, k, deadline=settings.deadline_s))
         body = _checks.setdefault((scene_id, k), dumps(d))
     return Response(body, media_type="application/json")
-
-
-class RerunRequest(BaseModel):
-    values: dict[str, float] = Field(description="slider name -> value in the slider's "
-                                     "units, within its range")
-
-
-class RerunResponse(BaseModel):
-    id: str
-    values: dict[str, float]
-    scene: dict[str, Any] = Field(description="the moved run: case, params, state, t_end, "
-                                  "samples (POST /api/scene draws it)")
-    checks: list[SceneCheck]
 
 
 @router.post("/scenes/{scene_id}/run", dependencies=[JSON_ONLY], response_model=RerunResponse,

@@ -1,5 +1,6 @@
 // A case's page (/case/<id>, a permalink): the case in the table, every claim with its
-// printed formula, source and verdict, and a simulate panel with plots and a 3D scene.
+// printed formula, source and verdict, and a simulate panel with plots and a 3D scene; a
+// rubber case (beyond the 2002 paper) also its rubber cells and plots (case_rubber.js).
 "use strict";
 
 import { api, ApiError, download, escapeHtml, fmt } from "./api.js";
@@ -12,6 +13,7 @@ import { Scene } from "./scene.js";
 import { glossary, tipHtml } from "./glossary.js";
 import { $, C, setCase } from "./case_state.js";
 import { followChecking, reverify, showCells, showClaims, showHead } from "./case_claims.js";
+import { isRubber, plotRubber, showRubber } from "./case_rubber.js";
 
 const caseId = decodeURIComponent(location.pathname.replace(/^\/case\//, "").replace(/\/$/, ""));
 const PRETTY = { g1: "γ₁", g2: "γ₂", g3: "γ₃", M1: "M₁", M2: "M₂", M3: "M₃", r1: "r₁", r2: "r₂",
@@ -312,6 +314,13 @@ async function showPlots(res) {
   performance.mark("run:first-plot");
   await plotDrift($("plot-drift"), res);
   await plotGamma($("plot-gamma"), res);
+  if (isRubber()) {
+    try {
+      await plotRubber(res, lastRun.request);
+    } catch (err) {
+      $("runinfo").insertAdjacentHTML("beforeend", `<br><span class="error">The rubber plots failed: ${escapeHtml(err.message)}</span>`);
+    }
+  }
   performance.mark("run:plots");
 }
 
@@ -398,6 +407,7 @@ async function main() {
   }
   showHead();
   showCells();
+  if (isRubber()) showRubber();
   showClaims();
   resetForm();
   showKernels(kernels);

@@ -1,7 +1,8 @@
 // Thumbnails of the teaching scenes on /scenes: a small SVG of each scene's body drawn from
 // its own parameters and initial state (catalogue/scenes.yaml), no image files: a ball with
 // its centre of mass where the parameters put it, a coin at its starting tilt, the
-// rattleback's half-ellipsoid with its semi-axes, the ball over its fixed ball.
+// rattleback's half-ellipsoid with its semi-axes, the ball over its fixed ball, a marble
+// ball beside a rubber one.
 "use strict";
 
 const W = 120, H = 84, FLOOR = 72;
@@ -65,13 +66,31 @@ function overSphere(p) {
     <circle cx="${cx}" cy="${cy}" r="4" fill="${CM}"/>`;
 }
 
+// a marble ball (left, twisting about the vertical: a curled arrow) beside a rubber ball
+// (right, darker, that does not twist: a crossed-out curl), each with its inertia ellipse
+function pair(p) {
+  const r = 22, cy = FLOOR - r;
+  const one = (cx, fill, stroke) => {
+    const k = 1 / Math.sqrt(p.I1 || 1), l = 1 / Math.sqrt(p.I3 || p.I2 || 1);
+    const s = 0.75 * r / Math.max(k, l);
+    return `<circle cx="${cx}" cy="${cy}" r="${r}" fill="${fill}" stroke="${stroke}" stroke-width="2.5"/>
+      <ellipse cx="${cx}" cy="${cy}" rx="${f(s * k)}" ry="${f(s * l)}" fill="none" stroke="#f0c419" stroke-width="2"/>
+      <path d="M${cx - 12} ${cy - r - 7} a 12 4 0 1 1 7 3" fill="none" stroke="${PATH}" stroke-width="2.2"/>`;
+  };
+  const L = 32, R = W - 32;
+  return `${floor}${one(L, "#dbe7f3", BODY)}${one(R, "#3a3f44", INK)}
+    <line x1="${R - 14}" y1="${cy - r - 2}" x2="${R + 14}" y2="${cy - r - 14}" stroke="${CM}" stroke-width="2.5"/>`;
+}
+
 /** The thumbnail of scene `s` (a preset of GET /api/scenes) as SVG markup. */
 export function thumbnail(s) {
   const sc = s.scene, p = sc.params, kind = sc.case.split("/")[1];
   let inner;
-  if (sc.case.startsWith("sphere/")) inner = overSphere(p);
+  if (s.beside) inner = pair(p);
+  else if (sc.case.startsWith("sphere/")) inner = overSphere(p);
   else if (kind === "round-disk") inner = disk(p, sc.state);
   else if (kind === "rattleback") inner = rattleback(p);
   else inner = ball(p);
-  return svg(inner, `sketch of the body: ${sc.case}`);
+  return svg(inner, s.beside ? `sketch of the bodies: ${sc.case} beside ${s.beside.case}`
+    : `sketch of the body: ${sc.case}`);
 }

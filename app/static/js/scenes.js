@@ -6,13 +6,15 @@
 // (POST /api/scenes/{id}/run); a presentation mode (button, or ?present=1) sizes all text
 // for a projector; "Open in the simulator" carries the run to its case page.
 // /scenes#ID opens scene ID and plays it at once (the home page links there); v.NAME=value
-// in the query moves slider NAME before the scene plays.
+// in the query moves slider NAME before the scene plays. A scene with a body beside (marble
+// against rubber) plays both runs side by side in one time (scene_pair.js).
 "use strict";
 
 import { api, escapeHtml } from "./api.js";
 import { runQuery } from "./permalink.js";
 import { plotClaim, purge } from "./plots.js";
 import { Scene } from "./scene.js";
+import { ScenePair } from "./scene_pair.js";
 import { claimFonts, TimeCursor } from "./scene_cursors.js";
 import { thumbnail } from "./scene_thumbs.js";
 
@@ -197,14 +199,18 @@ async function play(id, values = {}) {
   }
   $("claim-progress").classList.remove("error");
   $("open-sim").href = simulatorHref(sc);
+  const besideLine = s.beside ? ` · beside it: <a href="${escapeHtml(simulatorHref({ ...sc, case: s.beside.case }))}">${escapeHtml(s.beside.case)}</a>, the ${escapeHtml(s.beside.label)}` : "";
   $("scene-text").innerHTML = `<p>${escapeHtml(s.explanation)}</p>
-    <p class="status">Parameters: ${paramLine(sc)} · ${escapeHtml(sc.case)} · t = 0 … ${sc.t_end}
+    <p class="status">Parameters: ${paramLine(sc)} · ${escapeHtml(sc.case)}${besideLine} · t = 0 … ${sc.t_end}
     · ${escapeHtml((s.paper_numbers || []).join(", "))}</p>`;
   typeset($("scene-text"));
   performance.mark("scene:3d-request");
-  const data = api("/api/scene", { method: "POST", body: {
-    case: sc.case, params: sc.params, state: sc.state, t_end: sc.t_end, frames: sc.samples,
-  } }).then((d) => { performance.mark("scene:3d-data"); return d; });
+  const sceneOf = (caseId) => api("/api/scene", { method: "POST", body: {
+    case: caseId, params: sc.params, state: sc.state, t_end: sc.t_end, frames: sc.samples,
+  } });
+  // a body beside: both runs of the same start, drawn side by side
+  const data = (s.beside ? Promise.all([sceneOf(sc.case), sceneOf(s.beside.case)])
+    : sceneOf(sc.case)).then((d) => { performance.mark("scene:3d-data"); return d; });
   data.catch(() => {});      // a failure is shown by animate(), not as an unhandled rejection
   const n = s.checks.length;
   let anim = null;
@@ -228,7 +234,7 @@ async function play(id, values = {}) {
     if (k === 0) {
       performance.mark("scene:first-plot");
       document.body.dataset.claimed = s.id;
-      anim = animate(data, live, s.id);      // the 3D is drawn once the first plot is
+      anim = animate(data, live, s);      // the 3D is drawn once the first plot is
     }
   }
   if (!live()) return;
@@ -248,15 +254,22 @@ function onFrame(f, t) {
   for (const c of cursors) c.at(t);
 }
 
-async function animate(data, live, id) {
+async function animate(data, live, s) {
+  const id = s.id;
   setStatus("Computing the 3D animation…");
   try {
-    const d = await data;
+    const got = await data;
     if (!live()) return;
+    const runs = s.beside ? got : [got];
+    const d = runs[0];
     const span = `Rolling from t = 0 to t = ${d.t[d.t.length - 1].toFixed(0)} (the case's time unit).`;
-    const note = d.status !== "ok" ? `The run stopped early (${d.status}): ${d.message}. ${span}` : span;
+    const stopped = runs.filter((r) => r.status !== "ok")
+      .map((r) => `The run of ${r.case} stopped early (${r.status}): ${r.message}.`).join(" ");
+    const note = stopped ? `${stopped} ${span}` : span;
     setStatus("Drawing the 3D view…");
-    current = new Scene($("scene-plot"), d, { onFrame, present });
+    current = s.beside
+      ? new ScenePair($("scene-plot"), runs[0], runs[1], [s.beside.main_label, s.beside.label], { onFrame, present })
+      : new Scene($("scene-plot"), d, { onFrame, present });
     current.speed = Number($("speed").value);
     await current.render();
     if (!live()) return;

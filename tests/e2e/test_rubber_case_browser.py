@@ -1,0 +1,84 @@
+"""Browser: a rubber case's page (/case/rubber-plane/chaplygin-ball, beyond the 2002 paper).
+
+  * the page says the case is beyond the 2002 paper and links to the guide's rubber
+    equations and to its cells in the rubber tables of the home page;
+  * its cells in the rubber tables are listed with their marks;
+  * a run draws, besides the state, drift and gamma plots, the constraint (omega, gamma)
+    and |gamma| - 1, and the energy with the case's integral F = |M x gamma|^2, all against
+    time; the plotted numbers hold: the constraint and |gamma| - 1 at zero, F and the energy
+    constant (measured here on the traces as drawn);
+  * the 3D view animates the rubber ball.
+Screenshot: test-artifacts/e2e/rubber-case-1280.png (and ROLLING_DOC_SHOTS/, when set, for
+docs/screenshots/)."""
+
+import os
+from pathlib import Path
+
+import numpy as np
+from playwright.sync_api import expect
+
+CASE = "rubber-plane/chaplygin-ball"
+
+
+def _arr(y):
+    """A trace's values as drawn (null: a gap) as floats."""
+    return np.array([np.nan if v is None else v for v in y], dtype=float)
+
+
+def shots(artifacts):
+    out = [artifacts]
+    if os.environ.get("ROLLING_DOC_SHOTS"):
+        out.append(Path(os.environ["ROLLING_DOC_SHOTS"]))
+    return out
+
+
+def traces(page, sel):
+    return page.locator(sel).evaluate(
+        "e => e.data.map((t) => ({ name: t.name, y: Array.from(t.y) }))")
+
+
+def test_a_rubber_case_page_runs_and_plots_its_constraint_and_integrals(page, server, artifacts):
+    page.set_viewport_size({"width": 1280, "height": 900})
+    page.goto(f"{server}/case/{CASE}")
+    page.locator("body[data-ready='1']").wait_for(state="attached")
+    box = page.locator("[data-testid=beyond-paper]")
+    expect(box).to_contain_text("Beyond the 2002 paper")
+    assert page.locator("#rubber-equations").get_attribute("href") == "/guide/rubber/#equations"
+    assert page.locator("#rubber-table").get_attribute("href") == "/#tbl-rubber_plane"
+    cells = page.locator("[data-testid=rubber-cell]")
+    # measure, integrals, gyrostat, Brun field, Hamiltonian form, integrability
+    expect(cells).to_have_count(6)
+    hrefs = [cells.nth(i).get_attribute("href") for i in range(6)]
+    assert all(h.startswith("/#claim-rubber-plane_chaplygin-ball_cell_") for h in hrefs), hrefs
+    expect(page.locator("[data-testid=rubber-cells]")).to_contain_text("|M x gamma|^2")
+    # a run, as the example fills the form
+    expect(page.locator("#formmsg")).to_contain_text("valid", timeout=60_000)
+    page.fill("#f-t_end", "60")
+    page.click("#run")
+    page.locator("body[data-rubber-plots='1']").wait_for(state="attached", timeout=180_000)
+    expect(page.locator("#runinfo")).to_contain_text("ok")
+    c = {t["name"]: _arr(t["y"]) for t in traces(page, "#plot-constraint")}
+    assert set(c) == {"(ω, γ), the spin about the normal", "|γ| − 1"}, c.keys()
+    assert all(len(v) > 100 and np.nanmax(np.abs(v)) < 1e-8 for v in c.values()), \
+        {k: np.nanmax(np.abs(v)) for k, v in c.items()}
+    i = {t["name"]: _arr(t["y"]) for t in traces(page, "#plot-integrals")}
+    assert set(i) == {"energy H = (M, ω)/2 + U", "F = |M × γ|²"}, i.keys()
+    for name, v in i.items():
+        assert np.nanmax(np.abs(v - v[0])) / max(abs(v[0]), 1.0) < 1e-8, name
+    # the body in 3D
+    page.fill("#f-frames", "60")
+    page.click("#scene-btn")
+    page.locator("body[data-scene='1']").wait_for(state="attached", timeout=180_000)
+    expect(page.locator("#scene-msg")).to_contain_text("frames")
+    page.locator("#simulate").evaluate("e => e.scrollIntoView({block: 'start'})")
+    page.wait_for_timeout(300)
+    page.evaluate("window.scrollTo(0, 0)")
+    for d in shots(artifacts):
+        d.mkdir(parents=True, exist_ok=True)
+        page.screenshot(path=str(d / "rubber-case-1280.png"))
+    # below the sticky header and the page's navigation
+    page.locator("#plot-constraint").evaluate(
+        "e => { e.scrollIntoView({block: 'start'}); window.scrollBy(0, -130); }")
+    page.wait_for_timeout(300)
+    for d in shots(artifacts):
+        page.screenshot(path=str(d / "rubber-case-plots-1280.png"))
