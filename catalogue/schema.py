@@ -26,7 +26,6 @@ Catalogue is built, so a dangling key fails at load time, not in the solver.
 
 from __future__ import annotations
 
-import re
 from typing import Literal
 
 from pydantic import Field, RootModel, field_validator, model_validator
@@ -43,18 +42,18 @@ from catalogue.bibliography import (
 )
 from catalogue.claims import (
     CASE_ID_RE,
-    DERIVED,
-    ROW_WORDS,
     CLAIM_ID_RE,
+    DERIVED,
     FORMULA_ID_RE,
     LABEL_RE,
     REF_ID_RE,
+    ROW_WORDS,
     Attribution,
+    BeyondRowSpec,
     Cell,
     CheckArgs,
     Claim,
     Conditions,
-    BeyondRowSpec,
     MarkedCell,
     RubberCase,
     SourcedClaim,

@@ -38,12 +38,12 @@ import numpy as np
 BENCH = Path(__file__).resolve().parents[1] / "bench"   # the auto benches it reuses
 sys.path.insert(0, str(BENCH))
 
-from auto_coverage import case_setup, draw_only, reference
-from auto_starts import METHODS, RK_TOLS, TAYLOR_TOLS, at_error
-from work_precision import CASES
+from auto_coverage import case_setup, draw_only, reference  # noqa: E402  (after the path to bench/)
+from auto_starts import METHODS, RK_TOLS, TAYLOR_TOLS, at_error  # noqa: E402  (after the path to bench/)
+from work_precision import CASES  # noqa: E402  (after the path to bench/)
 
-from solvers.integrate import auto
-from solvers.simulate import _integrate, _model, simulate
+from solvers.integrate import auto  # noqa: E402  (after the path to bench/)
+from solvers.simulate import _integrate, _model, simulate  # noqa: E402  (after the path to bench/)
 
 OUT = BENCH / "results"
 REPEATS = 5

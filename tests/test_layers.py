@@ -15,6 +15,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "scripts"))
 import import_report as report  # noqa: E402
 
+
 def test_no_file_is_over_the_line_limit():
     assert report.long_files() == []
 

@@ -245,7 +245,7 @@ def rubber_table_html(t: dict) -> str:
     every cell its statement, its sources with their access, and its mark linking to its
     claims. Nothing here is redrawn by a script: the marks are the catalogue's."""
     head = "".join(
-        f'<th scope="col" class="case-head">'
+        '<th scope="col" class="case-head">'
         + (f'<a href="{escape(c["href"])}" data-case="{escape(c["model"])}">' if c["href"]
            else '<span>')
         + f'<span class="colno">{c["column"]}</span> <span class="coltitle">'

@@ -290,8 +290,9 @@ def rubber_block(spec: CaseSpec) -> dict | None:
     the quantities its run plots (solvers/models/observables.py RUBBER)."""
     if getattr(spec, "constraint", "marble") != "rubber":
         return None
-    from app.services.anchors import claim_anchor
     from catalogue.rubber_schema import load_rubber
+
+    from app.services.anchors import claim_anchor
     from solvers.models.observables import RUBBER, rubber_integrals
 
     _sources, *tables = load_rubber()
