@@ -49,6 +49,7 @@ from __future__ import annotations
 import numpy as np
 
 from solvers.kernels import layout as L
+from solvers.kernels.rubber_field import rubber_reaction
 from solvers.kernels.support import FLAT_DISK
 
 SLOT_NAMES = ("I1", "I2", "I3", "m", "k", "S1", "S2", "S3", "g", "eps", "B11", "B22", "B33",
@@ -305,51 +306,17 @@ def equations(model: int, p, fold: bool = False):
             dU = _solve_sym(prog, EkJ, dU, True)[1]                 # (E - k J^T)^-1 dU
         Md = [x + y for x, y in zip(Md, _cross(g, dU), strict=True)]
     if p[L.RUBBER] != 0.0:
-        Md = _rubber_reaction(prog, Md, P, g, w, gd, r, rd, IQ,
-                              sphere=sphere, centred=centred, disk=disk,
-                              sherman=(vD, mc2, q) if IQ is None else None,
-                              lam=lam if sphere else None, is2=is2 if disk else None)
+        def inverse_gamma():   # I_Q^-1 gamma, where rubber_reaction's order of lets needs it
+            if IQ is None:      # centred ball (Sherman-Morrison): v (1 + m c^2 (gamma, v) / q)
+                f = prog.let(1 + mc2 * (g[0] * vD[0] + g[1] * vD[1] + g[2] * vD[2])
+                             * prog.let(1 / q))
+                return [prog.let(f * x) for x in vD]
+            return _solve_sym(prog, [prog.let(a) for a in IQ], g)[1]
+
+        Md = rubber_reaction(prog, Md, P, g, w, gd, r, rd, inverse_gamma, sphere=sphere,
+                             disk=disk, lam=lam if sphere else None,
+                             is2=is2 if disk else None)
     return prog, state, _used(P), [*Md, *gd], checks
-
-
-def _rubber_reaction(prog, Md, P, g, w, gd, r, rd, IQ, *, sphere, centred, disk, sherman,
-                     lam, is2):
-    """dM/dt + lambda gamma, the reaction of the no-spin constraint (omega, gamma) = 0
-    (layout.RUBBER; the general field's fields.rubber_reaction, derived in
-    solvers/models/rubber_lagrange.py): lambda from d/dt (omega, gamma) = 0,
-        lambda = -[(I_Q^-1 gamma, N - (dI_Q/dt) omega) + (omega, dgamma/dt)]
-                 / (I_Q^-1 gamma, gamma),
-    (dI_Q/dt) omega = m (2 (r, dr/dt) omega - dr/dt (r, omega) - r (dr/dt, omega)),
-    N = dM/dt of the marble. The branches of `equations` keep r and dr/dt scaled where
-    that saves work (a centred ball: r = gamma; m folded into dr/dt); here they are
-    the true r and J dgamma/dt."""
-    import sympy as sp
-
-    m = P[L.MASS]
-    Md = [prog.let(x) for x in Md]   # N once: it enters lambda and the result
-    if sphere:      # r = lam gamma + a, J dgamma/dt = lam dgamma/dt ((gamma, dgamma/dt) = 0)
-        rt = [prog.let(lam * g[i] + P[L.A1 + i]) for i in range(3)]
-        rdt = [prog.let(lam * x) for x in gd]
-    elif disk:      # r = (d/s) rho, J dgamma/dt = (d/s^3) t (t, dgamma/dt), t = (-g2, g1, 0)
-        lam_d = prog.let(P[L.DISK_D] * sp.sqrt(is2))
-        rt = [prog.let(lam_d * g[0]), prog.let(lam_d * g[1]), sp.Integer(0)]
-        c3 = prog.let(lam_d * is2 * prog.let(g[0] * gd[1] - g[1] * gd[0]))
-        rdt = [prog.let(-g[1] * c3), prog.let(g[0] * c3), sp.Integer(0)]
-    else:
-        rt, rdt = r, rd
-    if sherman is not None:   # centred ball: I_Q^-1 gamma = v (1 + m c^2 (gamma, v) / q)
-        vD, mc2, q = sherman
-        f = prog.let(1 + mc2 * (g[0] * vD[0] + g[1] * vD[1] + g[2] * vD[2]) * prog.let(1 / q))
-        Ag = [prog.let(f * x) for x in vD]
-    else:
-        Ag = _solve_sym(prog, [prog.let(a) for a in IQ], g)[1]
-    rrd = prog.let(sum(rt[i] * rdt[i] for i in range(3)))
-    rw = prog.let(sum(rt[i] * w[i] for i in range(3)))
-    rdw = prog.let(sum(rdt[i] * w[i] for i in range(3)))
-    E = [prog.let(Md[i] - m * (2 * rrd * w[i] - rdt[i] * rw - rt[i] * rdw)) for i in range(3)]
-    num = prog.let(sum(Ag[i] * E[i] for i in range(3)) + sum(w[i] * gd[i] for i in range(3)))
-    lam_r = prog.let(-num * prog.let(1 / prog.let(sum(Ag[i] * g[i] for i in range(3)))))
-    return [prog.let(Md[i] + lam_r * g[i]) for i in range(3)]
 
 
 def _used(P):
