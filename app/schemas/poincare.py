@@ -12,7 +12,7 @@ from app.schemas.simulate import CaseId, case_rules
 
 def _map_cases() -> list[str]:
     """The cases with the state (M, gamma): the flat-base ones (M, r1, r2) have no map, nor
-    the rubber ones (solvers.maps.poincare.map_model: starts off (omega, gamma) = 0)."""
+    the rubber ones (solvers.maps.map_spec.map_model: starts off (omega, gamma) = 0)."""
     from solvers.models.cases import registry
 
     return [cid for cid, c in registry().items()

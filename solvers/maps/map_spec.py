@@ -12,9 +12,10 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from solvers.errors import InputError
+from solvers.kernels import layout as L
 from solvers.kernels.sections import SECTION_ANDOYER_G
 from solvers.maps.andoyer import TWO_PI, g_angle, map_point
-from solvers.models.cases import Model
+from solvers.models.cases import Model, build
 
 MAX_POINTS = 100_000
 MAX_TRAJECTORIES = 1_000
@@ -161,3 +162,17 @@ def dense_check(t: np.ndarray, Y: np.ndarray, ct: np.ndarray, g0: float,
     kern = np.bincount(idx[inside], minlength=len(t) - 1)[:len(t) - 1].astype(float)
     return np.array([kern.sum(), dense.sum(), kern[resolved].sum(), dense[resolved].sum(),
                      np.count_nonzero(~resolved)])
+
+
+def map_model(case: str, params: dict | None, *, allow_any_inertia=False) -> Model:
+    """The model of a case the Andoyer-Deprit map can draw: the state (M, gamma), marble
+    rolling; any other case is refused with the reason."""
+    model = build(case, params, allow_any_inertia=allow_any_inertia)
+    if model.model != L.MODEL_FULL:
+        raise InputError(f"case {case}: the Andoyer-Deprit map needs the state (M, gamma); "
+                         "the flat-base cases have (M, r1, r2)")
+    if model.case.constraint == "rubber":
+        raise InputError(f"case {case}: the Andoyer-Deprit map samples its starts on the marble "
+                         "energy level; a rubber body's states also keep (omega, gamma) = 0, "
+                         "which these starts do not")
+    return model

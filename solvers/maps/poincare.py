@@ -28,7 +28,6 @@ from dataclasses import dataclass
 import numpy as np
 
 from solvers.errors import InputError
-from solvers.kernels import layout as L
 from solvers.kernels.integrals import NAMES, integral_series
 from solvers.maps.andoyer import TWO_PI, map_point, on_energy_level
 from solvers.maps.map_spec import (
@@ -38,9 +37,10 @@ from solvers.maps.map_spec import (
     MapSpec,
     MapTrajectory,
     dense_check,
+    map_model,
     omega_norm,
 )
-from solvers.models.cases import Model, build, check_derived, initial_state
+from solvers.models.cases import Model, check_derived, initial_state
 from solvers.models.observables import public_name
 
 
@@ -315,18 +315,6 @@ def given_initial(model: Model, spec: MapSpec, points) -> list[np.ndarray]:
                              "exceed the potential energy there")
         out.append(y)
     return out
-
-
-def map_model(case: str, params: dict | None, *, allow_any_inertia=False) -> Model:
-    model = build(case, params, allow_any_inertia=allow_any_inertia)
-    if model.model != L.MODEL_FULL:
-        raise InputError(f"case {case}: the Andoyer-Deprit map needs the state (M, gamma); "
-                         "the flat-base cases have (M, r1, r2)")
-    if model.case.constraint == "rubber":
-        raise InputError(f"case {case}: the Andoyer-Deprit map samples its starts on the marble "
-                         "energy level; a rubber body's states also keep (omega, gamma) = 0, "
-                         "which these starts do not")
-    return model
 
 
 @dataclass
