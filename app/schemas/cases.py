@@ -1,4 +1,4 @@
-from typing import Any
+from typing import Any, Literal
 
 from pydantic import BaseModel, Field
 
@@ -63,6 +63,9 @@ class CaseHead(BaseModel):
     in_tables: bool = Field(True, description="a column of the paper's Tables 1 and 2; false "
                             "for a runnable case the paper only mentions (the rattleback)")
     note: str | None = Field(None, description="for a case beyond the tables: what it is")
+    constraint: Literal["marble", "rubber"] = Field(
+        "marble", description="marble: rolling without slipping (the paper's); rubber: also "
+        "without spinning about the normal, (omega, gamma) = 0 (beyond the 2002 paper)")
 
 
 class CaseSummary(CaseHead):

@@ -236,7 +236,8 @@ def case_summary(case: Case) -> dict:
     return {"id": case.id, "title": case.title, "table": table_of(case.id).number,
             "column": case.column, "surface": spec.surface, "body": spec.body,
             "model_title": cite(spec.title), "href": case_href(case.id),
-            "claims": len(case.claims), "in_tables": True, "note": None}
+            "claims": len(case.claims), "in_tables": True, "note": None,
+            "constraint": spec.constraint}
 
 
 def beyond_summary(spec: CaseSpec) -> dict:
@@ -244,7 +245,8 @@ def beyond_summary(spec: CaseSpec) -> dict:
     column, no claims; its note says what it is instead."""
     return {"id": spec.id, "title": spec.title, "table": None, "column": None,
             "surface": spec.surface, "body": spec.body, "model_title": cite(spec.title),
-            "href": case_href(spec.id), "claims": 0, "in_tables": False, "note": spec.note}
+            "href": case_href(spec.id), "claims": 0, "in_tables": False, "note": spec.note,
+            "constraint": spec.constraint}
 
 
 def case_summaries() -> list[dict]:
@@ -290,23 +292,22 @@ def rubber_block(spec: CaseSpec) -> dict | None:
     the quantities its run plots (solvers/models/observables.py RUBBER)."""
     if getattr(spec, "constraint", "marble") != "rubber":
         return None
-    from catalogue.rubber_schema import load_rubber
-
-    from app.services.anchors import claim_anchor
+    from app.services.rubber_tables import rubber_table
     from solvers.models.observables import RUBBER, rubber_integrals
+    from solvers.verify import marks as vocab
 
-    _sources, *tables = load_rubber()
+    words = {m.id: f"{m.shape} {m.word}" for m in vocab.vocabulary()}
     cells = []
-    table_id = f"rubber_{spec.surface}"
-    for t in tables:
-        for c in t.cases:
-            if c.model != spec.id:
-                continue
-            table_id = t.id
-            cells += [{"case": c.id, "row": row.value, "mark": cell.mark.value,
-                       "statement": cell.statement,
-                       "href": "/#" + claim_anchor(f"{c.id}/cell/{row.value}")}
-                      for row, cell in c.cells.items()]
+    table_id = f"rubber-{spec.surface}"
+    for t in (rubber_table("rubber-plane"), rubber_table("rubber-sphere")):
+        columns = {c["id"] for c in t["columns"] if c["model"] == spec.id}
+        if columns:
+            table_id = t["id"]
+        plain = {r["key"]: r["plain"] for r in t["rows"]}
+        cells += [{"case": c["case"], "row": c["row"], "row_words": plain[c["row"]],
+                   "mark": words.get(c["mark"], c["mark"]),
+                   "statement": c["plain"], "href": "/#" + c["anchor"]}
+                  for row in t["grid"] for c in row["cells"] if c["case"] in columns]
     names = ["spin", "gamma_norm_defect", *rubber_integrals(spec.id, spec.example)]
     return {"sentence": RUBBER_SENTENCE, "equations_href": RUBBER_EQUATIONS,
             "table_href": f"/#tbl-{table_id}", "cells": cells,

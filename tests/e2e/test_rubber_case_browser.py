@@ -44,7 +44,9 @@ def test_a_rubber_case_page_runs_and_plots_its_constraint_and_integrals(page, se
     box = page.locator("[data-testid=beyond-paper]")
     expect(box).to_contain_text("Beyond the 2002 paper")
     assert page.locator("#rubber-equations").get_attribute("href") == "/guide/rubber/#equations"
-    assert page.locator("#rubber-table").get_attribute("href") == "/#tbl-rubber_plane"
+    assert page.locator("#rubber-table").get_attribute("href") == "/#tbl-rubber-plane"
+    home = page.request.get(server + "/").text()
+    assert 'id="tbl-rubber-plane"' in home     # the link lands on the home page's table
     cells = page.locator("[data-testid=rubber-cell]")
     # measure, integrals, gyrostat, Brun field, Hamiltonian form, integrability
     expect(cells).to_have_count(6)

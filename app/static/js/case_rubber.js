@@ -27,7 +27,7 @@ export function showRubber() {
     · <a href="${escapeHtml(R.table_href)}" id="rubber-table">the rubber table on the home page</a></p>`;
   $("facts").after(box);
   $("h-in-table").textContent = "The case in the rubber tables";
-  const rows = R.cells.map((c) => `<tr><th scope="row">${escapeHtml(c.row.replaceAll("_", " "))}</th>
+  const rows = R.cells.map((c) => `<tr><th scope="row">${escapeHtml(c.row_words || c.row.replaceAll("_", " "))}</th>
     <td><span class="chip">${escapeHtml(c.mark)}</span> ${escapeHtml(c.statement)}
     <a href="${escapeHtml(c.href)}" data-testid="rubber-cell">where it comes from</a></td></tr>`);
   $("cells").innerHTML = rows.length

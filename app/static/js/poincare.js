@@ -249,7 +249,7 @@ function legacyParams(text) {
 async function cases() {
   const sel = document.getElementById("case");
   const list = await api("/api/cases");
-  for (const c of list.filter((c) => c.body !== "flat")) {
+  for (const c of list.filter((c) => c.body !== "flat" && c.constraint !== "rubber")) {
     const o = document.createElement("option");
     o.value = c.id;
     o.textContent = `${c.id} — ${c.model_title}`;
