@@ -1,7 +1,10 @@
 """Work-precision: every method the project offers against scipy and heyoka, one process.
 
-For six representative cases (Chaplygin ball, unbalanced ball with gravity, disk,
-ellipsoid, a ball on a sphere, a flat base on a sphere) and tolerances 1e-4 ... 1e-16
+For six representative marble cases (Chaplygin ball, unbalanced ball with gravity, disk,
+ellipsoid, a ball on a sphere, a flat base on a sphere) and two rubber ones (the rubber
+Chaplygin ball on a plane and inside a sphere: the reference's expression system carries
+the no-spin reaction, scipy's NumPy field is then the Lagrange-d'Alembert one of
+solvers/models/rubber_lagrange.py, as in simulate) and tolerances 1e-4 ... 1e-16
 (rtol = atol; scipy from 1e-4 to 1e-14):
 
   ours      dop853, vern9 (compiled kernels, compensated summation), each also with
@@ -30,10 +33,14 @@ absolute time is asserted anywhere: the ratios are read side by side.
     .venv/bin/python bench/work_precision.py --only-taylor    (re-measure auto's
         candidates dop853, vern9 and taylor together, interleaved, and merge them into the
         committed JSON, the other methods' runs kept)
+    .venv/bin/python bench/work_precision.py --cases ID[,ID]    (measure only these cases,
+        every method as the full run does, and merge them into the committed JSON: their
+        entries and runs replaced or added, the other cases' kept)
 
 Writes solvers/integrate/data/work_precision.json (every run; package data the explorer serves)
 and bench/results/work_precision.txt (the table; --quick: work_precision_quick.{txt,json} in
-bench/results/, not kept; --only-taylor: bench/results/work_precision_taylor.txt). The data
+bench/results/, not kept; --only-taylor: bench/results/work_precision_taylor.txt; --cases:
+bench/results/work_precision_cases.txt, the named cases' runs and the table of all). The data
 file names its format and this command ("format", "generator"): workprecision.FORMAT;
 solvers/integrate/workprecision.py summarises them for the explorer (GET /api/work-precision).
 """
@@ -93,6 +100,10 @@ CASES = (
     WPCase("plane/ellipsoid"),
     WPCase("sphere/chaplygin-ball", note="k = 0.3"),
     WPCase("sphere/flat-base", note="k = -0.5, z = 0.3"),
+    WPCase("rubber-plane/chaplygin-ball",
+           note="rubber (no spin about the normal); scipy on the Lagrange-d'Alembert field"),
+    WPCase("rubber-sphere/ball-inside",
+           note="rubber, inside a fixed sphere; scipy on the Lagrange-d'Alembert field"),
 )
 
 
@@ -125,6 +136,12 @@ def scipy_fun(model, compiled):
             rhs(model.model, t, y, model.p, d)
             return d.copy()
         return f
+    if model.case.constraint == "rubber":   # what simulate's scipy methods run
+        from solvers.models import rubber_lagrange
+        from solvers.models.rubber_bodies import from_vector
+
+        body = from_vector(model.p)
+        return lambda t, y: rubber_lagrange.field(body, y)
     return lambda t, y: ref_field(model.model, model.p, y)
 
 
@@ -317,9 +334,14 @@ def main(argv=None):
                     help="re-measure dop853, vern9 and taylor (auto's candidates) "
                          "interleaved and merge them into the committed JSON (the other "
                          "methods' runs are kept)")
+    ap.add_argument("--cases", help="ID[,ID]: measure only these cases (every method) and "
+                                     "merge them into the committed JSON, the other cases' "
+                                     "runs kept")
     args = ap.parse_args(argv)
     if args.only_taylor:
         return merge_taylor(args)
+    if args.cases:
+        return merge_cases(args)
     tols = (1e-6, 1e-10, 1e-14) if args.quick else TOLS
     cases = [c for c in CASES if not args.case or c.id in args.case]
     lines = []
@@ -345,12 +367,7 @@ def main(argv=None):
                               "note": case.note, **info})
         data["runs"].extend(runs)
         for r in runs:
-            e = f"{r['error']:.1e}" if r["error"] is not None else "-"
-            w = f"{r['wall_s'] * 1e3:.2f}" if r["wall_s"] is not None else "-"
-            k = f"tol {r['tol']:.0e}" if r["knob"] == "tol" else f"h {r['tol']:>7.4g}"
-            say(f"  {r['method']:20s} {k}  error {e:>8s}  wall {w:>9s} ms  "
-                f"rhs {r['rhs_calls'] or '-'}  steps {r['steps'] or '-'}"
-                + ("" if r["ok"] else f"  [{r['message'][:70]}]"))
+            say(run_line(r))
     lines_table = table(data)
     for s in lines_table:
         say(s)
@@ -363,6 +380,76 @@ def main(argv=None):
     json_out.write_text(json.dumps(data, indent=1, ensure_ascii=False) + "\n")
     (OUT / f"work_precision{suffix}.txt").write_text("\n".join(lines) + "\n")
     return 0
+
+
+def merged(data: dict, case: WPCase, info: dict, runs: list[dict]) -> dict:
+    """`data` with `case`'s entry and runs replaced by the new ones (appended if the case
+    was not there); the other cases keep their entries, runs and order."""
+    entry = {"id": case.id, "overrides": case.overrides, "t_end": case.t_end,
+             "note": case.note, **info}
+    ids = [c["id"] for c in data["cases"]]
+    cases = ([entry if c["id"] == case.id else c for c in data["cases"]]
+             if case.id in ids else [*data["cases"], entry])
+    return {**data, "cases": cases,
+            "runs": [r for r in data["runs"] if r["case"] != case.id] + runs}
+
+
+def pick_cases(ids: str) -> list[WPCase]:
+    """The WPCases named in "ID[,ID]"; an unknown id is an error before anything runs."""
+    known = {c.id: c for c in CASES}
+    want = [x.strip() for x in ids.split(",") if x.strip()]
+    bad = [x for x in want if x not in known]
+    if bad or not want:
+        raise SystemExit(f"--cases: unknown case id(s) {bad or ids!r}; the benchmark's "
+                         f"cases: {', '.join(known)}")
+    return [known[x] for x in want]
+
+
+def merge_cases(args) -> int:
+    """--cases: the named cases measured as the full run measures them (every method, the
+    full tolerance list), merged into the committed JSON; the results table is rewritten
+    from the merged data (the other cases' rows are their committed runs)."""
+    import os
+
+    cases = pick_cases(args.cases)
+    data = json.loads(wp.RESULTS.read_text())
+    wp.check_format(data, str(wp.RESULTS))
+    tols = tuple(data["tolerances"])
+    rerun = f"{wp.GENERATOR} --cases {','.join(c.id for c in cases)}"
+    generator = data.get("generator", wp.GENERATOR)
+    lines = []
+
+    def say(s=""):
+        print(s, flush=True)
+        lines.append(s)
+
+    t0 = time.perf_counter()
+    for case in cases:
+        load = round(os.getloadavg()[0], 1)
+        runs, info = run_case(case, tols, False, say)
+        for r in runs:
+            r["load"] = load
+        data = merged(data, case, {**info, "load": load}, runs)
+        for r in runs:
+            say(run_line(r))
+    data = {**data, "format": wp.FORMAT, "generator": f"{generator}, then {rerun}"}
+    for s in table(data):
+        say(s)
+    say(f"\ntotal {time.perf_counter() - t0:.0f} s (the cases above; load average at the "
+        "start of each case in its entry's 'load')")
+    wp.RESULTS.write_text(json.dumps(data, indent=1, ensure_ascii=False) + "\n")
+    OUT.mkdir(exist_ok=True)
+    (OUT / "work_precision_cases.txt").write_text("\n".join(lines) + "\n")
+    return 0
+
+
+def run_line(r: dict) -> str:
+    e = f"{r['error']:.1e}" if r["error"] is not None else "-"
+    w = f"{r['wall_s'] * 1e3:.2f}" if r["wall_s"] is not None else "-"
+    k = f"tol {r['tol']:.0e}" if r["knob"] == "tol" else f"h {r['tol']:>7.4g}"
+    return (f"  {r['method']:20s} {k}  error {e:>8s}  wall {w:>9s} ms  "
+            f"rhs {r['rhs_calls'] or '-'}  steps {r['steps'] or '-'}"
+            + ("" if r["ok"] else f"  [{r['message'][:70]}]"))
 
 
 def merge_taylor(args) -> int:
