@@ -40,7 +40,8 @@ absolute time is asserted anywhere: the ratios are read side by side.
 Writes solvers/integrate/data/work_precision.json (every run; package data the explorer serves)
 and bench/results/work_precision.txt (the table; --quick: work_precision_quick.{txt,json} in
 bench/results/, not kept; --only-taylor: bench/results/work_precision_taylor.txt; --cases:
-bench/results/work_precision_cases.txt, the named cases' runs and the table of all). The data
+bench/results/work_precision_cases_<ids>.txt, the named cases' runs and then the table of
+every case in the merged JSON). The data
 file names its format and this command ("format", "generator"): workprecision.FORMAT;
 solvers/integrate/workprecision.py summarises them for the explorer (GET /api/work-precision).
 """
@@ -406,9 +407,8 @@ def pick_cases(ids: str) -> list[WPCase]:
 
 
 def merge_cases(args) -> int:
-    """--cases: the named cases measured as the full run measures them (every method, the
-    full tolerance list), merged into the committed JSON; the results table is rewritten
-    from the merged data (the other cases' rows are their committed runs)."""
+    """--cases: the named cases measured as the full run does (every method, every
+    tolerance), merged into the committed JSON; the table is of the merged data."""
     import os
 
     cases = pick_cases(args.cases)
@@ -439,8 +439,13 @@ def merge_cases(args) -> int:
         "start of each case in its entry's 'load')")
     wp.RESULTS.write_text(json.dumps(data, indent=1, ensure_ascii=False) + "\n")
     OUT.mkdir(exist_ok=True)
-    (OUT / "work_precision_cases.txt").write_text("\n".join(lines) + "\n")
+    (OUT / cases_log_name(cases)).write_text("\n".join(lines) + "\n")
     return 0
+
+
+def cases_log_name(cases) -> str:
+    """The log of a --cases run: one file per set of cases, kept by runs of others."""
+    return "work_precision_cases_" + "+".join(c.id.replace("/", "-") for c in cases) + ".txt"
 
 
 def run_line(r: dict) -> str:

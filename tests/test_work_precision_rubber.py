@@ -114,10 +114,19 @@ def test_committed_rubber_runs_are_served_and_summarised():
     assert all(r["ok"] and r["error"] is not None for r in runs
                if r["method"] in wp.PLAIN and r["tol"] >= 1e-12)
     # the compiled field and the reference's independent expression system agree: ours
-    # reaches the double floor, and scipy on the Lagrange-d'Alembert field follows its tol
+    # comes far below the errors of a loose tolerance
     assert min(r["error"] for r in runs if r["method"] in wp.PLAIN and r["ok"]) < 1e-11
-    np_runs = {r["tol"]: r["error"] for r in runs if r["method"] == wp.SCIPY_NUMPY and r["ok"]}
-    assert np_runs[1e-12] < 1e-8
+    # scipy's DOP853 on the Lagrange-d'Alembert field (NumPy) and on the compiled field take
+    # the same steps and make the same error: the two derivations give the same motion, to
+    # far less than the integration error
+    by = {m: {r["tol"]: r for r in runs if r["method"] == m and r["ok"]}
+          for m in (wp.SCIPY_NUMPY, wp.SCIPY_COMPILED)}
+    tight = [t for t in by[wp.SCIPY_NUMPY] if t <= 1e-6]
+    assert len(tight) >= 4
+    for t in tight:
+        a, c = by[wp.SCIPY_NUMPY][t], by[wp.SCIPY_COMPILED][t]
+        assert a["rhs_calls"] == c["rhs_calls"], t
+        assert abs(a["error"] - c["error"]) < 0.05 * c["error"], t
     s = body["summary"][RUBBER]
     assert s["default_method"] in wp.PLAIN and s["tolerance_buys"] and s["table"]
 
