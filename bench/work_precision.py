@@ -1,11 +1,9 @@
 """Work-precision: every method the project offers against scipy and heyoka, one process.
 
-For six representative marble cases (Chaplygin ball, unbalanced ball with gravity, disk,
-ellipsoid, a ball on a sphere, a flat base on a sphere) and two rubber ones (the rubber
-Chaplygin ball on a plane and inside a sphere: the reference's expression system carries
-the no-spin reaction, scipy's NumPy field is then the Lagrange-d'Alembert one of
-solvers/models/rubber_lagrange.py, as in simulate) and tolerances 1e-4 ... 1e-16
-(rtol = atol; scipy from 1e-4 to 1e-14):
+For six marble cases (Chaplygin ball, unbalanced ball with gravity, disk, ellipsoid, a ball
+on a sphere, a flat base on a sphere), the rubber Chaplygin ball on a plane and inside a
+sphere (scipy's NumPy field: solvers/models/rubber_lagrange.py's, as in simulate) and
+tolerances 1e-4 ... 1e-16 (rtol = atol; scipy from 1e-4 to 1e-14):
 
   ours      dop853, vern9 (compiled kernels, compensated summation), each also with
             projection onto the case's integrals after every step ("+proj"); gauss8,
@@ -36,6 +34,7 @@ absolute time is asserted anywhere: the ratios are read side by side.
     .venv/bin/python bench/work_precision.py --cases ID[,ID]    (measure only these cases,
         every method as the full run does, and merge them into the committed JSON: their
         entries and runs replaced or added, the other cases' kept)
+    .venv/bin/python bench/work_precision.py --table    (the table of the committed JSON)
 
 Writes solvers/integrate/data/work_precision.json (every run; package data the explorer serves)
 and bench/results/work_precision.txt (the table; --quick: work_precision_quick.{txt,json} in
@@ -335,10 +334,14 @@ def main(argv=None):
                     help="re-measure dop853, vern9 and taylor (auto's candidates) "
                          "interleaved and merge them into the committed JSON (the other "
                          "methods' runs are kept)")
-    ap.add_argument("--cases", help="ID[,ID]: measure only these cases (every method) and "
-                                     "merge them into the committed JSON, the other cases' "
-                                     "runs kept")
+    ap.add_argument("--cases", help="ID[,ID]: measure only these cases (every method), "
+                                     "merged into the committed JSON, the others' runs kept")
+    ap.add_argument("--table", action="store_true",
+                    help="print the table of the committed JSON (nothing is run)")
     args = ap.parse_args(argv)
+    if args.table:
+        print("\n".join(table(wp.load_results())))
+        return 0
     if args.only_taylor:
         return merge_taylor(args)
     if args.cases:
@@ -384,8 +387,7 @@ def main(argv=None):
 
 
 def merged(data: dict, case: WPCase, info: dict, runs: list[dict]) -> dict:
-    """`data` with `case`'s entry and runs replaced by the new ones (appended if the case
-    was not there); the other cases keep their entries, runs and order."""
+    """`data` with `case`'s entry and runs replaced (or added); the others' kept as they were."""
     entry = {"id": case.id, "overrides": case.overrides, "t_end": case.t_end,
              "note": case.note, **info}
     ids = [c["id"] for c in data["cases"]]
