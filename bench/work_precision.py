@@ -464,7 +464,7 @@ def merge_taylor(args) -> int:
 
     data = json.loads(wp.RESULTS.read_text())
     wp.check_format(data, str(wp.RESULTS))
-    rerun = f"{wp.GENERATOR} --only-taylor"
+    rerun = f"{wp.GENERATOR} --only-taylor" + "".join(f" --case {c}" for c in args.case or ())
     generator = data.get("generator", wp.GENERATOR)
     data = {**data, "format": wp.FORMAT,
             "generator": generator if generator.endswith(rerun) else f"{generator}, then {rerun}"}
