@@ -1,8 +1,9 @@
 """Work-precision: every method the project offers against scipy and heyoka, one process.
 
-For six representative cases (Chaplygin ball, unbalanced ball with gravity, disk,
-ellipsoid, a ball on a sphere, a flat base on a sphere) and tolerances 1e-4 ... 1e-16
-(rtol = atol; scipy from 1e-4 to 1e-14):
+For six marble cases (Chaplygin ball, unbalanced ball with gravity, disk, ellipsoid, a ball
+on a sphere, a flat base on a sphere), the rubber Chaplygin ball on a plane and inside a
+sphere (scipy's NumPy field: solvers/models/rubber_lagrange.py's, as in simulate) and
+tolerances 1e-4 ... 1e-16 (rtol = atol; scipy from 1e-4 to 1e-14):
 
   ours      dop853, vern9 (compiled kernels, compensated summation), each also with
             projection onto the case's integrals after every step ("+proj"); gauss8,
@@ -30,10 +31,16 @@ absolute time is asserted anywhere: the ratios are read side by side.
     .venv/bin/python bench/work_precision.py --only-taylor    (re-measure auto's
         candidates dop853, vern9 and taylor together, interleaved, and merge them into the
         committed JSON, the other methods' runs kept)
+    .venv/bin/python bench/work_precision.py --cases ID[,ID]    (measure only these cases,
+        every method as the full run does, and merge them into the committed JSON: their
+        entries and runs replaced or added, the other cases' kept)
+    .venv/bin/python bench/work_precision.py --table    (the table of the committed JSON)
 
 Writes solvers/integrate/data/work_precision.json (every run; package data the explorer serves)
 and bench/results/work_precision.txt (the table; --quick: work_precision_quick.{txt,json} in
-bench/results/, not kept; --only-taylor: bench/results/work_precision_taylor.txt). The data
+bench/results/, not kept; --only-taylor: bench/results/work_precision_taylor.txt; --cases:
+bench/results/work_precision_cases_<ids>.txt, the named cases' runs and then the table of
+every case in the merged JSON). The data
 file names its format and this command ("format", "generator"): workprecision.FORMAT;
 solvers/integrate/workprecision.py summarises them for the explorer (GET /api/work-precision).
 """
@@ -93,6 +100,10 @@ CASES = (
     WPCase("plane/ellipsoid"),
     WPCase("sphere/chaplygin-ball", note="k = 0.3"),
     WPCase("sphere/flat-base", note="k = -0.5, z = 0.3"),
+    WPCase("rubber-plane/chaplygin-ball",
+           note="rubber (no spin about the normal); scipy on the Lagrange-d'Alembert field"),
+    WPCase("rubber-sphere/ball-inside",
+           note="rubber, inside a fixed sphere; scipy on the Lagrange-d'Alembert field"),
 )
 
 
@@ -125,6 +136,12 @@ def scipy_fun(model, compiled):
             rhs(model.model, t, y, model.p, d)
             return d.copy()
         return f
+    if model.case.constraint == "rubber":   # what simulate's scipy methods run
+        from solvers.models import rubber_lagrange
+        from solvers.models.rubber_bodies import from_vector
+
+        body = from_vector(model.p)
+        return lambda t, y: rubber_lagrange.field(body, y)
     return lambda t, y: ref_field(model.model, model.p, y)
 
 
@@ -317,9 +334,18 @@ def main(argv=None):
                     help="re-measure dop853, vern9 and taylor (auto's candidates) "
                          "interleaved and merge them into the committed JSON (the other "
                          "methods' runs are kept)")
+    ap.add_argument("--cases", help="ID[,ID]: measure only these cases (every method), "
+                                     "merged into the committed JSON, the others' runs kept")
+    ap.add_argument("--table", action="store_true",
+                    help="print the table of the committed JSON (nothing is run)")
     args = ap.parse_args(argv)
+    if args.table:
+        print("\n".join(table(wp.load_results())))
+        return 0
     if args.only_taylor:
         return merge_taylor(args)
+    if args.cases:
+        return merge_cases(args)
     tols = (1e-6, 1e-10, 1e-14) if args.quick else TOLS
     cases = [c for c in CASES if not args.case or c.id in args.case]
     lines = []
@@ -345,12 +371,7 @@ def main(argv=None):
                               "note": case.note, **info})
         data["runs"].extend(runs)
         for r in runs:
-            e = f"{r['error']:.1e}" if r["error"] is not None else "-"
-            w = f"{r['wall_s'] * 1e3:.2f}" if r["wall_s"] is not None else "-"
-            k = f"tol {r['tol']:.0e}" if r["knob"] == "tol" else f"h {r['tol']:>7.4g}"
-            say(f"  {r['method']:20s} {k}  error {e:>8s}  wall {w:>9s} ms  "
-                f"rhs {r['rhs_calls'] or '-'}  steps {r['steps'] or '-'}"
-                + ("" if r["ok"] else f"  [{r['message'][:70]}]"))
+            say(run_line(r))
     lines_table = table(data)
     for s in lines_table:
         say(s)
@@ -365,12 +386,85 @@ def main(argv=None):
     return 0
 
 
+def merged(data: dict, case: WPCase, info: dict, runs: list[dict]) -> dict:
+    """`data` with `case`'s entry and runs replaced (or added); the others' kept as they were."""
+    entry = {"id": case.id, "overrides": case.overrides, "t_end": case.t_end,
+             "note": case.note, **info}
+    ids = [c["id"] for c in data["cases"]]
+    cases = ([entry if c["id"] == case.id else c for c in data["cases"]]
+             if case.id in ids else [*data["cases"], entry])
+    return {**data, "cases": cases,
+            "runs": [r for r in data["runs"] if r["case"] != case.id] + runs}
+
+
+def pick_cases(ids: str) -> list[WPCase]:
+    """The WPCases named in "ID[,ID]"; an unknown id is an error before anything runs."""
+    known = {c.id: c for c in CASES}
+    want = [x.strip() for x in ids.split(",") if x.strip()]
+    bad = [x for x in want if x not in known]
+    if bad or not want:
+        raise SystemExit(f"--cases: unknown case id(s) {bad or ids!r}; the benchmark's "
+                         f"cases: {', '.join(known)}")
+    return [known[x] for x in want]
+
+
+def merge_cases(args) -> int:
+    """--cases: the named cases measured as the full run does (every method, every
+    tolerance), merged into the committed JSON; the table is of the merged data."""
+    import os
+
+    cases = pick_cases(args.cases)
+    data = json.loads(wp.RESULTS.read_text())
+    wp.check_format(data, str(wp.RESULTS))
+    tols = tuple(data["tolerances"])
+    rerun = f"{wp.GENERATOR} --cases {','.join(c.id for c in cases)}"
+    generator = data.get("generator", wp.GENERATOR)
+    lines = []
+
+    def say(s=""):
+        print(s, flush=True)
+        lines.append(s)
+
+    t0 = time.perf_counter()
+    for case in cases:
+        load = round(os.getloadavg()[0], 1)
+        runs, info = run_case(case, tols, False, say)
+        for r in runs:
+            r["load"] = load
+        data = merged(data, case, {**info, "load": load}, runs)
+        for r in runs:
+            say(run_line(r))
+    data = {**data, "format": wp.FORMAT, "generator": f"{generator}, then {rerun}"}
+    for s in table(data):
+        say(s)
+    say(f"\ntotal {time.perf_counter() - t0:.0f} s (the cases above; load average at the "
+        "start of each case in its entry's 'load')")
+    wp.RESULTS.write_text(json.dumps(data, indent=1, ensure_ascii=False) + "\n")
+    OUT.mkdir(exist_ok=True)
+    (OUT / cases_log_name(cases)).write_text("\n".join(lines) + "\n")
+    return 0
+
+
+def cases_log_name(cases) -> str:
+    """The log of a --cases run: one file per set of cases, kept by runs of others."""
+    return "work_precision_cases_" + "+".join(c.id.replace("/", "-") for c in cases) + ".txt"
+
+
+def run_line(r: dict) -> str:
+    e = f"{r['error']:.1e}" if r["error"] is not None else "-"
+    w = f"{r['wall_s'] * 1e3:.2f}" if r["wall_s"] is not None else "-"
+    k = f"tol {r['tol']:.0e}" if r["knob"] == "tol" else f"h {r['tol']:>7.4g}"
+    return (f"  {r['method']:20s} {k}  error {e:>8s}  wall {w:>9s} ms  "
+            f"rhs {r['rhs_calls'] or '-'}  steps {r['steps'] or '-'}"
+            + ("" if r["ok"] else f"  [{r['message'][:70]}]"))
+
+
 def merge_taylor(args) -> int:
     import os
 
     data = json.loads(wp.RESULTS.read_text())
     wp.check_format(data, str(wp.RESULTS))
-    rerun = f"{wp.GENERATOR} --only-taylor"
+    rerun = f"{wp.GENERATOR} --only-taylor" + "".join(f" --case {c}" for c in args.case or ())
     generator = data.get("generator", wp.GENERATOR)
     data = {**data, "format": wp.FORMAT,
             "generator": generator if generator.endswith(rerun) else f"{generator}, then {rerun}"}

@@ -130,7 +130,27 @@ def system(model: int, p) -> tuple[list, list]:
             dU = _solve_sym(tuple((1.0 if i in (0, 3, 5) else 0.0) - k * Js[i]
                                   for i in range(6)), dU)
         Md = [a + b for a, b in zip(Md, _cross(g, dU), strict=True)]
+    if _num(p[L.RUBBER]) != 0.0:
+        Md = _rubber_reaction(m, _contact_inertia(p, r), g, w, gd, r, rd, Md)
     return [*M, *g], [*Md, *gd]
+
+
+def _rubber_reaction(m, IQ, g, w, gd, r, rd, N):
+    """N + lambda gamma: the reaction of the rubber constraint (omega, gamma) = 0, lambda
+    from d/dt (omega, gamma) = 0 with omega = I_Q^-1 M,
+        lambda = -[(I_Q^-1 gamma, N - (dI_Q/dt) omega) + (omega, dgamma/dt)]
+                 / (I_Q^-1 gamma, gamma),
+    (dI_Q/dt) omega = m (2 (r, dr/dt) omega - dr/dt (r, omega) - r (dr/dt, omega))
+    (the Newton-Euler derivation of solvers/models/rubber_lagrange.py), on the expressions
+    of this module (r, dr/dt from heyoka's differentiation of the support function)."""
+    Ag = _solve_sym(IQ, g)
+    rrd = sum(r[i] * rd[i] for i in range(3))
+    rw = sum(r[i] * w[i] for i in range(3))
+    rdw = sum(rd[i] * w[i] for i in range(3))
+    E = [N[i] - m * (2.0 * rrd * w[i] - rd[i] * rw - r[i] * rdw) for i in range(3)]
+    num = sum(Ag[i] * E[i] for i in range(3)) + sum(w[i] * gd[i] for i in range(3))
+    lam = -num / sum(Ag[i] * g[i] for i in range(3))
+    return [N[i] + lam * g[i] for i in range(3)]
 
 
 def field_function(model: int, p, fp_type=float):

@@ -6,7 +6,8 @@
   * a run draws, besides the state, drift and gamma plots, the constraint (omega, gamma)
     and |gamma| - 1, and the energy with the case's integral F = |M x gamma|^2, all against
     time; the plotted numbers hold: the constraint and |gamma| - 1 at zero, F and the energy
-    constant (measured here on the traces as drawn);
+    constant (measured here on the traces as drawn); the drift plot's legend names the
+    constraint and F typeset, not by their code names;
   * the 3D view animates the rubber ball.
 Screenshot: test-artifacts/e2e/rubber-case-1280.png (and ROLLING_DOC_SHOTS/, when set, for
 docs/screenshots/)."""
@@ -67,6 +68,10 @@ def test_a_rubber_case_page_runs_and_plots_its_constraint_and_integrals(page, se
     assert set(i) == {"energy H = (M, ω)/2 + U", "F = |M × γ|²"}, i.keys()
     for name, v in i.items():
         assert np.nanmax(np.abs(v - v[0])) / max(abs(v[0]), 1.0) < 1e-8, name
+    # the drift plot names the rubber integrals typeset, as it names the others
+    drift = [t["name"] for t in traces(page, "#plot-drift")]
+    assert {"energy H", "γ²", "(ω, γ)", "|M × γ|²"} <= set(drift), drift
+    assert not {"spin", "rubber_ball_F"} & set(drift), drift
     # the body in 3D
     page.fill("#f-frames", "60")
     page.click("#scene-btn")

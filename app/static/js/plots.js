@@ -24,6 +24,9 @@ const INVARIANT_NAMES = {
   energy: "energy H", gamma_squared: "γ²", area: "(M, γ)", M_squared: "M²", M_plus_S_squared: "(M+S)²",
   gyro_area: "(M+S, γ)", unbalanced_F: "unbalanced-ball integral", jellett: "Jellett",
   routh: "Routh", borisov_fedorov: "Borisov–Fedorov",
+  // the rubber cases (catalogue/glossary.yaml): the no-spin constraint, zero on their
+  // motions, and their integrals
+  spin: "(ω, γ)", rubber_ball_F: "|M × γ|²", rubber_routh: "N ω₃ (rubber Routh)",
 };
 
 function base(title, extra = {}) {
