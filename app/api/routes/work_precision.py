@@ -31,8 +31,9 @@ class WorkPrecisionPublic(BaseModel):
 
 @router.get("/work-precision", response_model=WorkPrecisionPublic)
 async def work_precision() -> dict:
-    """Error against cost for every method on six representative cases (ours: DOP853 and
-    Verner 9(8), with and without projection; scipy DOP853, LSODA, Radau; heyoka)."""
+    """Error against cost for every method on representative cases, six marble and two
+    rubber (ours: DOP853 and Verner 9(8), with and without projection; scipy DOP853, LSODA,
+    Radau; heyoka)."""
     from solvers.integrate.workprecision import load_results
 
     try:
