@@ -16,7 +16,6 @@ test that reads it (tests/test_rubber_tables_exact.py) fails until it is run aga
 
 from __future__ import annotations
 
-import ast
 import hashlib
 import json
 import sys
@@ -27,22 +26,11 @@ import sympy as sp
 
 from solvers.models import rubber_bodies as rb
 from solvers.models import rubber_exact as rx
+from solvers.models.code_text import code_text
 
 HERE = Path(__file__).resolve().parent
 STORE = HERE / "rubber_proofs.json"
 STORED_CASES = ("rubber-plane/body-of-revolution", "rubber-plane/spherical-inertia")
-
-
-def code_text(source: str) -> str:
-    """A module's syntax tree without its docstrings (comments are not in the tree)."""
-    tree = ast.parse(source)
-    for node in ast.walk(tree):
-        if isinstance(node, ast.Module | ast.ClassDef | ast.FunctionDef | ast.AsyncFunctionDef):
-            body = node.body
-            if body and isinstance(body[0], ast.Expr) and isinstance(body[0].value, ast.Constant) \
-                    and isinstance(body[0].value.value, str):
-                node.body = body[1:] or [ast.Pass()]
-    return ast.dump(tree)
 
 
 def fingerprint(case_id: str) -> str:

@@ -17,12 +17,12 @@ regenerated (it keeps its probabilistic certificate). tests/test_exact_bounds.py
 a sample of the stored proofs.
 """
 
-import ast
 import hashlib
 import json
 from functools import cache
 from pathlib import Path
 
+from solvers.models.code_text import code_text
 from solvers.verify.registry import CORRECTED, FORMULAS
 
 ROOT = Path(__file__).resolve().parents[3]
@@ -45,20 +45,8 @@ def code_hash() -> str:
             if f.name in ("proofs.py", "prove_all.py"):     # they store, never compute
                 continue
             h.update(f.relative_to(ROOT).as_posix().encode())
-            h.update(_code_text(f.read_text(encoding="utf-8")).encode())
+            h.update(code_text(f.read_text(encoding="utf-8")).encode())
     return h.hexdigest()[:16]
-
-
-def _code_text(source: str) -> str:
-    """The module's syntax tree without its docstrings (comments are not in the tree)."""
-    tree = ast.parse(source)
-    for node in ast.walk(tree):
-        if isinstance(node, ast.Module | ast.ClassDef | ast.FunctionDef | ast.AsyncFunctionDef):
-            body = node.body
-            if body and isinstance(body[0], ast.Expr) and isinstance(body[0].value, ast.Constant) \
-                    and isinstance(body[0].value.value, str):
-                node.body = body[1:] or [ast.Pass()]
-    return ast.dump(tree)
 
 
 def _functions(claim, corrected):
