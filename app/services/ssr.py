@@ -204,8 +204,14 @@ def table_html(t: dict) -> str:
                          f'{shade_why(c)}{mark_html(c)}</td>')
         rows.append(f'<tr class="row-{escape(grow["key"])}"><th scope="row">'
                     f'{escape(labels[grow["key"]])}</th>{"".join(cells)}</tr>')
-    return (f'<table class="paper ssr" id="tbl-{escape(t["id"])}" '
-            f'aria-describedby="cap-{escape(t["id"])}"><thead><tr><th scope="col" '
+    return table_shell("paper ssr", t["id"], head, rows)
+
+
+def table_shell(classes: str, table_id: str, head: str, rows: list[str]) -> str:
+    """The markup around a paper-style table's header cells and rows: its id (tbl-...), its
+    caption's id, the corner cell."""
+    return (f'<table class="{classes}" id="tbl-{escape(table_id)}" '
+            f'aria-describedby="cap-{escape(table_id)}"><thead><tr><th scope="col" '
             f'class="corner"><span class="sr-only">row</span></th>{head}</tr></thead>'
             f'<tbody>{"".join(rows)}</tbody></table>')
 
@@ -260,10 +266,7 @@ def rubber_table_html(t: dict) -> str:
             f'</div>{_sources_line(c)}{rubber_mark_html(c)}</td>' for c in grow["cells"])
         rows.append(f'<tr class="inv row-{escape(grow["key"])}"><th scope="row">'
                     f'{escape(labels[grow["key"]])}</th>{cells}</tr>')
-    return (f'<table class="paper rubber" id="tbl-{escape(t["id"])}" '
-            f'aria-describedby="cap-{escape(t["id"])}"><thead><tr><th scope="col" '
-            f'class="corner"><span class="sr-only">row</span></th>{head}</tr></thead>'
-            f'<tbody>{"".join(rows)}</tbody></table>')
+    return table_shell("paper rubber", t["id"], head, rows)
 
 
 def _claim_item(cl: dict) -> str:
