@@ -12,25 +12,13 @@
 Screenshot: test-artifacts/e2e/rubber-case-1280.png (and ROLLING_DOC_SHOTS/, when set, for
 docs/screenshots/)."""
 
-import os
-from pathlib import Path
 
 import numpy as np
 from playwright.sync_api import expect
 
+from tests.e2e.figures import drawn, shot_dirs
+
 CASE = "rubber-plane/chaplygin-ball"
-
-
-def _arr(y):
-    """A trace's values as drawn (null: a gap) as floats."""
-    return np.array([np.nan if v is None else v for v in y], dtype=float)
-
-
-def shots(artifacts):
-    out = [artifacts]
-    if os.environ.get("ROLLING_DOC_SHOTS"):
-        out.append(Path(os.environ["ROLLING_DOC_SHOTS"]))
-    return out
 
 
 def traces(page, sel):
@@ -60,11 +48,11 @@ def test_a_rubber_case_page_runs_and_plots_its_constraint_and_integrals(page, se
     page.click("#run")
     page.locator("body[data-rubber-plots='1']").wait_for(state="attached", timeout=180_000)
     expect(page.locator("#runinfo")).to_contain_text("ok")
-    c = {t["name"]: _arr(t["y"]) for t in traces(page, "#plot-constraint")}
+    c = {t["name"]: drawn(t["y"]) for t in traces(page, "#plot-constraint")}
     assert set(c) == {"(ω, γ), the spin about the normal", "|γ| − 1"}, c.keys()
     assert all(len(v) > 100 and np.nanmax(np.abs(v)) < 1e-8 for v in c.values()), \
         {k: np.nanmax(np.abs(v)) for k, v in c.items()}
-    i = {t["name"]: _arr(t["y"]) for t in traces(page, "#plot-integrals")}
+    i = {t["name"]: drawn(t["y"]) for t in traces(page, "#plot-integrals")}
     assert set(i) == {"energy H = (M, ω)/2 + U", "F = |M × γ|²"}, i.keys()
     for name, v in i.items():
         assert np.nanmax(np.abs(v - v[0])) / max(abs(v[0]), 1.0) < 1e-8, name
@@ -80,12 +68,12 @@ def test_a_rubber_case_page_runs_and_plots_its_constraint_and_integrals(page, se
     page.locator("#simulate").evaluate("e => e.scrollIntoView({block: 'start'})")
     page.wait_for_timeout(300)
     page.evaluate("window.scrollTo(0, 0)")
-    for d in shots(artifacts):
+    for d in shot_dirs(artifacts):
         d.mkdir(parents=True, exist_ok=True)
         page.screenshot(path=str(d / "rubber-case-1280.png"))
     # below the sticky header and the page's navigation
     page.locator("#plot-constraint").evaluate(
         "e => { e.scrollIntoView({block: 'start'}); window.scrollBy(0, -130); }")
     page.wait_for_timeout(300)
-    for d in shots(artifacts):
+    for d in shot_dirs(artifacts):
         page.screenshot(path=str(d / "rubber-case-plots-1280.png"))

@@ -14,31 +14,16 @@ Screenshots: test-artifacts/e2e/scene-marble-rubber-1280.png and
 scene-marble-rubber-present-1280.png (and ROLLING_DOC_SHOTS/, when set, for
 docs/screenshots/)."""
 
-import os
-from pathlib import Path
 
 import numpy as np
 from playwright.sync_api import expect
 
 from solvers.scenes.teaching import load_scenes
+from tests.e2e.figures import drawn, shot_dirs
 
 SID = "marble-against-rubber"
 SCENE = load_scenes()[SID]
 W, H = 1280, 720
-
-
-def _arr(y):
-    """A trace's values as drawn (null: a gap) as floats."""
-    return np.array([np.nan if v is None else v for v in y], dtype=float)
-
-
-def shots(artifacts):
-    out = [artifacts]
-    if os.environ.get("ROLLING_DOC_SHOTS"):
-        out.append(Path(os.environ["ROLLING_DOC_SHOTS"]))
-    for d in out:
-        d.mkdir(parents=True, exist_ok=True)
-    return out
 
 
 def in_view(locator, what):
@@ -67,14 +52,14 @@ def cursors(page):
 
 def claim_holds(page):
     """The no-spin claim and both conserved checks, on the numbers drawn."""
-    spin = {t["name"]: _arr(t["y"]) for t in plotted(page, 0)}
+    spin = {t["name"]: drawn(t["y"]) for t in plotted(page, 0)}
     b = SCENE.beside
     no_spin, marble = spin[b.label], spin[b.main_label]
     assert np.nanmax(np.abs(no_spin)) <= SCENE.checks[0].tol, np.nanmax(np.abs(no_spin))
     assert np.nanmax(np.abs(marble)) >= SCENE.checks[0].marble_min
     for k in (1, 2):
         check = SCENE.checks[k]
-        lines = {t["name"]: _arr(t["y"]) for t in plotted(page, k)}
+        lines = {t["name"]: drawn(t["y"]) for t in plotted(page, k)}
         assert len(lines) == len(check.names) + 1          # and gamma3, for contrast
         for name, v in lines.items():
             change = np.nanmax(np.abs(v - v[0])) / max(abs(v[0]), 1.0)
@@ -112,7 +97,7 @@ def test_marble_against_rubber_for_a_class(page, server, artifacts):
     assert views(page) == v2
     page.locator("#step").click()
     assert all(a != b for a, b in zip(v2, views(page), strict=True))
-    for d in shots(artifacts):
+    for d in shot_dirs(artifacts):
         page.screenshot(path=str(d / "scene-marble-rubber-1280.png"))
     # presentation
     page.locator("#present").click()
@@ -129,7 +114,7 @@ def test_marble_against_rubber_for_a_class(page, server, artifacts):
     assert len(widths) == 2 and min(widths) >= 6, widths
     in_view(page.locator("[data-testid=claim-plot]").first, "claim plot")
     in_view(page.locator("#scene-plot"), "3D views")
-    for d in shots(artifacts):
+    for d in shot_dirs(artifacts):
         page.screenshot(path=str(d / "scene-marble-rubber-present-1280.png"))
     page.locator("#present").click()
     page.locator("body[data-present='0']").wait_for(state="attached")
