@@ -13,6 +13,8 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from solvers.maps.andoyer import TWO_PI, map_point, on_energy_level
@@ -29,7 +31,10 @@ def next_point(model: Model, spec: MapSpec, x) -> np.ndarray | None:
     y0 = on_energy_level(model, x[0], x[1], x[2], spec.g0, spec.energy)
     if y0 is None:
         return None
-    tau = TWO_PI / omega_norm(model, y0)
+    w = omega_norm(model, y0)
+    if not math.isfinite(w):       # I_Q singular at the start: the field stops there
+        return None
+    tau = TWO_PI / w
     res = integrate(model.model, model.p, y0, [0.0, PILOT_TAUS * tau], method=spec.method,
                     rtol=spec.rtol, atol=spec.atol, section=spec.section(),
                     max_crossings=2, max_steps=spec.max_steps)

@@ -131,13 +131,17 @@ class MapTrajectory:
 
 
 def omega_norm(model: Model, y) -> float:
-    from solvers.kernels.fields import contact_inertia
+    """|omega| at the state y, omega = I_Q^-1 M solved as the compiled field solves it
+    (fields.omega_s, by the adjugate); nan where the field finds I_Q singular, as the
+    run from y would stop at once."""
+    from solvers.kernels.fields import omega_s
     from solvers.kernels.support import support
 
-    r, J, IQ = np.empty(3), np.empty((3, 3)), np.empty((3, 3))
+    r, J = np.empty(3), np.empty((3, 3))
     support(model.p, np.ascontiguousarray(y[3:6]), r, J)
-    contact_inertia(model.p, r, IQ)
-    return float(np.linalg.norm(np.linalg.solve(IQ, y[:3])))
+    det, w0, w1, w2 = omega_s(model.p, float(y[0]), float(y[1]), float(y[2]),
+                              float(r[0]), float(r[1]), float(r[2]))
+    return math.hypot(w0, w1, w2) if det != 0 else math.nan
 
 
 def dense_check(t: np.ndarray, Y: np.ndarray, ct: np.ndarray, g0: float,

@@ -28,6 +28,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from solvers.errors import InputError
+from solvers.kernels import layout as L
 from solvers.kernels.integrals import NAMES, integral_series
 from solvers.maps.andoyer import TWO_PI, map_point, on_energy_level
 from solvers.maps.map_spec import (
@@ -61,7 +62,8 @@ class _Tracer:
     def __init__(self, model: Model, y0, spec: MapSpec, h_max: float = math.inf):
         self.spec, self.h_max = spec, h_max
         y0 = np.array(y0, dtype=float)
-        self.tau = TWO_PI / max(omega_norm(model, y0), 1e-300)
+        w = omega_norm(model, y0)
+        self.tau = TWO_PI / max(w, 1e-300) if math.isfinite(w) else math.nan
         self.traj = MapTrajectory(tuple(float(v) for v in map_point(y0)), y0, np.empty(0),
                                   np.empty((0, 6)))
         # the start lies on the section: a crossing at t ~ 0 is the start itself
@@ -72,6 +74,9 @@ class _Tracer:
         self.t, self.y = 0.0, y0
         self.steps_left = spec.max_steps
         self.done = False
+        if not math.isfinite(w):     # the field stops at the start: no run to make
+            self.traj.status, self.traj.message = "singular", L.STATUS_TEXT[L.SING_INERTIA]
+            self._finish()
 
     def request(self):
         """(y0, t_out, max_crossings, max_steps) of the next run."""
