@@ -7,17 +7,17 @@ a matched final-state error interpolated (log-log) on that front:
                Chaplygin ball, the disk and the body with a flat base (the gyrostat
                term S x omega of the flat base is zero in this example and left out).
                It is the independent baseline and stays a step of its own, apart from
-               the project's one Runge-Kutta step (the step control of
-               solvers/kernels/control.py, which the loop kernel rk.py and the small
-               kernels small.py both call): a reference that shared that code could
-               not show its cost;
+               the project's one Runge-Kutta step (the template solvers/kernels/step.py
+               and the step control of control.py, from which the loop kernel and the
+               small kernels are made): a reference that shared that code could not
+               show its cost;
   lean-dop853  the same hand-written DOP853 on the generated field of the case
                (solvers/kernels/generate.py): what the generated field alone buys;
   ours         the project's integrate(): general rk_integrate kernel, general field;
   ours-generated  integrate(generated=True): on these plain runs the small kernel
                (solvers/kernels/small.py), what integrate() and simulate() run by default,
                through the Python entry;
-  gen-loops    rk.py compiled against the case's generated field, inlined
+  gen-loops    the loop kernel compiled against the case's generated field, inlined
                (field_modules.generated_integrator: what generated=True runs with a section or
                a projection), called directly (packed arrays reused: no entry);
   heyoka-lean  heyoka's Taylor integrator on the generated lean expressions;

@@ -6,7 +6,7 @@ the time of the first call is the compile (numba typing, lowering and LLVM) plus
 of a 0.01 s trajectory. Reported: wall and CPU time of that first call (CPU time is the
 process's own: on a loaded machine the wall time also holds the time other processes
 took), the source size, and the time of the generated integrator for comparison when
---big is given (rk.py's loops on the generated field).
+--big is given (the loop kernel on the generated field).
 
     PYTHONPATH=$PWD .venv/bin/python bench/small_compile.py [--cases a,b] [--big]
         -> bench/results/small_compile.txt
@@ -94,7 +94,7 @@ def main():
         if big:
             r = one(cid, "dop853", True)
             rows.append({"case": cid, "method": "generated integrator", **r})
-            line = (f"{cid:30s} generated integrator (rk.py loops):           {r['cpu']:5.1f} "
+            line = (f"{cid:30s} generated integrator (loop kernel):           {r['cpu']:5.1f} "
                     f"s CPU {r['wall']:6.1f} s wall")
             print(line, flush=True)
             lines.append(line)

@@ -15,10 +15,10 @@ kernel, and so invalidates it, is the content hash of the kernels' sources
 
 Keys (tuples: /api/health lists the prepared ones):
   ("small", model, slots, method)        a plain run's small kernel (solvers/kernels/small.py)
-  ("generated", model, slots)            rk.py's kernels on the generated field (generated
+  ("generated", model, slots)            the loop kernel on the generated field (generated
                                          = True with a projection; one compile per
                                          structure: the tableau is data)
-  ("general", model, method, project, fixed)   the general rk.py kernel (the collocation
+  ("general", model, method, project, fixed)   the general loop kernel (the collocation
                                          kernel for a symmetric method)
   ("taylor", structure, k > 0, precision, tol)   heyoka's integrator (taylor_backend)
 slots: the nonzero parameter slots of the case (its structure).
@@ -42,7 +42,7 @@ import numpy as np
 
 from solvers.integrate import auto, collocation, tableaux, taylor_backend
 from solvers.integrate.integrator import SMALL_METHODS, small_module
-from solvers.kernels import field_modules, gauss, generate, numba_cache, rk
+from solvers.kernels import field_modules, gauss, generate, loop_kernel, numba_cache
 from solvers.kernels import layout as L
 from solvers.models.cases import build
 from solvers.simulate import simulate
@@ -160,7 +160,7 @@ def is_compiled(key: tuple) -> bool:
         return numba_cache.holds(mod.rk_integrate)
     if kind == GENERAL:
         method = key[2]
-        kern = gauss.gauss_integrate if method in collocation.METHODS else rk.rk_integrate
+        kern = gauss.gauss_integrate if method in collocation.METHODS else loop_kernel.rk_integrate
         return numba_cache.holds(kern)
     if kind == TAYLOR:
         (model, slots, _), k_positive, precision, tol = key[1:]

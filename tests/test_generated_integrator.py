@@ -80,12 +80,12 @@ def test_same_bits_as_the_generated_integrator():
 
 
 def test_integrate_and_the_ensemble_twin_run_one_module():
-    """What integrate(generated=True) runs on a case: rk.py's own functions (the same code
-    objects' bytecode: its tableau loops, nothing written out) bound to the case's
+    """What integrate(generated=True) runs on a case: the loop kernel and rk.py's own
+    functions (the same code objects' bytecode: its tableau loops) bound to the case's
     generated field, the same module whose rk_integrate the ensemble twin calls; the twin
     is ensemble.py's loop, bound the same way. No source text is read to make them."""
     from solvers.integrate import ensemble
-    from solvers.kernels import bind, rk
+    from solvers.kernels import bind, loop_kernel, rk
     from solvers.kernels import ensemble as ens_kernels
 
     c = registry()["plane/chaplygin-ball"]
@@ -95,8 +95,8 @@ def test_integrate_and_the_ensemble_twin_run_one_module():
     assert mod is field_modules.generated_integrator(m.model, p)
     field = field_modules.generated(m.model, p)
     assert mod.rhs is field.rhs and rk.rhs is not field.rhs
-    own = bind.jitted(rk)
-    assert "rk_integrate" in own and "_stages" in own
+    own = {**bind.jitted(rk), **bind.jitted(loop_kernel.loop_module())}
+    assert "rk_integrate" in own and "stages" in own
     for name, disp in own.items():
         bound = getattr(mod, name)
         assert bound is not disp

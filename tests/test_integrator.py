@@ -21,7 +21,7 @@ from solvers.integrate.integrator import (
 )
 from solvers.integrate.reference import solve_ivp_reference
 from solvers.kernels import layout as L
-from solvers.kernels import rk
+from solvers.kernels import loop_kernel, rk
 from solvers.kernels.integrals import ENERGY, GEOM
 
 P0 = np.zeros(L.N_PARAMS)
@@ -296,7 +296,7 @@ def test_one_compiled_specialization():
     integrate(OSC, frozen, np.array([[0.0], [1.0]])[:, 0], [0.0, 1.0], atol=frozen[:2])
     integrate(KEP, P0, kepler(0.0), [0.0, 1.0], method="vern9", dense_output=False,
               project_codes=(0,), section=Section(coef=(0, 1, 0, 0)))
-    assert len(rk.rk_integrate.signatures) == 1
+    assert len(loop_kernel.rk_integrate.signatures) == 1
     assert method_arrays("dop853")[4].shape == (16, 8)
 
 
@@ -306,9 +306,9 @@ def test_second_process_loads_the_kernel_from_the_cache():
     code = textwrap.dedent("""
         import numpy as np
         from solvers.integrate.integrator import integrate
-        from solvers.kernels import rk
+        from solvers.kernels import loop_kernel
         integrate(0, np.zeros(22), [0.0, 1.0], [0.0, 1.0])
-        s = rk.rk_integrate.stats
+        s = loop_kernel.rk_integrate.stats
         print(sum(s.cache_hits.values()), sum(s.cache_misses.values()))
     """)
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,

@@ -1,7 +1,8 @@
 """The solvers package is layered and its imports run one way: a module never imports from a
 layer above its own (issue 9, "the house in order").
 
-    kernels, errors  <  integrate  <  models  <  simulate, compile_state  <  maps  <  scenes  <  verify  <  warmup
+    kernels, errors  <  integrate  <  models  <  simulate, compile_state  <  maps
+        <  scenes  <  verify  <  warmup
 
 Every import statement is read from the source (ast), including imports inside functions, so
 a lazy import cannot hide an upward dependency."""

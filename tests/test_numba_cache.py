@@ -29,7 +29,7 @@ def test_the_locators_and_the_tolerant_cache_are_installed_once():
 
 
 def test_a_kernel_is_stamped_with_the_content_hash_of_the_kernels_sources():
-    cache = rk.rk_integrate._cache
+    cache = rk.stages._cache
     assert isinstance(cache, numba_cache._TolerantCache)
     locator = cache._impl.locator
     assert isinstance(locator, numba_cache._PackageStampedLocator)

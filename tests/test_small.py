@@ -22,7 +22,7 @@ import pytest
 
 from solvers.integrate import integrator
 from solvers.integrate.integrator import integrate
-from solvers.kernels import generate, rk
+from solvers.kernels import generate, rk, small_ops
 from solvers.kernels import layout as L
 from solvers.models.cases import build, case_ids, registry
 
@@ -160,7 +160,7 @@ def test_other_runs_take_the_general_kernel_by_default():
 def test_small_kernel_is_scalar_code():
     """State and stages are scalar locals (no work arrays), the field is inlined code of
     the generator, and the tableau's coefficients are literals, passed with their stages
-    to the shared combinations (small.ops_source: axpy2 is y + h * (a0 * k0 + a1 * k1))."""
+    to the shared combinations (small_ops.ops_source: axpy2 is y + h * (a0 * k0 + a1 * k1))."""
     from solvers.kernels import small
 
     c = registry()["plane/chaplygin-ball"]
@@ -169,5 +169,5 @@ def test_small_kernel_is_scalar_code():
     run = src[src.index("def run("):]
     assert "np.empty" not in run and "np.zeros" not in run
     assert "k12_5" in run and "z1_0 = axpy1(y_0, h, 0.05260015195876773, k0_0)" in run
-    assert "return y + h * (a0 * k0 + a1 * k1)" in small.ops_source()
+    assert "return y + h * (a0 * k0 + a1 * k1)" in small_ops.ops_source()
     assert generate.numba_source(m.model, m.p).split("v26 = ")[1].split("\n")[0] in src

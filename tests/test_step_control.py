@@ -1,10 +1,14 @@
-"""The step control written once (solvers/kernels/control.py).
+"""The step written once: its loop in the template (solvers/kernels/step.py), its control in
+control.py.
 
-The loop kernel (rk.py) and the small kernels (small.py's generated scalar code) call the
-same functions for what the step decides (the starting step, the step's length, the error
+The loop kernel (loop_kernel.py's text from the template, with rk.py's stages and starting
+step) and the small kernels (small.py's text from the same template) call the same
+functions for what the step decides (the starting step, the step's length, the error
 norm, the controllers, the compensated sums, the section's crossing test), and neither
-writes those lines itself: the text of rk.py and of every kind of small kernel holds the
-calls and none of the controller's own expressions, which control.py holds once. That the
+writes those lines itself: their texts hold the calls and none of the controller's own
+expressions, which control.py holds once. The loop's own lines (the budget, the
+rejections, the accepted step, the samples, the commit) are the template's: written in
+step.py and in no backend. That the
 kernels give the same bits as before is tests/test_generated_integrator.py's and
 tests/test_small.py's (and scripts/same_bytes.py's); here the functions' own behaviour
 is checked, compiled as the kernels run them."""
@@ -16,7 +20,7 @@ import numpy as np
 import pytest
 
 from solvers.integrate import integrator  # noqa: F401 (provides the tableaux to baked.py)
-from solvers.kernels import baked, control, gauss, rk, small
+from solvers.kernels import baked, control, gauss, loop_kernel, rk, small, step
 from solvers.models.cases import build, registry
 
 # expressions of the step control: each must be in control.py once, and in no kernel
@@ -52,7 +56,8 @@ def test_the_step_control_is_written_once():
     ctl = inspect.getsource(control)
     for line in CONTROL_LINES:
         assert ctl.count(line) == 1, line
-    kernels = {"rk.py": inspect.getsource(rk), "gauss.py": inspect.getsource(gauss),
+    loop = loop_kernel.source() + inspect.getsource(rk)
+    kernels = {"loop kernel": loop, "gauss.py": inspect.getsource(gauss),
                **{f"small {k}": v for k, v in _small_texts().items()}}
     for name, text in kernels.items():
         for line in CONTROL_LINES:
@@ -68,7 +73,36 @@ def test_the_step_control_is_written_once():
         for method in ("dop853", "vern9"):
             text = _small_texts()[(method, kind)]
             assert "crosses(" in text and "halve(" in text
-    assert "crosses(" in kernels["rk.py"] and "halve(" in kernels["rk.py"]
+    assert "crosses(" in kernels["loop kernel"] and "halve(" in kernels["loop kernel"]
+
+
+# lines of the loop itself: each in the template, and in no backend's source
+LOOP_LINES = (
+    "attempts += 1",                                        # the step budget
+    "h, h_proposed, landing, ok = clip_step(h, hmax, t, ",  # the step's length
+    "h = 0.25 * h",                                         # a singular stage
+    "h = shrink(h, err, ",                                  # a failed error test
+    "h = 0.5 * h",                                          # a misread section
+    "t_comp = time_compensation(t, h, t_comp, t_new, landing, compensated)",
+    "while j < N and t_out[j] <= t_new:",                   # the samples in the step
+    "x = 2.0 * (t_out[j] - t) / h - 1.0",                   # the dense output's abscissa
+    "extra_done = True",                                    # the dense stages, once
+)
+
+
+def test_the_loop_is_written_once_in_the_template():
+    template = inspect.getsource(step)
+    backends = {m.__name__: inspect.getsource(m) for m in (loop_kernel, small, rk)}
+    generated = {"loop kernel": loop_kernel.source(),
+                 **{f"small {k}": v for k, v in _small_texts().items()}}
+    for line in LOOP_LINES:
+        assert template.count(line) == 1, line
+        for name, text in backends.items():
+            assert line not in text, (name, line)
+        for name, text in generated.items():
+            if line == "h = 0.5 * h" and name.startswith("small") and "sections" not in name:
+                continue        # a small kernel without sections has no halving
+            assert line in text, (name, line)
 
 
 def test_clip_step_lands_caps_and_detects_underflow():

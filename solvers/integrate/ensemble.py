@@ -46,7 +46,7 @@ from solvers.integrate.integrator import (
 from solvers.integrate.options import Projection, RunOptions
 from solvers.integrate.result import result
 from solvers.kernels import ensemble as kernels
-from solvers.kernels import field_modules, generate, module_cache, rk
+from solvers.kernels import field_modules, generate, loop_kernel, module_cache, rk
 from solvers.kernels import layout as L
 
 _LAUNCH = threading.Lock()
@@ -289,7 +289,7 @@ def integrate_ensemble(model, p, Y0, t_out, *, method="dop853", rtol=1e-10, atol
         # per trajectory (the same bits), without compiling that loop: the explorer's maps
         # run so (one trajectory slice per worker process, app/services/poincare_jobs.py)
         serial = (field_modules.generated_integrator(model, p)
-                  if gen else rk).rk_integrate
+                  if gen else loop_kernel).rk_integrate
         packed = sec.packed(n)
         for i in range(n_traj):
             status[i], t_stop[i] = serial(

@@ -34,7 +34,16 @@ from solvers.integrate.times import (
     output_times,  # noqa: F401 (its callers import it from here)
     trusted_or_checked,
 )
-from solvers.kernels import baked, field_modules, gauss, generate, module_cache, rk, small
+from solvers.kernels import (
+    baked,
+    field_modules,
+    gauss,
+    generate,
+    loop_kernel,
+    module_cache,
+    rk,
+    small,
+)
 from solvers.kernels import layout as L
 
 
@@ -91,14 +100,15 @@ def _option_arrays(iopt: tuple, fopt: tuple):
 
 
 # generated integrators: (model, p bytes) -> module (whether one is compiled is
-# solvers/compile_state.py's question). rk.py's tableau loops on the generated field: the
+# solvers/compile_state.py's question). The loop kernel's tableau loops on the generated
+# field: the
 # dop853 and vern9 stages written out as straight-line code saved little time per rhs call
 # on this opt-in path for twice the compile, so they are not used (docs/performance.md)
 _GEN_MODULES: dict = {}
 
 
 def generated_module(model: int, p: np.ndarray):
-    """rk.py's kernels on the case's generated field (field_modules.generated_integrator),
+    """The loop kernel on the case's generated field (field_modules.generated_integrator),
     memoized per parameter vector."""
     key = (int(model), p.tobytes())
     mod = _GEN_MODULES.get(key)
@@ -180,18 +190,18 @@ def integrate(model, p, y0, t_out, *, method="dop853", rtol=1e-10, atol=1e-12,
     kernel of the case's structure (solvers/kernels/small.py: the generated field; a few
     seconds of compile on the first use of a structure, then numba's cache), any other run
     the general kernel: the route depends on the request only, so the same request gives
-    the same bits whatever the cache holds (the small kernel equals the generated rk.py
+    the same bits whatever the cache holds (the small kernel equals the generated loop
     kernel bit for bit: tests/test_small.py). True: the generated field, by the small
-    kernel for a plain run, else by rk.py's generated integrator (compiled on first use
+    kernel for a plain run, else by the generated loop kernel (compiled on first use
     of a structure, a long compile); False: the general support-function field, the
     reference.
     The result's `vector_field` says which field ran, `kernel` which compiled form.
-    kernel: None (default) the rule above; "rk": rk.py's kernel whatever the run (the
+    kernel: None (default) the rule above; "rk": the loop kernel whatever the run (the
     tests' reference for the small kernels); "small": the small kernel, a run with a
     section or a projection included (its kernel with sections: the steps and samples of
-    rk.py's generated integrator bit for bit, the crossings located by rk.py's own code on
+    the generated loop kernel bit for bit, the crossings located by rk.py's own code on
     the general field, result kernel "small-sections"; with projection: the generated
-    integrator's bits, rk.py's own projection, "small-projection"), ValueError for a run
+    integrator's bits, the loop kernel's own projection, "small-projection"), ValueError for a run
     no small kernel takes.
     A run with a section or a projection takes it only when asked (a Poincare map decides
     by its size: solvers/maps/poincare.py map_kernel): it compiles once per structure.
@@ -299,7 +309,7 @@ def run_options(model, p, y0, t_out, opts: RunOptions, *, generated=None,
         wall = time.perf_counter() - t0
         return result(t_out, Y, y_stop, stats, status, t_stop, wall, method, cross_t,
                        cross_y, "generated", used)
-    kern, used = rk.rk_integrate, "general"
+    kern, used = loop_kernel.rk_integrate, "general"
     if generated and model in generate.GENERATED_MODELS:
         kern, used = generated_module(model, p).rk_integrate, "generated"
     t0 = time.perf_counter()

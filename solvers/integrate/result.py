@@ -26,7 +26,7 @@ class IntegrationResult:
     crossings_t: np.ndarray = field(default_factory=lambda: np.empty(0))
     crossings_y: np.ndarray = field(default_factory=lambda: np.empty((0, 0)))
     vector_field: str = "general"   # what the kernel ran: generated | general
-    kernel: str = "rk"              # which compiled form: small | rk (rk.py's, general
+    kernel: str = "rk"              # which compiled form: small | rk (the loop kernel, general
                                     # or generated) | gauss
 
     @property

@@ -5,7 +5,7 @@ in with `set_provider(fn)`, fn() -> {name: (A, c, b, E, P, meth)} (integrator.me
 `tableaux_stamp` hashes their exact doubles into the names of the kernels that bake them,
 so a changed coefficient gives another module, never a stale cached one.
 
-rk.py's tableau loops are not written out as straight-line code for the generated
+The loop kernel's tableau loops are not written out as straight-line code for the generated
 integrators: that saved little time per rhs call on that opt-in path for twice the compile
 (docs/performance.md)."""
 

@@ -1,13 +1,14 @@
-"""A kernel module's compiled functions bound to other callees: the loop kernel (rk.py) on a
-case's generated field, the ensemble loop (ensemble.py) on such a loop kernel.
+"""Kernel modules' compiled functions bound to other callees: the loop kernel (loop_kernel.py
+with rk.py's functions that call the field) on a case's generated field, the ensemble loop
+(ensemble.py) on such a loop kernel.
 
-    bind_into(mod, rk, {"rhs": generated.rhs})
+    bind_into(mod, (rk, loop), {"rhs": generated.rhs})
 
-makes the module `mod` whose jitted functions are `rk`'s own code objects (the same
+makes the module `mod` whose jitted functions are the modules' own code objects (the same
 bytecode: numba builds the same IR from it, so on the same callee the same machine code),
-each compiled anew with its global names looked up in `mod`: a copy of rk's namespace in
-which `replace` (here the field) and rk's other jitted functions, bound in turn, stand for
-the originals. So the step is written once, in rk.py, for every field, and nothing reads
+each compiled anew with its global names looked up in `mod`: a copy of the modules'
+namespaces in which `replace` (here the field) and their other jitted functions, bound in
+turn, stand for the originals. So the loop is the same for every field, and nothing reads
 or edits source text.
 
 Why globals and not closures (a factory returning jitted closures over the field): numba
@@ -48,20 +49,24 @@ def jitted(module) -> dict:
             if isinstance(v, Dispatcher) and v.py_func.__module__ == module.__name__}
 
 
-def bind_into(target, module, replace: dict) -> None:
-    """Fill the module `target` with `module`'s names, `replace` standing for some of
-    them, and `module`'s jitted functions compiled anew over target's namespace (module
-    docstring). Done once per target (later calls return at once)."""
+def bind_into(target, modules, replace: dict) -> None:
+    """Fill the module `target` with the names of `modules` (a module or a sequence of
+    them, later ones taking precedence), `replace` standing for some of them, and the
+    modules' jitted functions compiled anew over target's namespace (module docstring).
+    Done once per target (later calls return at once)."""
+    modules = tuple(modules) if isinstance(modules, list | tuple) else (modules,)
     with _BIND:
         if getattr(target, _BOUND, None) is not None:
             return
         space = vars(target)
-        for k, v in vars(module).items():
-            if not (k.startswith("__") and k.endswith("__")):
-                space[k] = v
+        for module in modules:
+            for k, v in vars(module).items():
+                if not (k.startswith("__") and k.endswith("__")):
+                    space[k] = v
         space.update(replace)
         filename = getattr(target, "__file__", None) or f"<bound kernels {target.__name__}>"
-        for k, disp in jitted(module).items():
+        own = {k: d for module in modules for k, d in jitted(module).items()}
+        for k, disp in own.items():
             if k in replace:
                 continue
             f = disp.py_func
@@ -72,5 +77,5 @@ def bind_into(target, module, replace: dict) -> None:
             fn.__kwdefaults__ = f.__kwdefaults__
             opts = {o: x for o, x in disp.targetoptions.items() if o != "nopython"}
             space[k] = numba.njit(cache=True, **opts)(fn)
-        setattr(target, _BOUND, module.__name__)
+        setattr(target, _BOUND, ", ".join(m.__name__ for m in modules))
 

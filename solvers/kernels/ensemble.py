@@ -1,4 +1,4 @@
-"""Many trajectories in one compiled call: `rk_integrate` (rk.py) for every row of Y0 in a
+"""Many trajectories in one compiled call: `rk_integrate` (loop_kernel.py) for every row of Y0 in a
 numba `prange` loop over the trajectories.
 
 Each trajectory is one unchanged call of the serial kernel on its own rows of the
@@ -22,7 +22,7 @@ from numba import prange, types
 from numba.core import cgutils
 from numba.extending import intrinsic
 
-from solvers.kernels.rk import rk_integrate
+from solvers.kernels.loop_kernel import rk_integrate
 
 # the serial kernel's flags (jit.py) and parallel=True: numba's cache stores parallel
 # functions too, so a second process loads the machine code instead of compiling

@@ -163,10 +163,10 @@ def _memory_module(name: str, text: str):
 
 
 def bound_module(name: str, module, replace: dict, what: str):
-    """The module `name` of cache_dir() holding `module`'s jitted functions compiled over
-    `replace` (solvers/kernels/bind.py: the same code objects, other callees; no source
-    text is read or edited). Its file is a stub saying `what` it holds, beside which numba
-    caches the machine code."""
+    """The module `name` of cache_dir() holding the jitted functions of `module` (a module
+    or a sequence of them) compiled over `replace` (solvers/kernels/bind.py: the same code
+    objects, other callees; no source text is read or edited). Its file is a stub saying
+    `what` it holds, beside which numba caches the machine code."""
     # numba's: imported by the first bound module, not by what only reads the cache's
     # directory (the Taylor backend's disk cache, the server's probe)
     from solvers.kernels import bind

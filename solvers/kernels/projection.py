@@ -1,5 +1,5 @@
-"""Projection onto the levels of first integrals, for the Runge-Kutta kernels (rk.py and
-the small kernels with projection, solvers/kernels/small.py).
+"""Projection onto the levels of first integrals, for the Runge-Kutta kernels (the loop
+kernel and the small kernels with projection, solvers/kernels/small.py).
 
 `project` moves a state onto {F(y) = F0} by simplified Newton iterations,
 y <- y - G^T (G G^T)^-1 (F(y) - F0), with G = dF/dy taken once at the unprojected y by
