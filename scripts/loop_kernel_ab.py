@@ -87,14 +87,12 @@ def runs(m, y0, method):
     }
 
 
-def timed(fn, kern, repeats):
+def timed(fn, kern):
+    """One run of fn on the loop kernel `kern`: (CPU seconds, result)."""
     loop_kernel.rk_integrate = kern
-    best, r = np.inf, None
-    for _ in range(repeats):
-        c0 = time.process_time()
-        r = fn()
-        best = min(best, time.process_time() - c0)
-    return best, r
+    c0 = time.process_time()
+    r = fn()
+    return time.process_time() - c0, r
 
 
 def main() -> None:
@@ -120,13 +118,12 @@ def main() -> None:
             agree: dict[str, int] = {}
             for y0 in starts(case, a.starts, rng):
                 for kind, fn in runs(m, y0, method).items():
-                    fn_ = fn
-                    timed(fn_, old, 1)      # compiled (or loaded) before timing
-                    timed(fn_, new, 1)
+                    timed(fn, old)      # compiled (or loaded) before timing
+                    timed(fn, new)
                     t_old = t_new = np.inf
                     for _ in range(a.repeats):   # interleaved: A B A B ...
-                        to, ro = timed(fn_, old, 1)
-                        tn, rn = timed(fn_, new, 1)
+                        to, ro = timed(fn, old)
+                        tn, rn = timed(fn, new)
                         t_old, t_new = min(t_old, to), min(t_new, tn)
                     ratios.setdefault(kind, []).append(t_new / t_old)
                     ok = digest(ro) == digest(rn)
