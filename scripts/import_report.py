@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import ast
 import json
+import re
 import sys
 from collections.abc import Iterator
 from dataclasses import dataclass
@@ -23,7 +24,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 PACKAGES = ("solvers", "app", "catalogue")
 LINE_LIMIT = 500
-LAZY = "# lazy:"
+# a reason: "# lazy:" followed by words (what heavy import it keeps out, of what)
+LAZY = re.compile(r"#\s*lazy:\s*\S")
 
 
 @dataclass(frozen=True)
@@ -139,13 +141,13 @@ def function_imports_in(source: str, module: str = "<source>") -> list[FunctionI
 
     def explained(node: ast.stmt) -> bool:
         own = lines[node.lineno - 1:(node.end_lineno or node.lineno)]
-        if any(LAZY in line for line in own):
+        if any(LAZY.search(line) for line in own):
             return True
         n = node.lineno - 1  # 1-based number of the line above
         while n >= 1:
             text = lines[n - 1].strip()
             if text.startswith("#"):
-                if text.startswith(LAZY):
+                if LAZY.match(text):
                     return True
             elif n not in import_lines:
                 return False

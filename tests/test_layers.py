@@ -98,11 +98,18 @@ def a_plain_comment_is_no_reason():
     # the math module
     import math
     return math
+
+
+def an_empty_reason_is_no_reason():
+    import math  # lazy:
+    return math
 """
 
 
 def test_the_lazy_finder_tells_explained_from_unexplained():
     found = report.function_imports_in(SYNTHETIC, "m")
     assert [(i.line, i.reason) for i in found] == [
-        (5, False), (10, True), (18, True), (19, True), (25, True), (27, False), (33, False)]
-    assert [i.text for i in found if not i.reason] == ["import os", "import math", "import math"]
+        (5, False), (10, True), (18, True), (19, True), (25, True), (27, False), (33, False),
+        (38, False)]
+    assert [i.text for i in found if not i.reason] == [
+        "import os", "import math", "import math", "import math  # lazy:"]
