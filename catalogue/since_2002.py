@@ -16,6 +16,7 @@ from functools import cache
 import yaml
 
 from catalogue.load import DATA_DIR, UniqueKeyLoader, load_catalogue
+from catalogue.numbering import cite
 from catalogue.schema import Reference, Since2002, SinceNote
 
 FILE = DATA_DIR / "since_2002.yaml"
@@ -77,7 +78,6 @@ def notes_for(case_id: str) -> list[SinceNote]:
 def note_json(n: SinceNote) -> dict:
     """A note as the case JSON and the pages show it: the paper's equations by their printed
     numbers (catalogue.numbering.cite), its references resolved."""
-    from catalogue.numbering import cite
     return {**n.model_dump(mode="json"), "note": cite(n.note),
             "project": cite(n.project) if n.project else None,
             "references": [{"id": rid, "citation": short_citation(reference(rid)),

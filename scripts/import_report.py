@@ -1,18 +1,21 @@
 """Report on the project's import graph, read with ast (nothing is imported).
 
 It counts the imports of project modules made inside functions, lists the
+imports inside functions (of any module) that give no `# lazy:` reason, the
 import circles among project modules (module level and inside functions
 alike, since a circle hidden in a function is still a circle), the
 underscore names one module imports from another, and the files of
 solvers/, app/ and catalogue/ over the line limit (Python and the explorer's
-JavaScript). `python scripts/import_report.py` prints it; `--json` gives the
-same as JSON. tests/test_layers.py uses the functions here.
+JavaScript). `python scripts/import_report.py` prints it (`--unexplained` also lists
+the imports without a reason); `--json` gives the same as JSON. tests/test_layers.py
+uses the functions here.
 """
 
 from __future__ import annotations
 
 import ast
 import json
+import re
 import sys
 from collections.abc import Iterator
 from dataclasses import dataclass
@@ -21,6 +24,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 PACKAGES = ("solvers", "app", "catalogue")
 LINE_LIMIT = 500
+# a reason: "# lazy:" followed by words (what heavy import it keeps out, of what)
+LAZY = re.compile(r"#\s*lazy:\s*\S")
 
 
 @dataclass(frozen=True)
@@ -95,6 +100,75 @@ def imports_of(path: Path, modules: set[str]) -> list[Import]:
 
     visit(tree, False)
     return found
+
+
+@dataclass(frozen=True)
+class FunctionImport:
+    """One import statement (of any module) made inside a function."""
+
+    source: str  # importing module, dotted
+    line: int
+    text: str  # the statement's first line, stripped
+    reason: bool  # a `# lazy:` comment explains it
+
+
+def _statements(tree: ast.AST) -> Iterator[tuple[ast.Import | ast.ImportFrom, bool]]:
+    """Every import statement of a module, with whether it sits inside a function."""
+
+    def visit(node: ast.AST, in_function: bool) -> Iterator[tuple[ast.stmt, bool]]:
+        for child in ast.iter_child_nodes(node):
+            if isinstance(child, ast.Import | ast.ImportFrom):
+                yield child, in_function
+            nested = in_function or isinstance(
+                child, ast.FunctionDef | ast.AsyncFunctionDef | ast.Lambda
+            )
+            yield from visit(child, nested)
+
+    yield from visit(tree, False)
+
+
+def function_imports_in(source: str, module: str = "<source>") -> list[FunctionImport]:
+    """The imports inside functions of one module's source, each marked with whether it
+    carries a `# lazy:` reason: on one of the statement's own lines, or in the comment
+    line(s) directly above it, where one comment covers the run of consecutive import
+    lines below it."""
+    lines = source.splitlines()
+    tree = ast.parse(source)
+    statements = list(_statements(tree))
+    import_lines: set[int] = set()
+    for node, _ in statements:
+        import_lines.update(range(node.lineno, (node.end_lineno or node.lineno) + 1))
+
+    def explained(node: ast.stmt) -> bool:
+        own = lines[node.lineno - 1:(node.end_lineno or node.lineno)]
+        if any(LAZY.search(line) for line in own):
+            return True
+        n = node.lineno - 1  # 1-based number of the line above
+        while n >= 1:
+            text = lines[n - 1].strip()
+            if text.startswith("#"):
+                if LAZY.match(text):
+                    return True
+            elif n not in import_lines:
+                return False
+            n -= 1
+        return False
+
+    return [FunctionImport(module, node.lineno, lines[node.lineno - 1].strip(), explained(node))
+            for node, in_function in statements if in_function]
+
+
+def function_imports() -> list[FunctionImport]:
+    """The imports inside functions (any module) across solvers/, app/ and catalogue/."""
+    out: list[FunctionImport] = []
+    for path in project_files():
+        out.extend(function_imports_in(path.read_text(encoding="utf-8"), module_name(path)))
+    return out
+
+
+def unexplained_imports() -> list[FunctionImport]:
+    """The imports inside functions that give no `# lazy:` reason."""
+    return [i for i in function_imports() if not i.reason]
 
 
 def private_attributes(path: Path, modules: set[str]) -> list[tuple[str, str, str]]:
@@ -223,7 +297,17 @@ def report() -> dict:
     per_file: dict[str, int] = {}
     for imp in in_function:
         per_file[imp.source] = per_file.get(imp.source, 0) + 1
+    inside = function_imports()
+    unexplained = [i for i in inside if not i.reason]
+    unexplained_by_package: dict[str, int] = {package: 0 for package in PACKAGES}
+    for imp in unexplained:
+        unexplained_by_package[imp.source.split(".")[0]] += 1
     return {
+        "imports_in_functions_any_module": len(inside),
+        "imports_in_functions_without_reason": len(unexplained),
+        "imports_in_functions_without_reason_by_package": unexplained_by_package,
+        "imports_in_functions_without_reason_list": [
+            [i.source, i.line, i.text] for i in unexplained],
         "imports_in_functions": len(in_function),
         "imports_in_functions_by_module": dict(sorted(per_file.items(), key=lambda kv: -kv[1])),
         "circles": circles(graph(imports, modules)),
@@ -237,6 +321,14 @@ def main(argv: list[str]) -> int:
     if "--json" in argv:
         print(json.dumps(data, indent=1))
         return 0
+    print(f"imports inside functions (any module): {data['imports_in_functions_any_module']}")
+    print("imports inside functions without a reason: "
+          f"{data['imports_in_functions_without_reason']}")
+    for package, n in data["imports_in_functions_without_reason_by_package"].items():
+        print(f"  {n:4d}  {package}/")
+    if "--unexplained" in argv:
+        for source, line, text in data["imports_in_functions_without_reason_list"]:
+            print(f"    {source}:{line}  {text}")
     print(f"imports of project modules inside functions: {data['imports_in_functions']}")
     for module, n in list(data["imports_in_functions_by_module"].items())[:15]:
         print(f"  {n:4d}  {module}")

@@ -28,11 +28,18 @@ from functools import cache
 import numpy as np
 
 from solvers.errors import InputError
+from solvers.integrate import auto as automatic
+from solvers.integrate import taylor_backend
+from solvers.integrate.collocation import METHODS
 from solvers.integrate.integrator import integrate, output_times
 from solvers.integrate.reference import solve_ivp_reference
+from solvers.integrate.tableaux import TABLEAUX
 from solvers.kernels.integrals import integral_table
+from solvers.models import rubber_lagrange
 from solvers.models.cases import Model, build, initial_state
 from solvers.models.observables import Invariants, public_name
+from solvers.models.reference import field as ref_field
+from solvers.models.rubber_bodies import from_vector
 
 SCIPY_METHODS = {"scipy-dop853": "DOP853", "scipy-rk45": "RK45", "scipy-lsoda": "LSODA",
                  "scipy-radau": "Radau"}
@@ -49,14 +56,12 @@ FIELDS = {"auto": None, "generated": True, "general": False}
 @cache
 def compiled_methods() -> tuple[str, ...]:
     """The adaptive explicit Runge-Kutta methods (solvers/tableaux)."""
-    from solvers.integrate.tableaux import TABLEAUX
     return tuple(TABLEAUX)
 
 
 @cache
 def symmetric_methods() -> tuple[str, ...]:
     """The symmetric fixed-step Gauss collocation methods (they take `step`, not rtol)."""
-    from solvers.integrate.collocation import METHODS
     return tuple(METHODS)
 
 
@@ -326,22 +331,15 @@ def _integrate(model: Model, y0, t_out, method, rtol, atol, project, max_steps, 
     """Compiled kernels, heyoka's Taylor integrator, or scipy's solve_ivp on the
     independent NumPy field."""
     if method == "taylor":
-        from solvers.integrate import taylor_backend
-
         return taylor_backend.run(model.model, model.p, y0, t_out, rtol=rtol,
                                   precision=precision, max_steps=max_steps)
 
     if method in SCIPY_METHODS and model.case.constraint == "rubber":
-        from solvers.models import rubber_lagrange
-        from solvers.models.rubber_bodies import from_vector
-
         body = from_vector(model.p)
 
         def fun(t, y):   # the Lagrange-d'Alembert derivation, independent of the kernels
             return rubber_lagrange.field(body, y)
     elif method in SCIPY_METHODS:
-        from solvers.models.reference import field as ref_field
-
         def fun(t, y):
             return ref_field(model.model, model.p, y)
     if method in SCIPY_METHODS:
@@ -437,15 +435,11 @@ def simulate(case: str, params: dict | None, state0, t_end: float, *,
     auto = None
     if method == "auto":   # from the measured work-precision front, per case and tolerance
         _check_run_options(t_end, method, rtol, atol, samples)
-        from solvers.integrate.auto import choose
-
-        auto = choose(case, model.model, rtol, float(t_end), project, step, precision)
+        auto = automatic.choose(case, model.model, rtol, float(t_end), project, step, precision)
         method, precision = auto["method"], auto["precision"]
         rtol = atol = auto["tol"]   # the front point's tolerance (auto.py)
     if method == "taylor" or precision is not None:
-        from solvers.integrate.taylor_backend import check_taylor_options
-
-        check_taylor_options(method, precision, project, step)
+        taylor_backend.check_taylor_options(method, precision, project, step)
     _check_options(t_end, method, rtol, atol, samples, project, max_steps, step, field)
     t_out = _sample_times(t_end, samples)
     checked = None
@@ -453,15 +447,13 @@ def simulate(case: str, params: dict | None, state0, t_end: float, *,
         res = _integrate(model, y0, t_out, method, rtol, atol, project, max_steps, step,
                          FIELDS[field], precision)
     else:   # the choice, checked by a tighter run and tightened until it meets rtol
-        from solvers.integrate.auto import run_checked
-
         def runner(rung, budget):
             return _integrate(model, y0, t_out, rung["method"], rung["tol"], rung["tol"],
                               project, budget, step, FIELDS[field], rung["precision"],
                               compensated=rung["compensated"])   # as measured
 
-        res, checked = run_checked(auto, runner, float(t_end), max_steps,
-                                   taylor_ok=auto["taylor_allowed"])
+        res, checked = automatic.run_checked(auto, runner, float(t_end), max_steps,
+                                             taylor_ok=auto["taylor_allowed"])
         method, precision = checked["returned"]["method"], checked["returned"]["precision"]
         rtol = atol = checked["returned"]["tol"]
     status = "ok" if res.success else ("budget" if res.budget_exhausted else "singular")

@@ -18,19 +18,34 @@ compiled here: no default route needs them (`python -m solvers.warmup --generate
 compiles them).
 """
 
+import multiprocessing as mp
 import os
 import time
+from concurrent.futures import ProcessPoolExecutor, as_completed
 
 import numpy as np
 
+from solvers import compile_state as cs
+from solvers.errors import InputError
+from solvers.integrate.ensemble import integrate_ensemble
+from solvers.integrate.integrator import SMALL_METHODS
+from solvers.kernels import generate
+from solvers.kernels import layout as L
+from solvers.kernels.integrals import ENERGY
+from solvers.maps.poincare import (
+    MapSpec,
+    integral_spread,
+    map_model,
+    starts_for,
+    trace_checked_all,
+)
+from solvers.models.cases import build, registry
+from solvers.models.derivatives import field_jacobian, integral_gradient
+from solvers.models.kinematics import scene
+from solvers.simulate import compiled_methods, simulate, symmetric_methods
+
 
 def _general() -> None:
-    from solvers.kernels.integrals import ENERGY
-    from solvers.models.cases import build, registry
-    from solvers.models.derivatives import field_jacobian, integral_gradient
-    from solvers.models.kinematics import scene
-    from solvers.simulate import compiled_methods, simulate, symmetric_methods
-
     seen = set()
     for cid, case in registry().items():
         key = (case.body == "flat",)
@@ -61,8 +76,6 @@ EXTRA = (("plane/unbalanced-ball", {"g": 1.0}),)
 
 
 def warm_targets() -> list[tuple[str, dict]]:
-    from solvers.models.cases import registry
-
     return [(cid, dict(case.example)) for cid, case in registry().items()] + \
         [(cid, {**registry()[cid].example, **over}) for cid, over in EXTRA]
 
@@ -73,10 +86,6 @@ def pending(generated: bool = False,
     generated integrators) are not compiled yet for some method (solvers/compile_state.py
     is_compiled): every case's example parameters and EXTRA (all_structures: every one of
     them, compiled or not)."""
-    from solvers import compile_state as cs
-    from solvers.kernels import generate
-    from solvers.models.cases import build
-
     out: dict[tuple, list] = {}
     for cid, params in warm_targets():
         m = build(cid, params)
@@ -98,8 +107,6 @@ WARM_SMALL = ("dop853",)
 
 
 def _small_methods() -> tuple:
-    from solvers.integrate.integrator import SMALL_METHODS
-
     return SMALL_METHODS if os.environ.get("ROLLING_WARMUP_ALL") else WARM_SMALL
 
 
@@ -107,9 +114,6 @@ def _compile(target, method: str, kind: str, **over) -> str:
     """Compile the kernel of kind `kind` that a request of the case (an id, with its
     example parameters, or (id, parameters)) with `method` and `over` needs, by
     solvers/compile_state.py, and check that it is compiled."""
-    from solvers import compile_state as cs
-    from solvers.models.cases import registry
-
     case_id, params = (target, None) if isinstance(target, str) else target
     case = registry()[case_id]
     params = case.example if params is None else params
@@ -132,9 +136,6 @@ def compile_generated(target) -> str:
     """Compile the generated integrator of a case (an id, with its example parameters, or
     (id, parameters)) and its ensemble twin into the on-disk cache (one compile serves
     every tableau: they are data)."""
-    from solvers.integrate.ensemble import integrate_ensemble
-    from solvers.models.cases import build, registry
-
     case_id = _compile(target, "dop853", "generated", field="generated", project=True)
     case = registry()[case_id]
     params = case.example if isinstance(target, str) else target[1]
@@ -179,8 +180,6 @@ def part_name(what) -> str:
     if isinstance(what, str):
         return what
     # (case, parameters): say what differs from the case's example
-    from solvers.models.cases import registry
-
     example = registry()[what[0]].example
     differs = ", ".join(f"{k} = {v:g}" for k, v in what[1].items() if example.get(k) != v)
     return f"{what[0]} ({differs})" if differs else what[0]
@@ -233,9 +232,6 @@ def warm(jobs: int | None = None, generated: bool = False, progress=None) -> flo
         next(u for u in units if u[0] == GENERAL).append(ENSEMBLES)
     jobs = min(jobs or _jobs(), len(units))
     if jobs > 1:
-        import multiprocessing as mp
-        from concurrent.futures import ProcessPoolExecutor, as_completed
-
         # spawn: fresh interpreters (a forked numba/LLVM state is not safe to reuse); the
         # general kernels are one more task, so no core waits for them
         with ProcessPoolExecutor(jobs, mp_context=mp.get_context("spawn")) as ex:
@@ -268,10 +264,6 @@ def warm_ensembles(generated: bool = False) -> None:
     model as the explorer runs it (one thread: the serial kernel per trajectory), so that
     the first Poincare map of a server does not compile in a request; generated: the
     generated twins too (compiled by compile_generated)."""
-    from solvers.integrate.ensemble import integrate_ensemble
-    from solvers.kernels import generate
-    from solvers.models.cases import build, registry
-
     seen = set()
     for cid, params in warm_targets():
         case = registry()[cid]
@@ -300,17 +292,6 @@ def _tiny_map(case_id: str, params: dict) -> None:
     places the starts on the level), each its own numba specialization, which a bare
     ensemble call does not compile (without this, a map after the warm-up compiled them in
     its request)."""
-    from solvers.errors import InputError
-    from solvers.kernels import layout as L
-    from solvers.maps.poincare import (
-        MapSpec,
-        integral_spread,
-        map_model,
-        starts_for,
-        trace_checked_all,
-    )
-    from solvers.models.cases import registry
-
     try:
         model = map_model(case_id, params)
     except InputError:          # the flat-base cases: no map

@@ -2,7 +2,8 @@
 ([tool.importlinter]: the catalogue imports no solver and nothing of the explorer, the
 solvers nothing of the explorer, no circles among the explorer's services), and, over every
 module of solvers/, app/ and catalogue/ read with ast (scripts/import_report.py): no import
-circle, and no underscore name imported from another module."""
+circle, no underscore name imported from another module, and no import inside a function
+without a `# lazy:` comment saying what heavy import it keeps out of start-up."""
 
 import shutil
 import subprocess
@@ -55,3 +56,60 @@ def test_the_catalogue_imports_no_solver_even_inside_a_function():
     bad = [(i.source, i.target) for i in report.all_imports()
            if i.source.split(".")[0] == "catalogue" and i.target.split(".")[0] != "catalogue"]
     assert bad == []
+
+
+def test_every_import_inside_a_function_says_why_it_is_lazy():
+    bad = [f"{i.source}:{i.line} {i.text}" for i in report.unexplained_imports()]
+    assert bad == [], f"{len(bad)} without a `# lazy:` reason:\n" + "\n".join(bad)
+
+
+SYNTHETIC = """\
+import json
+
+
+def plain():
+    import os
+    return os
+
+
+def explained_on_the_line():
+    import scipy  # lazy: scipy, not at start-up
+    return scipy
+
+
+def explained_above():
+    x = 1
+    # lazy: sympy and heyoka, kept out of the server's start;
+    # the second comment line continues the first
+    import sympy
+    from heyoka import taylor_adaptive as ta
+    return sympy, ta, x
+
+
+def the_comment_covers_only_the_block_below_it():
+    # lazy: numba
+    import numba
+    y = 2
+    import math
+    return numba, math, y
+
+
+def a_plain_comment_is_no_reason():
+    # the math module
+    import math
+    return math
+
+
+def an_empty_reason_is_no_reason():
+    import math  # lazy:
+    return math
+"""
+
+
+def test_the_lazy_finder_tells_explained_from_unexplained():
+    found = report.function_imports_in(SYNTHETIC, "m")
+    assert [(i.line, i.reason) for i in found] == [
+        (5, False), (10, True), (18, True), (19, True), (25, True), (27, False), (33, False),
+        (38, False)]
+    assert [i.text for i in found if not i.reason] == [
+        "import os", "import math", "import math", "import math  # lazy:"]

@@ -47,6 +47,8 @@ import numpy as np
 
 from solvers.integrate import auto_choice
 from solvers.integrate import workprecision as wp
+from solvers.integrate.taylor_backend import PRECISIONS, choose_precision, floor, snap_tol
+from solvers.kernels.generate import GENERATED_MODELS
 
 CANDIDATES = (*wp.PLAIN, wp.TAYLOR)
 CHECK_LOOSER = 10.0 ** 2.5      # a Runge-Kutta check run's tol over the returned run's
@@ -94,7 +96,7 @@ TAYLOR_MIN_TOL = 10.0 ** -18.5
 
 def _taylor_available() -> bool:
     try:
-        import heyoka  # noqa: F401
+        import heyoka  # noqa: F401  # lazy: heyoka, an optional extra slow to import
     except ImportError:
         return False
     return True
@@ -122,8 +124,6 @@ def _winner(runs: list[dict], case_id: str, level: float, allowed) -> dict | Non
 
 def _one_start_front(case_id, rtol, allowed):
     """The method and tol of the one-start front (work_precision.json), or (None, ...)."""
-    from solvers.integrate.taylor_backend import snap_tol
-
     try:
         data = wp.load_results()
     except FileNotFoundError:
@@ -153,8 +153,6 @@ def choose(case_id: str, model: int, rtol: float, t_end: float, project: bool = 
            step=None, precision: str | None = None) -> dict:
     """{"method", "precision", "tol", "compensated", "requested_rtol", "reason",
     "taylor_allowed"}: what auto runs first, with which tolerance, and why."""
-    from solvers.kernels.generate import GENERATED_MODELS
-
     allowed = list(CANDIDATES)
     notes = []
     if project or step is not None or model not in GENERATED_MODELS:
@@ -197,8 +195,6 @@ def error_between(Y, Yref) -> float:
 
 
 def _snap(tol: float, floor: float) -> float:
-    from solvers.integrate.taylor_backend import snap_tol
-
     return max(snap_tol(tol * (1.0 + 1e-9)), floor)   # 1e-9: 10^(j/4) itself stays
 
 
@@ -209,8 +205,6 @@ def _rung(method: str, tol: float, precision: str | None, compensated: bool,
     extended = False (a request above EXTENDED_BELOW) it stays in double, at no tighter
     tol than double's floor."""
     if method == wp.TAYLOR:
-        from solvers.integrate.taylor_backend import PRECISIONS, choose_precision, floor
-
         if not extended and precision in (None, "double"):
             return {"method": method, "precision": "double", "compensated": False,
                     "tol": _snap(max(tol, floor("double", t_end)), TAYLOR_MIN_TOL)}
@@ -365,7 +359,6 @@ def _estimate(res, rung, ref, ref_rung, t_end):
     k = scale(rung["method"], e_run, e_ref)
     if not np.isfinite(k):
         return None, f"the check run of {_describe(ref_rung)} runs the same order"
-    from solvers.integrate.taylor_backend import floor
 
     rounding = floor(rung["precision"] or "double", t_end)
     near_floor = rung["method"] == wp.TAYLOR and e_run < FLOOR_MARGIN * rounding

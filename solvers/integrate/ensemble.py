@@ -26,6 +26,7 @@ from __future__ import annotations
 import os
 import threading
 import time
+from concurrent.futures import ThreadPoolExecutor
 
 import numba
 import numpy as np
@@ -33,6 +34,7 @@ import numpy as np
 from solvers.integrate import collocation, tableaux
 from solvers.integrate.integrator import (
     SMALL_REFUSED,
+    SMALL_SECTIONS,
     IntegrationResult,
     Section,
     StepControl,
@@ -80,10 +82,6 @@ def _small_ensemble(model, p, Y0, T, counts, steps, compensated, FOPT, atol_v, m
     is nogil): the same bits as integrate(model, p, Y0[i], ...) one by one. sec (a
     Section) and cross (the crossings per trajectory): the small kernel with sections
     (a Poincare map's runs), as integrate() runs them."""
-    from concurrent.futures import ThreadPoolExecutor
-
-    from solvers.integrate.integrator import SMALL_SECTIONS
-
     run = small_module(model, p, method, sections=sec is not None).run
     n = Y0.shape[1]
     empty_t, empty_y = np.empty(0), np.empty((0, n))

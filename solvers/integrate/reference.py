@@ -25,7 +25,8 @@ def solve_ivp_reference(model, p, y0, t_out, method="DOP853", rtol=1e-10, atol=1
     no step budget, so the run stops with MAX_STEPS once its rhs calls exceed max_steps
     steps' worth (SCIPY_CALLS_PER_STEP calls a step: DOP853's 12 stages, or an implicit
     method's Newton iterations and a finite-difference Jacobian of the 6 to 12 variables)."""
-    from scipy.integrate import solve_ivp  # lazily: scipy's import is slow to start
+    # lazy: scipy.integrate, slow to import, kept out of importing solvers.simulate
+    from scipy.integrate import solve_ivp
 
     t_out = np.asarray(t_out, dtype=np.float64)
     p = np.ascontiguousarray(p, dtype=np.float64)

@@ -19,13 +19,15 @@ lazily so the solver core does not need it.
 
 from __future__ import annotations
 
+import time
+
 import numpy as np
 
 from solvers.kernels import layout as L
 
 
 def _hy():
-    import heyoka
+    import heyoka  # lazy: heyoka, an optional extra slow to import, only when it runs
 
     return heyoka
 
@@ -176,8 +178,6 @@ class Taylor:
 
     def __init__(self, model: int, p, y0, *, tol: float, fp: str = "float64",
                  compact_mode: bool = False):
-        import time
-
         hy = _hy()
         self.fp = _fp(fp)
         pairs = list(zip(*system(model, p), strict=True))
@@ -202,8 +202,6 @@ class Taylor:
     def run(self, y0, t_grid):
         """States at t_grid (t_grid[0] is the start), the wall time and the step count.
         Returns (Y float64 array, Y in the native type, wall_s, steps, ok)."""
-        import time
-
         ta = self.ta
         ta.time = self._scalar(t_grid[0])
         ta.state[:] = self._cast(y0)

@@ -57,11 +57,16 @@ from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
 
+import llvmlite.binding as ll
 import numpy as np
 
 from solvers.errors import InputError
+from solvers.integrate.result import status_message
 from solvers.kernels import layout as L
 from solvers.kernels import rk
+from solvers.kernels.generate import GENERATED_MODELS, structure
+from solvers.kernels.heyoka_field import heyoka_system
+from solvers.kernels.module_cache import cache_dir, sources_hash
 from solvers.kernels.support import FLAT_DISK
 
 MISSING = "method 'taylor' needs heyoka: pip install rolling-hierarchy[taylor]"
@@ -85,7 +90,7 @@ FLOOR = 1.0
 def heyoka():
     """The heyoka module, or an InputError naming the extra that installs it."""
     try:
-        import heyoka as hy
+        import heyoka as hy  # lazy: heyoka, an optional extra slow to import, only when it runs
     except ImportError as e:
         raise InputError(MISSING) from e
     return hy
@@ -184,8 +189,6 @@ def snap_tol(rtol: float) -> float:
 
 
 def cache_key(model: int, p, precision: str, tol: float) -> tuple:
-    from solvers.kernels.generate import structure
-
     # the sign of k decides whether the fit event exists (_compile)
     return (structure(model, p, fold=False), float(np.asarray(p)[L.CURV]) > 0, precision,
             float(tol))
@@ -194,8 +197,6 @@ def cache_key(model: int, p, precision: str, tol: float) -> tuple:
 def disk_dir() -> Path:
     """Where compiled integrators are kept between processes: beside the generated numba
     kernels (ROLLING_KERNEL_CACHE, else ~/.cache/rolling-hierarchy/kernels), in taylor/."""
-    from solvers.kernels.module_cache import cache_dir
-
     d = cache_dir() / "taylor"
     with contextlib.suppress(OSError):    # not writable: compiled integrators stay in memory
         d.mkdir(parents=True, exist_ok=True)
@@ -207,10 +208,7 @@ def _build_stamp() -> str:
     """What a stored integrator depends on besides its key: the sources of the expressions
     (solvers/kernels, via the generator's stamp) and of this module (the events), heyoka's
     and numpy's versions, and the host CPU (LLVM compiles for it)."""
-    import heyoka as hy
-    import llvmlite.binding as ll
-
-    from solvers.kernels.module_cache import sources_hash
+    import heyoka as hy  # lazy: heyoka, an optional extra slow to import, only when it runs
 
     h = hashlib.sha256()
     for part in (sources_hash(), Path(__file__).read_bytes(), hy.__version__,
@@ -296,8 +294,6 @@ def clear_cache(disk: bool = False) -> None:
 
 
 def _compile(model: int, p, precision: str, tol: float) -> Compiled:
-    from solvers.kernels.heyoka_field import heyoka_system
-
     hy = heyoka()
     fp = _fp(hy, precision)
     hvars, rhs, pars, checks = heyoka_system(model, p, fold=False, with_checks=True)
@@ -356,9 +352,6 @@ class TaylorRun:
 def run(model: int, p, y0, t_out, *, rtol: float, precision: str | None = None,
         max_steps: int = 50_000_000, wall_limit: float | None = None) -> TaylorRun:
     """Integrate from (t_out[0], y0), states at t_out (float64); see the module doc."""
-    from solvers.integrate.result import status_message
-    from solvers.kernels.generate import GENERATED_MODELS
-
     hy = heyoka()
     if model not in GENERATED_MODELS:
         raise InputError(f"method 'taylor' runs the generated fields of models "

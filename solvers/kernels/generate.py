@@ -81,7 +81,7 @@ class Program:
         self.n = 0
 
     def let(self, expr):
-        import sympy as sp
+        import sympy as sp  # lazy: sympy, not at server start
 
         expr = sp.sympify(expr)
         if expr.is_Number or expr.is_Symbol:
@@ -96,7 +96,7 @@ class Program:
 
     def let_all(self, exprs):
         """Common subexpressions of several expressions first (sympy's cse), then each."""
-        import sympy as sp
+        import sympy as sp  # lazy: sympy, not at server start
 
         reps, red = sp.cse(list(exprs), symbols=sp.numbered_symbols(f"u{self.n}_"),
                            optimizations="basic")
@@ -144,7 +144,7 @@ def equations(model: int, p, fold: bool = False):
     """The case's field as a Program: (program, state symbols, parameter symbols used,
     outputs dy/dt, checks). checks: named expressions the code tests for singularities
     ("iq": det I_Q, "fit": det(E - k J), "edge": sin theta of the disk)."""
-    import sympy as sp
+    import sympy as sp  # lazy: sympy, not at server start
 
     p = np.asarray(p, dtype=float)
     P = []
@@ -328,7 +328,7 @@ def _used(P):
 def _code(e) -> str:
     """Python/numba text of a sympy expression: square roots as np.sqrt, integer powers
     as products, no pow() in the hot path."""
-    import sympy as sp
+    import sympy as sp  # lazy: sympy, not at server start
 
     if e.is_Symbol:
         return e.name
@@ -382,7 +382,7 @@ def _share_roots(assign, extra):
     half-integer or negative integer exponent becomes a product of q's (b^-1/2 = q,
     b^-1 = q q, b^-3/2 = q q q, b^1/2 = b q): one sqrt and one division instead of one
     per power. Returns (assignments, extra expressions), both rewritten."""
-    import sympy as sp
+    import sympy as sp  # lazy: sympy, not at server start
 
     exprs = [ex for _, ex in assign] + list(extra)
     pows = [pw for e in exprs for pw in e.atoms(sp.Pow)
@@ -420,7 +420,7 @@ def field_body(model: int, p, fold: bool = False):
     symbols, body) where body is a list of (kind, text): ("let", "name = expr"),
     ("check", (condition, status)): return status if condition holds; the outputs are
     the names d0, d1, ... bound last."""
-    import sympy as sp
+    import sympy as sp  # lazy: sympy, not at server start
 
     prog, state, params, outs, checks = equations(model, p, fold)
     outs = [sp.sympify(e) for e in outs]

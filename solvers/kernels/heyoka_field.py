@@ -16,6 +16,7 @@ def heyoka_system(model: int, p, fold: bool = True, with_checks: bool = False):
     so one compiled integrator serves every value; fold=True returns no values.
     with_checks: a fourth item, the singularity checks of `equations` ("iq", "fit",
     "edge") as heyoka expressions (the Taylor backend's terminal events)."""
+    # lazy: heyoka and sympy, slow to import, only when the Taylor backend compiles
     import heyoka as hy
     import sympy as sp
 

@@ -20,7 +20,7 @@ def rubber_reaction(prog, Md, P, g, w, gd, r, rd, inverse_gamma, *, sphere, disk
     the true r and J dgamma/dt. `inverse_gamma()` gives I_Q^-1 gamma in the caller's
     form (a centred ball's Sherman-Morrison, else the symbolic solve), called where it
     was always computed so that the generated code keeps its order."""
-    import sympy as sp
+    import sympy as sp  # lazy: sympy, not at server start
 
     m = P[L.MASS]
     Md = [prog.let(x) for x in Md]   # N once: it enters lambda and the result

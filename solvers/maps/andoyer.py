@@ -18,6 +18,7 @@ is G = sqrt((E0 - U) / E_kin(m, gamma)), no root finding needed.
 import numpy as np
 
 from solvers.kernels import integrals as Q
+from solvers.kernels.rk import model_integral
 
 TWO_PI = 2.0 * np.pi
 
@@ -72,8 +73,6 @@ def g_angle(Y):
 
 def energy_parts(model, y):
     """(E_kin at |M| = 1, U) of the direction m = M/|M| and gamma of y."""
-    from solvers.kernels.rk import model_integral
-
     y = np.array(y, dtype=float)
     m = y[:3] / np.linalg.norm(y[:3])
     unit = np.concatenate([m, y[3:6]])

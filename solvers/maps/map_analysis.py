@@ -17,17 +17,15 @@ import math
 
 import numpy as np
 
+from solvers.integrate.integrator import integrate
 from solvers.maps.andoyer import TWO_PI, map_point, on_energy_level
-from solvers.maps.poincare import MapSpec
+from solvers.maps.poincare import PILOT_TAUS, MapSpec, omega_norm
 from solvers.models.cases import Model
 
 
 def next_point(model: Model, spec: MapSpec, x) -> np.ndarray | None:
     """P(x): the map point of the first crossing after the start x = (L/G, H/G, l) on
     the level spec.energy and the section (None if it does not return)."""
-    from solvers.integrate.integrator import integrate
-    from solvers.maps.poincare import PILOT_TAUS, omega_norm
-
     y0 = on_energy_level(model, x[0], x[1], x[2], spec.g0, spec.energy)
     if y0 is None:
         return None

@@ -12,8 +12,11 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from solvers.errors import InputError
+from solvers.integrate.integrator import Section
 from solvers.kernels import layout as L
+from solvers.kernels.fields import omega_s
 from solvers.kernels.sections import SECTION_ANDOYER_G
+from solvers.kernels.support import support
 from solvers.maps.andoyer import TWO_PI, g_angle, map_point
 from solvers.models.cases import Model, build
 
@@ -101,8 +104,6 @@ class MapSpec:
             raise InputError(f"kernel = {self.kernel!r}: one of {', '.join(KERNELS)}")
 
     def section(self):
-        from solvers.integrate.integrator import Section
-
         return Section(coef=(math.cos(self.g0), math.sin(self.g0), 0.0, 0.0, 0.0, 0.0),
                        direction=self.direction, code=SECTION_ANDOYER_G)
 
@@ -134,9 +135,6 @@ def omega_norm(model: Model, y) -> float:
     """|omega| at the state y, omega = I_Q^-1 M solved as the compiled field solves it
     (fields.omega_s, by the adjugate); nan where the field finds I_Q singular, as the
     run from y would stop at once."""
-    from solvers.kernels.fields import omega_s
-    from solvers.kernels.support import support
-
     r, J = np.empty(3), np.empty((3, 3))
     support(model.p, np.ascontiguousarray(y[3:6]), r, J)
     det, w0, w1, w2 = omega_s(model.p, float(y[0]), float(y[1]), float(y[2]),

@@ -23,13 +23,16 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from solvers.errors import InputError
+from solvers.integrate.ensemble import integrate_ensemble
+from solvers.integrate.integrator import StepControl, integrate, small_fits
 from solvers.kernels import layout as L
 from solvers.kernels.integrals import NAMES, integral_series
+from solvers.kernels.module_cache import disk_cache_ok
 from solvers.maps.andoyer import TWO_PI, map_point, on_energy_level
 from solvers.maps.map_spec import (
     MAX_TRAJECTORIES,
@@ -160,8 +163,6 @@ def map_kernel(model: Model, spec: MapSpec, trajectories: int) -> str:
     """"small" or "general": spec.kernel, with "auto" resolved by the map's size."""
     if spec.kernel != "auto":
         return spec.kernel
-    from solvers.integrate.integrator import small_fits
-    from solvers.kernels.module_cache import disk_cache_ok
 
     fits = (spec.generated is not False and small_fits(model.model, spec.method)
             and disk_cache_ok())
@@ -170,8 +171,6 @@ def map_kernel(model: Model, spec: MapSpec, trajectories: int) -> str:
 
 def resolve_kernel(model: Model, spec: MapSpec, trajectories: int) -> MapSpec:
     """spec with its kernel decided for a map of `trajectories` trajectories."""
-    from dataclasses import replace
-
     return spec if spec.kernel != "auto" else replace(
         spec, kernel=map_kernel(model, spec, trajectories))
 
@@ -189,8 +188,6 @@ def _integrate_options(spec: MapSpec) -> dict:
 def trace(model: Model, y0, spec: MapSpec, *, h_max: float = math.inf) -> MapTrajectory:
     """spec.points crossings of the section from y0 (see the module docstring), one
     `integrate` call per run."""
-    from solvers.integrate.integrator import StepControl, integrate
-
     spec = resolve_kernel(model, spec, 1)
     tr = _Tracer(model, y0, spec, h_max)
     control = StepControl(h_max=h_max)
@@ -231,8 +228,6 @@ def trace_all(model: Model, starts, spec: MapSpec, *, h_max=None, workers: int |
 
 def _round(model, spec, live, reqs, workers) -> None:
     """One compiled ensemble call for the requests of the tracers `live`."""
-    from solvers.integrate.ensemble import integrate_ensemble
-
     width = max(len(r[1]) for r in reqs)
     T = np.zeros((len(live), width))
     for i, r in enumerate(reqs):

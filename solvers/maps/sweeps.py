@@ -24,13 +24,17 @@ finished task (the CLI draws a bar; its --timeout interrupts only from the first
 from __future__ import annotations
 
 import time
+import warnings
 from collections.abc import Callable, Sequence
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, replace
 
 import numpy as np
 from pydantic_settings import BaseSettings, SettingsConfigDict
 
 from solvers.errors import InputError
+from solvers.maps.map_analysis import correlation_dimension
+from solvers.maps.poincare import MapSpec, map_model, poincare, starts_for
+from solvers.models.cases import check_derived
 
 
 class DaskSettings(BaseSettings):
@@ -169,9 +173,6 @@ def run_task(task: MapTask) -> dict:
     carries all its trajectories: they run together, one compiled parallel call per round
     (solvers.maps.poincare.trace_checked_all), on `task.threads` threads; one, since the
     dask workers (one thread each) already fill the cores."""
-    from solvers.maps.map_analysis import correlation_dimension
-    from solvers.maps.poincare import MapSpec, poincare
-
     spec = MapSpec(energy=task.energy, g0=task.g0, direction=task.direction,
                    points=task.points, rtol=task.rtol, atol=task.atol)
     t0 = time.perf_counter()
@@ -192,8 +193,6 @@ def run_task(task: MapTask) -> dict:
 
 def warm() -> float:
     """Load the compiled kernels in a worker (numba's on-disk cache) with one tiny map."""
-    from solvers.maps.poincare import MapSpec, poincare
-
     t0 = time.perf_counter()
     poincare("plane/chaplygin-ball", {"I1": 1, "I2": 2, "I3": 3, "m": 1, "R": 1},
              MapSpec(energy=1.0, points=2), trajectories=1)
@@ -202,8 +201,6 @@ def warm() -> float:
 
 def seeded(tasks: Sequence[MapTask], seed: int) -> list[MapTask]:
     """The tasks with seeds spawned from `seed` in task order (SeedSequence)."""
-    from dataclasses import replace
-
     children = np.random.SeedSequence(seed).spawn(len(tasks))
     return [replace(t, seed=int(c.generate_state(1)[0])) for t, c in zip(tasks, children,
                                                                           strict=True)]
@@ -279,7 +276,7 @@ def energy_tasks(case: str, params: dict, energies: Sequence[float], **kw) -> li
 
 
 def _client(settings: DaskSettings):
-    from dask.distributed import Client, LocalCluster
+    from dask.distributed import Client, LocalCluster  # lazy: dask, only when a sweep runs
 
     if settings.scheduler:
         return Client(settings.scheduler), None
@@ -292,11 +289,6 @@ def _client(settings: DaskSettings):
 
 def validate(tasks: Sequence[MapTask]) -> None:
     """Check every task here, before anything is shipped (bad input: InputError)."""
-    import warnings
-
-    from solvers.maps.poincare import MapSpec, map_model, starts_for
-    from solvers.models.cases import check_derived
-
     if not tasks:
         raise InputError("the sweep has no task")
     for t in tasks:
@@ -362,7 +354,7 @@ def sweep(tasks: Sequence[MapTask], *, seed: int = 0, settings: DaskSettings | N
     >>> max(t["spread"]["energy"] for r in out.results for t in r["trajectories"]) < 1e-8
     True
     """
-    from dask.distributed import as_completed
+    from dask.distributed import as_completed  # lazy: dask, only when a sweep runs
 
     settings = settings or DaskSettings()
     tasks = seeded(tasks, seed)

@@ -14,6 +14,7 @@ from pydantic import BaseModel, ConfigDict, Field
 from solvers.errors import InputError
 from solvers.kernels import integrals as Q
 from solvers.kernels import layout as L
+from solvers.kernels.fields import full_kinematics, rhs
 from solvers.models.bodies import NEGATIVE, STATE_LABELS, check_state, fill_body, fill_inertia
 
 PARAM_SLOTS = {"S1": L.S1, "S2": L.S2, "S3": L.S3, "g": L.GRAV, "eps": L.BRUN, "k": L.CURV}
@@ -288,8 +289,6 @@ def initial_state(model: Model, state) -> np.ndarray:
 
 def check_no_spin(model: Model, y0: np.ndarray) -> None:
     """A rubber state lies on (omega, gamma) = 0 (omega = I_Q^-1 M, eq1.6)."""
-    from solvers.kernels.fields import full_kinematics
-
     y = np.ascontiguousarray(y0, dtype=float)
     r, J, w, gd = np.empty(3), np.empty((3, 3)), np.empty(3), np.empty(3)
     full_kinematics(model.p, y[0:3], y[3:6], r, J, w, gd)
@@ -306,8 +305,6 @@ def check_derived(model: Model, y0: np.ndarray, blame: str | None = None) -> Non
     the contact inertia m R^2 infinite): the field and the energy at the start must be
     finite numbers. `blame`: what to name in the error ('name = value'); by default the
     parameter or state value of largest magnitude."""
-    from solvers.kernels.fields import rhs
-
     y = np.ascontiguousarray(y0, dtype=float)
     dydt = np.empty_like(y)
     with np.errstate(all="ignore"):

@@ -32,6 +32,7 @@ from solvers.kernels import layout as L
 from solvers.kernels.fields import flat_kinematics, full_kinematics
 from solvers.kernels.support import support
 from solvers.models.cases import build, initial_state
+from solvers.models.observables import vertical_spin
 
 MAX_FRAMES = 10_000
 E3 = np.array([0.0, 0.0, 1.0])
@@ -188,7 +189,6 @@ def _series(model, Y) -> dict[str, list[float]]:
     axis and the vertical (a rolling disk stays up while it stays away from 0)."""
     if model.dim != 6 or len(Y) == 0:
         return {}
-    from solvers.models.observables import vertical_spin
 
     return {"vertical_spin": vertical_spin(model, Y).tolist(),
             "tilt": np.hypot(Y[:, 3], Y[:, 4]).tolist()}

@@ -25,7 +25,7 @@ import itertools
 import numpy as np
 
 from solvers.models import rubber_lagrange as rl
-from solvers.models.rubber_bodies import RubberBody
+from solvers.models.rubber_bodies import RubberBody, body
 
 H = 1e-30
 
@@ -104,7 +104,6 @@ SEARCHES_OVER_Q = [("rubber-sphere/ball-over", k) for k in (0.0, -0.5, 0.4, 2.0,
 
 def main():
     """The searches the rubber tables cite, one line each."""
-    from solvers.models.rubber_bodies import body
     for case, d_omega, d_gamma in SEARCHES:
         n, size = count_integrals(body(case), d_omega, d_gamma)
         print(f"{case:40s} omega-degree <= {d_omega}, gamma-degree <= {d_gamma}: "

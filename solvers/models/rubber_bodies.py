@@ -27,6 +27,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from solvers.errors import InputError
+from solvers.kernels import layout as L
 
 
 @dataclass(frozen=True)
@@ -163,8 +164,6 @@ def from_vector(p) -> RubberBody:
     """The RubberBody of a kernel parameter vector p (solvers/kernels/layout.py), as
     solvers.models.cases.build fills it for a rubber case: the NumPy derivations then run
     the registry's cases (simulate's reference route, the comparison tests)."""
-    from solvers.kernels import layout as L
-
     p = [float(x) for x in p]
     if any(p[s] != 0.0 for s in (L.B12, L.B13, L.B23)) or p[L.FLAT_Z] != 0.0:
         raise InputError("only principal-axes ellipsoids, balls and disks are rubber bodies here")

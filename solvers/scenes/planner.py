@@ -30,6 +30,7 @@ from solvers.kernels.fields import flat_kinematics, full_kinematics
 from solvers.kernels.integrals import integral_series
 from solvers.models.bodies import STATE_LABELS
 from solvers.models.cases import Model, build, get_case, initial_state
+from solvers.models.reduced_systems import to_reduced
 from solvers.scenes.scenes import REDUCED_LABELS, Scene, has_reduced
 
 E3 = np.array([0.0, 0.0, 1.0])
@@ -142,8 +143,6 @@ def run(scene: Scene, the_plan: Plan | None = None) -> SceneRun:
     n_base = model.dim
     t_out = np.linspace(0.0, scene.t_end, pl.samples)
     if pl.kind == "reduced":
-        from solvers.models.reduced_systems import to_reduced
-
         z0 = to_reduced(model.p, y0)
     elif pl.kind == "full+orientation":
         z0 = scene_initial(model, y0)
@@ -181,8 +180,6 @@ def _shown(scene: Scene, pl: Plan, model: Model, res: IntegrationResult, n: int)
             labels = STATE_LABELS[model.model]
             red = None
             if any(v in REDUCED_LABELS for v in names):
-                from solvers.models.reduced_systems import to_reduced
-
                 red = np.array([to_reduced(model.p, y[:n]) for y in Y]).reshape(-1, 4)
             out["series"] = {v: (Y[:, labels.index(v)] if v in labels
                                  else red[:, REDUCED_LABELS.index(v)]) for v in names}

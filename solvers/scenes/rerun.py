@@ -12,15 +12,20 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from solvers.errors import InputError
+from solvers.kernels.fields import contact_inertia, full_kinematics
+from solvers.models.cases import build
+from solvers.models.observables import omega
+from solvers.scenes.scene_checks import run_checks
+from solvers.scenes.teaching import Scene, load_scenes
 
 
 def moved(preset, values: dict[str, float]):
     """The preset with `values` (slider name -> value in the slider's units) applied.
     Unknown names, values that are not finite or lie outside a slider's range, and a
     state the case rejects raise InputError; the preset itself never changes."""
-    from solvers.scenes.teaching import Scene
-
     sliders = {s.name: s for s in preset.sliders}
     if not sliders:
         raise InputError(f"scene {preset.id!r} has no sliders")
@@ -55,11 +60,6 @@ def same_omega(preset, params: dict) -> list[float]:
     against rubber): gamma and the angular velocity omega of the preset's start kept, so
     (omega, gamma) = 0 still holds (the rubber manifold), and M = I_Q omega under the new
     parameters. Changing only I or m leaves the start's motion, not its momentum, alone."""
-    import numpy as np
-
-    from solvers.kernels.fields import contact_inertia, full_kinematics
-    from solvers.models.cases import build
-    from solvers.models.observables import omega
 
     sc = preset.scene
     w = omega(build(sc.case, sc.params), sc.state)[0]
@@ -76,9 +76,6 @@ def same_omega(preset, params: dict) -> list[float]:
 def rerun_json(scene_id: str, values: dict[str, float]) -> dict:
     """The moved scene's run declaration and every check of it with its plot (the shape
     of GET /api/scenes/{id}/checks/{k}), in the catalogue's order."""
-    from solvers.scenes.scene_checks import run_checks
-    from solvers.scenes.teaching import load_scenes
-
     preset = load_scenes()[scene_id]
     scene = moved(preset, values)
     results = run_checks(scene)

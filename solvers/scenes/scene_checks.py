@@ -13,9 +13,15 @@ from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
+from solvers.kernels.integrals import ENERGY
+from solvers.kernels.rk import model_integral
+from solvers.maps.andoyer import map_point
+from solvers.maps.map_analysis import correlation_dimension
+from solvers.maps.poincare import MapSpec, map_model, trace_checked
 from solvers.models.cases import build
-from solvers.models.observables import RUBBER
+from solvers.models.observables import RUBBER, spin_reversals, vertical_spin
 from solvers.models.observables import series as observed
+from solvers.scenes.teaching import load_scenes
 from solvers.simulate import simulate
 
 # what a reader calls each integral (the plot's legend); the keys are
@@ -191,8 +197,6 @@ def averaged(t, y, window: float) -> tuple[np.ndarray, np.ndarray]:
 
 
 def check_spin_reversal(scene, check, res=None) -> CheckResult:
-    from solvers.models.observables import spin_reversals, vertical_spin
-
     res = res or _run(scene)
     model = build(scene.scene.case, scene.scene.params)
     spin = vertical_spin(model, res.state)
@@ -219,12 +223,6 @@ def check_spin_reversal(scene, check, res=None) -> CheckResult:
 
 
 def check_map(scene, check) -> CheckResult:
-    from solvers.kernels.integrals import ENERGY
-    from solvers.kernels.rk import model_integral
-    from solvers.maps.andoyer import map_point
-    from solvers.maps.map_analysis import correlation_dimension
-    from solvers.maps.poincare import MapSpec, map_model, trace_checked
-
     model = map_model(scene.scene.case, scene.scene.params)
     y0 = np.asarray(scene.scene.state, dtype=float)
     E = float(model_integral(ENERGY, model.model, y0, model.p))
@@ -276,8 +274,6 @@ def _map_track(scene) -> dict:
     """Where the body is now in the map's coordinates (l, L/G), along the scene's run at
     its animation frames: on the page a marker that moves with the 3D view and sits on
     the returns' curve each time the body crosses the section."""
-    from solvers.maps.andoyer import map_point
-
     sc = scene.scene
     res = simulate(sc.case, sc.params, sc.state, sc.t_end, samples=sc.samples,
                    rtol=1e-10, atol=1e-12)
@@ -325,8 +321,6 @@ _runs: dict[str, dict] = {}
 def check_json(scene_id: str, k: int) -> dict:
     """Check k of scene `scene_id` with its plot, for GET /api/scenes/{id}/checks/{k}
     (a worker process: the scene's runs are kept for its other checks)."""
-    from solvers.scenes.teaching import load_scenes
-
     scene = load_scenes()[scene_id]
     check = scene.checks[k]
     runs = _runs.setdefault(scene_id, {})

@@ -2,6 +2,7 @@
 
 
 def verify(case: str | None = None, claim: str | None = None) -> list[dict]:
-    # imported here: importing the package must not load every check and formula
+    # lazy: every check and formula (solvers.verify.run: scipy, flint), not when
+    # the package or a light submodule of it is imported
     from solvers.verify.run import verify as _verify
     return _verify(case, claim)

@@ -6,7 +6,8 @@ from concurrent.futures import ProcessPoolExecutor
 
 
 def _one(claim_id):
-    # imported here, in the worker process, which loads the checks on its first claim
+    # lazy: the catalogue and every check (solvers.verify.run: scipy, flint), loaded
+    # in the worker process on its first claim, not when a process imports this module
     from catalogue.load import load_catalogue
     from solvers.verify.run import run_claim
 
@@ -16,8 +17,8 @@ def _one(claim_id):
 
 
 def verify_parallel(case=None, claim=None, workers=0) -> list[dict]:
-    # imported here: run.py loads every check and formula, which a caller that only
-    # imports this module (app/cli.py) does not need until it verifies
+    # lazy: the catalogue and every check and formula (solvers.verify.run: scipy and flint,
+    # slow to import), which a caller that only imports this module (app/cli) needs only to verify
     from catalogue.load import load_catalogue
     from solvers.verify import levels
     from solvers.verify.run import resolve

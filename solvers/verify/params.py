@@ -13,6 +13,7 @@ from catalogue.schema import Case, Claim, Conditions, Gyrostat, InertiaRestricti
 from solvers.errors import InputError
 from solvers.kernels import layout as L
 from solvers.kernels.support import support
+from solvers.models.bodies import check_state, tangent_fit
 from solvers.models.cases import Model, build, registry
 
 
@@ -201,8 +202,6 @@ def draw(case: Case, claim: Claim, rng: np.random.Generator) -> Params:
 def random_states(P: Params, n: int, rng: np.random.Generator, *, pole_margin=0.05):
     """n random phase points (full state) where the model is regular: unit gamma away from
     the poles gamma3 = +-1 (reduced variables and disks need it) and fitting the sphere."""
-    from solvers.models.bodies import check_state, tangent_fit
-
     out = []
     dim = P.model.dim
     while len(out) < n:

@@ -12,7 +12,9 @@ from __future__ import annotations
 
 
 def _tol() -> float:
-    # the checks' tolerance; imported late: solvers.verify.checks loads every check (seconds)
+    # the checks' tolerance
+    # lazy: every check (solvers.verify.checks: scipy, flint), not when the marks'
+    # levels (solvers.verify.levels) are read without running a check
     from solvers.verify.checks.common import TOL
 
     return TOL

@@ -272,7 +272,7 @@ def section_drift(P, rng, n_orbits=N_DRIFT_ORBITS, T=T_LONG):
     window index (+-1: a monotone secular drift, as an orbit settling on an attractor;
     measure-preserving orbits give no trend: constant on tori, random in chaotic layers)
     and the relative change |last - first| / first."""
-    from scipy.stats import kendalltau
+    from scipy.stats import kendalltau  # lazy: scipy.stats, slow to import, not at server start
 
     out = []
     for y0 in random_states(P, 10 * n_orbits, rng):

@@ -55,6 +55,7 @@ from fractions import Fraction
 
 import numpy as np
 from flint import fmpq
+from scipy.optimize import fsolve
 
 from solvers.kernels import layout as L
 from solvers.models.cases import build, registry
@@ -285,8 +286,6 @@ def steady_rotations(P, n_starts=200, seed=0, tol=1e-10):
     random starts, with div v at each by complex step: [(y, div v)]. An equilibrium with
     div v != 0 would exclude a smooth measure; with U = 0 every one found has div v = 0 to
     round-off (module docstring), with gravity (g != 0) some do not."""
-    from scipy.optimize import fsolve
-
 
     def v(y):
         return ffield(P.model.model, P.p, y)[0]

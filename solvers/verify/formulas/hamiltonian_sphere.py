@@ -178,7 +178,7 @@ def _bf_map_build():
     2-degree-of-freedom system on the sphere of gamma; N is the density of the invariant
     measure ((2.24) restricted to F = 0) in (gamma, momentum): Chaplygin's reducing
     multiplier, so L = N x momentum is the canonical e(3) variable at (L, gamma) = 0."""
-    import sympy as sp
+    import sympy as sp  # lazy: sympy, not loaded by solvers.verify.run nor at server start
 
     g = sp.Matrix(sp.symbols("g1:4"))
     I1, I2, I3, D = sp.symbols("I1 I2 I3 D")

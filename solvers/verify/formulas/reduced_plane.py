@@ -19,6 +19,7 @@ revolution (phi: the support function on the axis, solvers/models/revolution.py)
 """
 
 import numpy as np
+from scipy.integrate import solve_ivp
 
 from solvers.models import reduced_systems as rd
 from solvers.models.revolution import phi_derivs, profile
@@ -236,8 +237,6 @@ def _elementary(P):
     parameter vector): scipy DOP853, rtol 1e-12."""
     key = P.p.tobytes()
     if key not in _SUPERPOSITION_CACHE:
-        from scipy.integrate import solve_ivp
-
         def aug(s, Z):
             G = Z.reshape(2, 2)
             return np.stack([revolution_linear(P, np.array([s, *G[:, j]]))
