@@ -46,19 +46,21 @@ def warm_imports() -> int:
     return os.getpid()
 
 
-def prepare_kernels(req: dict) -> int:
-    """Compile (or load) the kernels a simulate request will run (no request pays a
-    compile inside its deadline; the route runs this without a deadline:
-    app/services/kernel_prepare.py): solvers/compile_state.py plans them from the request
-    and compiles each on a tiny run of it. A request that fails (bad input) is left to its
-    own run to report. Returns how many kernels are ready."""
+def prepare_kernels(req: dict, keys: list[tuple] | None = None) -> int:
+    """Compile (or load) the kernels `keys` of a simulate request, each on a tiny run of it
+    (solvers/compile_state.py compile; no request pays a compile inside its deadline; the
+    route runs this without a deadline: app/services/kernel_prepare.py). The route passes
+    the keys it planned (kernel_prepare.simulate_keys), so a request is planned once;
+    without them (a teaching scene's check) they are planned here. A request that fails
+    (bad input) is left to its own run to report. Returns how many kernels are ready."""
     lower_priority()
     from solvers import compile_state
 
-    try:
-        keys = compile_state.plan(req)
-    except Exception:   # the request's own run reports it
-        return 0
+    if keys is None:
+        try:
+            keys = compile_state.plan(req)
+        except Exception:   # the request's own run reports it
+            return 0
     return compile_state.compile(keys, req)
 
 

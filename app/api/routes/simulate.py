@@ -85,8 +85,10 @@ async def _resolved(req: SimulateRequest, settings=None) -> dict:
 async def _prepare(request: Request, pool, settings, resolved: dict, job: dict) -> None:
     """The kernels the run needs, compiled (or loaded) in a job without a deadline before
     the run's own deadline starts (app/services/kernel_prepare.py)."""
+    keys = await _keys(resolved)
+    # the worker compiles the keys planned here: the request is planned once
     await kernel_prepare.prepare(pool, request.app.state.kernels, settings.kernels_warm,
-                                 await _keys(resolved), jobs.prepare_kernels, job)
+                                 keys, jobs.prepare_kernels, job, keys)
 
 
 async def _keys(resolved: dict) -> list[tuple]:
