@@ -13,11 +13,14 @@ import io
 import os
 
 from app.services.payloads import arrow_bytes, csv_header, dumps, finite, json_bytes
+from app.services.provenance import stamped
 from app.services.worker_run import lower_priority, run_request
-
-# The solvers are imported inside the jobs below: they load numba and the compiled kernels,
-# which a worker needs and the server's process (it imports this module for the jobs'
-# names, which the pool pickles by reference) does not.
+from solvers import compile_state
+from solvers.models.cases import registry
+from solvers.models.kinematics import scene
+from solvers.scenes.teaching import load_scenes
+from solvers.simulate import simulate
+from solvers.verify import verify
 
 
 def warm() -> int:
@@ -25,9 +28,6 @@ def warm() -> int:
     of every case, so that no request pays for a first call (a noticeable wait on a sphere).
     Only once the kernels are compiled (the warm-up done): before, `warm_imports`."""
     lower_priority()
-    from solvers.models.cases import registry
-    from solvers.simulate import simulate
-
     for cid, case in registry().items():   # the generated kernels too (field="auto")
         simulate(cid, case.example, case.state, 0.01, samples=3)
     return warm_imports()
@@ -38,11 +38,10 @@ def warm_imports() -> int:
     kernel_warmup.py): the imports only, no run, so that it compiles nothing the warm-up
     is compiling; the routes prepare what a request needs (kernel_prepare.py)."""
     lower_priority()
-    import pyarrow  # noqa: F401   (the Arrow answer's first use: its imports are slow)
+    # lazy: pyarrow, which the Arrow answer's first use would otherwise wait for, not at the
+    # server's start (the solvers come with this module's own imports)
+    import pyarrow  # noqa: F401
 
-    import app.services.payloads  # noqa: F401
-    import solvers.models.kinematics
-    import solvers.simulate  # noqa: F401
     return os.getpid()
 
 
@@ -54,8 +53,6 @@ def prepare_kernels(req: dict, keys: list[tuple] | None = None) -> int:
     without them (a teaching scene's check) they are planned here. A request that fails
     (bad input) is left to its own run to report. Returns how many kernels are ready."""
     lower_priority()
-    from solvers import compile_state
-
     if keys is None:
         try:
             keys = compile_state.plan(req)
@@ -67,8 +64,6 @@ def prepare_kernels(req: dict, keys: list[tuple] | None = None) -> int:
 def prepare_scene(req: dict) -> int:
     """The kernels of a scene (the scene model's compiled run), on a tiny run."""
     lower_priority()
-    from solvers.models.kinematics import scene
-
     try:
         scene(req["case"], req["params"], req["state"], 1e-3, frames=2,
               rtol=min(req["rtol"], 1e-8), atol=min(req["atol"], 1e-10), max_steps=1000,
@@ -81,9 +76,6 @@ def prepare_scene(req: dict) -> int:
 def prepare_scene_check(scene_id: str) -> int:
     """A teaching scene's checks run its scene and plain runs of its case: their
     kernels, on tiny runs of the scene's own declaration (catalogue/scenes.yaml)."""
-    from solvers.models.cases import registry
-    from solvers.scenes.teaching import load_scenes
-
     preset = load_scenes()[scene_id]
     run = preset.scene
     n = 0
@@ -110,8 +102,6 @@ def simulate_arrow(req: dict, max_steps: int, prov: dict | None = None) -> bytes
 def simulate_csv(req: dict, max_steps: int, prov: dict | None = None) -> bytes:
     """The provenance as "# " lines (app/services/provenance.py), then one row per sample:
     t, the state, then every invariant the case carries."""
-    from app.services.provenance import stamped
-
     res = run_request(req, max_steps)
     buf = io.StringIO()
     if prov is not None:
@@ -128,8 +118,6 @@ def simulate_csv(req: dict, max_steps: int, prov: dict | None = None) -> bytes:
 
 def scene_json(req: dict, frames: int, max_steps: int) -> bytes:
     lower_priority()
-    from solvers.models.kinematics import scene
-
     return dumps(scene(req["case"], req["params"], req["state"], req["t_end"],
                        frames=frames, rtol=min(req["rtol"], 1e-8),
                        atol=min(req["atol"], 1e-10), max_steps=max_steps,
@@ -138,6 +126,4 @@ def scene_json(req: dict, frames: int, max_steps: int) -> bytes:
 
 def verify_case(case_id: str | None) -> list[dict]:
     lower_priority()
-    from solvers.verify import verify
-
     return [finite(dict(r)) for r in verify(case_id)]

@@ -25,6 +25,7 @@ import numpy as np
 import orjson
 
 from app.core.errors import NotAcceptable
+from app.services.provenance import stamped
 
 JSON = "application/json"
 ARROW = "application/vnd.apache.arrow.stream"
@@ -120,8 +121,6 @@ def _plain(x):
 def result_dict(res, max_steps: int, prov: dict | None = None) -> dict:
     """The JSON answer of a run (SimulateResponse), arrays left as numpy arrays; `prov`:
     the run's provenance (app/services/provenance.py), stamped with the time it ran."""
-    from app.services.provenance import stamped
-
     out = res.to_json(arrays=True)
     out["stats"] = {**out["stats"], "max_steps": max_steps}
     if prov is not None:
@@ -134,7 +133,8 @@ def json_bytes(res, max_steps: int, prov: dict | None = None) -> bytes:
 
 
 def arrow_bytes(res, max_steps: int, prov: dict | None = None) -> bytes:
-    # imported here: pyarrow's imports take a noticeable time and only this answer needs it
+    # lazy: pyarrow, whose imports take a noticeable time and which only this answer needs,
+    # not at the server's start
     import pyarrow as pa
 
     out = result_dict(res, max_steps, prov)
