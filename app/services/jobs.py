@@ -15,9 +15,7 @@ import os
 from app.services.payloads import arrow_bytes, csv_header, dumps, finite, json_bytes
 from app.services.provenance import stamped
 from app.services.worker_run import lower_priority, run_request
-from solvers import compile_state
 from solvers.models.cases import registry
-from solvers.models.kinematics import scene
 from solvers.scenes.teaching import load_scenes
 from solvers.simulate import simulate
 from solvers.verify import verify
@@ -53,6 +51,10 @@ def prepare_kernels(req: dict, keys: list[tuple] | None = None) -> int:
     without them (a teaching scene's check) they are planned here. A request that fails
     (bad input) is left to its own run to report. Returns how many kernels are ready."""
     lower_priority()
+    # lazy: solvers.compile_state (with auto's measured front and the Taylor backend), not
+    # at the server's start, which imports this module for the jobs' names
+    from solvers import compile_state
+
     if keys is None:
         try:
             keys = compile_state.plan(req)
@@ -64,6 +66,10 @@ def prepare_kernels(req: dict, keys: list[tuple] | None = None) -> int:
 def prepare_scene(req: dict) -> int:
     """The kernels of a scene (the scene model's compiled run), on a tiny run."""
     lower_priority()
+    # lazy: the scenes' kinematics (solvers.models.kinematics), not at the server's start,
+    # which imports this module for the jobs' names
+    from solvers.models.kinematics import scene
+
     try:
         scene(req["case"], req["params"], req["state"], 1e-3, frames=2,
               rtol=min(req["rtol"], 1e-8), atol=min(req["atol"], 1e-10), max_steps=1000,
@@ -118,6 +124,10 @@ def simulate_csv(req: dict, max_steps: int, prov: dict | None = None) -> bytes:
 
 def scene_json(req: dict, frames: int, max_steps: int) -> bytes:
     lower_priority()
+    # lazy: the scenes' kinematics (solvers.models.kinematics), not at the server's start,
+    # which imports this module for the jobs' names
+    from solvers.models.kinematics import scene
+
     return dumps(scene(req["case"], req["params"], req["state"], req["t_end"],
                        frames=frames, rtol=min(req["rtol"], 1e-8),
                        atol=min(req["atol"], 1e-10), max_steps=max_steps,

@@ -36,9 +36,7 @@ import anyio
 import numpy as np
 
 from app.services.kernel_warmup import KernelWarmup
-from solvers import compile_state
 from solvers.models.cases import build
-from solvers.warmup import WARM_SMALL, warm_targets
 
 _PREPARED: set = set()     # keys prepared by this server process (their kernels are cached)
 _WARMED: set = set()
@@ -54,6 +52,9 @@ def structure(model) -> tuple:
 def _warmed() -> set:
     """("small", model, structure, method) of the small kernels the warm-up compiles."""
     if not _WARMED:
+        # lazy: the warm-up's list of targets (solvers.warmup), not at the server's start
+        from solvers.warmup import WARM_SMALL, warm_targets
+
         _WARMED.update(("small", *structure(build(cid, params)), method)
                        for cid, params in warm_targets() for method in WARM_SMALL)
     return _WARMED
@@ -63,6 +64,10 @@ def simulate_keys(resolved: dict) -> list[tuple]:
     """The kernels a simulate request runs: solvers/compile_state.py plan(), from the
     request alone. Not on the event loop: planning "auto" reads the measured front and
     imports heyoka."""
+    # lazy: solvers.compile_state (with auto's measured front and the Taylor backend), not
+    # at the server's start
+    from solvers import compile_state
+
     return compile_state.plan(resolved)
 
 

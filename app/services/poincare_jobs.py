@@ -9,10 +9,12 @@ import time
 
 import numpy as np
 
-from solvers.maps.poincare import MapSpec, integral_spread, map_model, trace_checked_all
-
 
 def trajectories(job: dict, starts: list[list[float]]) -> list[dict]:
+    # lazy: the Poincare maps (solvers.maps), not at the server's start, which imports this
+    # module for the jobs' names
+    from solvers.maps.poincare import MapSpec, integral_spread, map_model, trace_checked_all
+
     model = map_model(job["case"], job["params"], allow_any_inertia=job["allow_any_inertia"])
     trs = trace_checked_all(model, [np.asarray(y0, dtype=float) for y0 in starts],
                             MapSpec(**job["spec"]), workers=1)

@@ -43,7 +43,6 @@ from app.services import kernel_prepare, poincare_jobs
 from app.services.jobs import dumps
 from app.services.reader_pages import static_page
 from solvers.errors import InputError
-from solvers.maps.poincare import MapSpec, map_model, resolve_kernel, starts_for
 from solvers.models.cases import get_case
 
 router = APIRouter(tags=["poincare"])
@@ -53,6 +52,9 @@ _threads = anyio.CapacityLimiter(2)
 
 def resolve(req: PoincareRequest, max_steps: int) -> tuple[dict, dict, list[list[float]]]:
     """(header of the answer, the job every trajectory shares, the starts)."""
+    # lazy: the Poincare maps (solvers.maps), not at the server's start
+    from solvers.maps.poincare import MapSpec, map_model, resolve_kernel, starts_for
+
     spec_case = get_case(req.case)
     params = {**(spec_case.example if req.example else {}), **req.params}
     spec = MapSpec(energy=req.energy, g0=req.g0, direction=req.direction, points=req.points,

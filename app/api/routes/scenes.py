@@ -22,8 +22,6 @@ from app.services import kernel_prepare
 from app.services.jobs import dumps, prepare_scene_check
 from app.services.reader_pages import static_page
 from catalogue.numbering import cite, printed
-from solvers.scenes.rerun import moved, rerun_json
-from solvers.scenes.scene_checks import check_json
 from solvers.scenes.teaching import load_scenes
 
 router = APIRouter(tags=["scenes"])
@@ -64,6 +62,9 @@ async def scene_check(scene_id: str, k: int, request: Request, pool: PoolDep,
                       settings: SettingsDep) -> Response:
     """Check k of the scene on the scene's own run (solvers/scenes/scene_checks.py), with the
     plot of exactly the data its verdict was taken from: what /scenes draws."""
+    # lazy: the scenes' checks (solvers.scenes.scene_checks), not at the server's start
+    from solvers.scenes.scene_checks import check_json
+
     s = load_scenes().get(scene_id)
     if s is None:
         raise HTTPException(404, f"unknown scene {scene_id!r}; known scenes: "
@@ -89,6 +90,9 @@ async def scene_rerun(scene_id: str, req: RerunRequest, request: Request, pool: 
                       settings: SettingsDep) -> Response:
     """The scene run again with its sliders moved, every check evaluated on the new run
     (solvers/scenes/rerun.py): what /scenes draws after a slider changes."""
+    # lazy: the scenes' re-runs (solvers.scenes.rerun), not at the server's start
+    from solvers.scenes.rerun import moved, rerun_json
+
     s = load_scenes().get(scene_id)
     if s is None:
         raise HTTPException(404, f"unknown scene {scene_id!r}; known scenes: "

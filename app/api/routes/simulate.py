@@ -34,7 +34,6 @@ from app.schemas.simulate import (
 from app.services import jobs, kernel_prepare, payloads, provenance
 from catalogue.plain_words import invariant_name
 from solvers.errors import InputError
-from solvers.integrate.taylor_backend import check_taylor_options
 from solvers.models.cases import build, get_case, initial_state
 from solvers.models.observables import public_name
 from solvers.simulate import check_step, symmetric_methods
@@ -62,6 +61,9 @@ def resolve(req: SimulateRequest, max_steps: int | None = None) -> dict:
                          f"the step); {req.method} is a scipy reference method")
     check_step(req.method, req.step, req.t_end, max_steps, req.project)
     if req.method == "taylor" or req.precision is not None:
+        # lazy: the Taylor backend, for method taylor only, not at the server's start
+        from solvers.integrate.taylor_backend import check_taylor_options
+
         check_taylor_options(req.method, req.precision, req.project, req.step)
     return {"case": req.case, "params": params, "state": list(state), "t_end": req.t_end,
             "method": req.method, "rtol": req.rtol, "atol": req.atol, "step": req.step,
