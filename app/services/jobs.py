@@ -36,9 +36,13 @@ def warm_imports() -> int:
     kernel_warmup.py): the imports only, no run, so that it compiles nothing the warm-up
     is compiling; the routes prepare what a request needs (kernel_prepare.py)."""
     lower_priority()
-    # lazy: pyarrow, which the Arrow answer's first use would otherwise wait for, not at the
-    # server's start (the solvers come with this module's own imports)
+    # lazy: pyarrow, in a worker, not at the server's start: the Arrow answer's first use
+    # would wait for its imports
     import pyarrow  # noqa: F401
+
+    # lazy: the scenes' kinematics, in a worker, not at the server's start (the rest of the
+    # solvers come with this module's imports)
+    import solvers.models.kinematics  # noqa: F401
 
     return os.getpid()
 
