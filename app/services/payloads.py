@@ -25,7 +25,6 @@ import numpy as np
 import orjson
 
 from app.core.errors import NotAcceptable
-from app.services.provenance import stamped
 
 JSON = "application/json"
 ARROW = "application/vnd.apache.arrow.stream"
@@ -121,6 +120,10 @@ def _plain(x):
 def result_dict(res, max_steps: int, prov: dict | None = None) -> dict:
     """The JSON answer of a run (SimulateResponse), arrays left as numpy arrays; `prov`:
     the run's provenance (app/services/provenance.py), stamped with the time it ran."""
+    # lazy: the provenance's glossary (the catalogue's pydantic models), not at the start of
+    # the command line's JSON output, which imports this module for `dumps`
+    from app.services.provenance import stamped
+
     out = res.to_json(arrays=True)
     out["stats"] = {**out["stats"], "max_steps": max_steps}
     if prov is not None:
