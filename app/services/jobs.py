@@ -13,10 +13,8 @@ import io
 import os
 
 from app.services.payloads import arrow_bytes, csv_header, dumps, finite, json_bytes
-from app.services.provenance import stamped
 from app.services.worker_run import lower_priority, run_request
 from solvers.models.cases import registry
-from solvers.scenes.teaching import load_scenes
 from solvers.simulate import simulate
 from solvers.verify import verify
 
@@ -86,6 +84,9 @@ def prepare_scene(req: dict) -> int:
 def prepare_scene_check(scene_id: str) -> int:
     """A teaching scene's checks run its scene and plain runs of its case: their
     kernels, on tiny runs of the scene's own declaration (catalogue/scenes.yaml)."""
+    # lazy: the teaching scenes (and the catalogue they load), not at a worker's start
+    from solvers.scenes.teaching import load_scenes
+
     preset = load_scenes()[scene_id]
     run = preset.scene
     n = 0
@@ -112,6 +113,9 @@ def simulate_arrow(req: dict, max_steps: int, prov: dict | None = None) -> bytes
 def simulate_csv(req: dict, max_steps: int, prov: dict | None = None) -> bytes:
     """The provenance as "# " lines (app/services/provenance.py), then one row per sample:
     t, the state, then every invariant the case carries."""
+    # lazy: the provenance's glossary (the catalogue), not at a worker's start
+    from app.services.provenance import stamped
+
     res = run_request(req, max_steps)
     buf = io.StringIO()
     if prov is not None:
