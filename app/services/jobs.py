@@ -14,8 +14,6 @@ import os
 
 from app.services.payloads import arrow_bytes, csv_header, dumps, finite, json_bytes
 from app.services.worker_run import lower_priority, run_request
-from solvers.models.cases import registry
-from solvers.simulate import simulate
 from solvers.verify import verify
 
 
@@ -24,6 +22,11 @@ def warm() -> int:
     of every case, so that no request pays for a first call (a noticeable wait on a sphere).
     Only once the kernels are compiled (the warm-up done): before, `warm_imports`."""
     lower_priority()
+    # lazy: numba and the kernels, imported at the worker's lower priority, not at its start
+    # (unpickling a job of this module)
+    from solvers.models.cases import registry
+    from solvers.simulate import simulate
+
     for cid, case in registry().items():   # the generated kernels too (field="auto")
         simulate(cid, case.example, case.state, 0.01, samples=3)
     return warm_imports()
@@ -38,9 +41,10 @@ def warm_imports() -> int:
     # would wait for its imports
     import pyarrow  # noqa: F401
 
-    # lazy: the scenes' kinematics, in a worker, not at the server's start (the rest of the
-    # solvers come with this module's imports)
-    import solvers.models.kinematics  # noqa: F401
+    # lazy: numba, the kernels and the scenes' kinematics, imported at the worker's lower
+    # priority, not at its start (unpickling a job of this module)
+    import solvers.models.kinematics
+    import solvers.simulate  # noqa: F401
 
     return os.getpid()
 
@@ -84,7 +88,9 @@ def prepare_scene(req: dict) -> int:
 def prepare_scene_check(scene_id: str) -> int:
     """A teaching scene's checks run its scene and plain runs of its case: their
     kernels, on tiny runs of the scene's own declaration (catalogue/scenes.yaml)."""
-    # lazy: the teaching scenes (and the catalogue they load), not at a worker's start
+    # lazy: the cases' models (numba) and the teaching scenes (the catalogue), not at a
+    # worker's start (unpickling a job of this module)
+    from solvers.models.cases import registry
     from solvers.scenes.teaching import load_scenes
 
     preset = load_scenes()[scene_id]

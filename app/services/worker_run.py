@@ -6,8 +6,6 @@ from __future__ import annotations
 
 import os
 
-from solvers.simulate import simulate
-
 # Worker processes run at a lower CPU priority than the server's event loop, so that on a
 # busy machine (2 cores, 2 workers) the loop still answers /api/health and parses requests
 # at once; the runs themselves lose little, as they have the cores to themselves otherwise.
@@ -30,6 +28,10 @@ def run_request(req: dict, max_steps: int):
     """The run of a simulate request (a dict of SimulateRequest's fields), at the worker's
     priority."""
     lower_priority()
+    # lazy: numba and the kernels (solvers.simulate), imported at the worker's lower
+    # priority, not at its start (unpickling a job of app.services.jobs imports this module)
+    from solvers.simulate import simulate
+
     return simulate(req["case"], req["params"], req["state"], req["t_end"],
                     method=req["method"], rtol=req["rtol"], atol=req["atol"],
                     samples=req["samples"], project=req["project"], max_steps=max_steps,
