@@ -33,6 +33,7 @@ from starlette.middleware.trustedhost import TrustedHostMiddleware
 from app import __version__
 from app.api.main import api_router
 from app.api.routes import guide, pages, poincare, reader, scenes, work_precision
+from app.api.routes.pages import plotly_js
 from app.core import compress, errors
 from app.core.config import Settings, get_settings
 from app.core.guards import CSP, HeadAsGet, HeaderLimit, RequestGuard, SecurityHeaders
@@ -42,6 +43,9 @@ from app.services.kernel_cache import KernelCache
 from app.services.kernel_warmup import KernelWarmup
 from app.services.page_cache import PageCache
 from app.services.verdicts import VerdictStore
+from catalogue.load import load_catalogue
+from solvers.kernels.module_cache import degrade
+from solvers.models.cases import build, initial_state, registry, table_case_ids
 
 log = logging.getLogger("rolling")
 
@@ -58,9 +62,6 @@ is busy and the queue is full the answer is 503 with `Retry-After`.
 
 def _prepare() -> None:
     """Load the catalogue and the registry, off the event loop."""
-    from catalogue.load import load_catalogue
-    from solvers.models.cases import registry
-
     load_catalogue()
     registry()
 
@@ -70,8 +71,6 @@ def _validate_examples() -> None:
     calls compiled functions (the support function, the fit on a sphere) whose first call
     loads them from numba's cache while holding the GIL, or on a fresh machine compiles
     them (tens of seconds on a loaded machine): the first page must not wait for that."""
-    from solvers.models.cases import build, initial_state, registry
-
     for cid, spec in registry().items():
         initial_state(build(cid, spec.example), spec.state)
 
@@ -156,8 +155,6 @@ async def lifespan(app: FastAPI):
     why = await anyio.to_thread.run_sync(cache.check)
     warm_kernels = settings.warm_kernels and why is None
     if why is not None:
-        from solvers.kernels.module_cache import degrade
-
         degrade("the kernel cache", why)
         kernels.message = ("not run: the kernel cache cannot be written; runs use the "
                            "general kernels, compiled in each worker")
@@ -169,7 +166,6 @@ async def lifespan(app: FastAPI):
     shares = {"verify": (max(1, settings.workers - 1), max(1, settings.queue_size // 4))}
     pool = WorkerPool(settings.workers, settings.queue_size, settings.retry_after_s,
                       warm=jobs.warm_imports if warm_kernels else jobs.warm, shares=shares)
-    from solvers.models.cases import table_case_ids
 
     store = VerdictStore(table_case_ids(), settings.cache_dir)
     app.state.pool, app.state.verdicts, app.state.kernels = pool, store, kernels
@@ -202,8 +198,6 @@ async def lifespan(app: FastAPI):
             except Exception as exc:  # serve anyway: that case's run will say what is wrong
                 log.warning("validating the cases' demo runs failed: %r", exc)
         if settings.precompress:
-            from app.api.routes.pages import plotly_js
-
             paths = [plotly_js(), *compress.static_paths(settings.static_dir)]
             made = await anyio.to_thread.run_sync(app.state.assets.precompress, paths)
             if made:

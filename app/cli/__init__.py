@@ -9,6 +9,7 @@ strict JSON: a non-finite number is written as null (as the API does).
 """
 
 import sys
+import warnings
 
 from app.cli.benches import BENCHES, QUICK, SETTINGS, bench
 from app.cli.checks import errata, exact_summary, verify, verify_tables
@@ -39,8 +40,6 @@ def main(argv: list[str] | None = None):
     """The entry point: whatever fails ends as one line on stderr and exit code 2; the
     floating-point warnings of numpy (overflow, invalid value) are not for a person at a
     terminal: what they signal is refused as input or reported in the result."""
-    import warnings
-
     warnings.filterwarnings("ignore", category=RuntimeWarning)
     try:
         cli(args=argv)

@@ -1,6 +1,8 @@
 """`rolling bench NAME`: a benchmark script of bench/ run in this process."""
 
+import runpy
 import sys
+from pathlib import Path
 from typing import Annotated
 
 import typer
@@ -64,9 +66,6 @@ def bench(
     long it takes, where its table goes). Options after the name go to the script, e.g.
     `rolling bench limit -- --extension` or `rolling bench load -- --users 4 --duration 5`
     (`rolling bench NAME -- --help`: the script's own options)."""
-    import runpy
-    from pathlib import Path
-
     if name not in BENCHES:
         fail(f"unknown benchmark {name!r}; choose one of {', '.join(BENCHES)}")
     if quick and name not in QUICK:

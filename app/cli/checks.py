@@ -1,6 +1,7 @@
 """`rolling verify` and `rolling errata`: the catalogue's claims checked, printed as the
 paper's tables with verdict marks, and the misprints, conventions and findings."""
 
+from collections import Counter
 from typing import Annotated
 
 import typer
@@ -14,6 +15,7 @@ from app.cli.common import (
     time_limit,
     write_json,
 )
+from solvers.errors import InputError
 
 
 def verify(
@@ -24,8 +26,8 @@ def verify(
     timeout: TimeoutOpt = None,
 ):
     """Check every claim of Tables 1-2 and the text; print the tables with verdict marks."""
+    # lazy: the catalogue (yaml, pydantic) and the parallel checks, not at the CLI's start
     from catalogue.load import load_catalogue
-    from solvers.errors import InputError
     from solvers.verify.parallel import verify_parallel
 
     check_workers(workers, zero="one per core")
@@ -49,10 +51,12 @@ def verify(
 
 
 def verify_tables(records, only_case):
+    # lazy: rich's tables, not at the CLI's start
     from rich.console import Console
     from rich.markup import escape
     from rich.table import Table
 
+    # lazy: the catalogue (yaml, pydantic) and the checks' marks, not at the CLI's start
     from catalogue.load import load_catalogue
     from catalogue.numbering import cite
     from solvers.verify import marks as vocab
@@ -91,8 +95,7 @@ def verify_tables(records, only_case):
 
 
 def _verify_summary(con, records):
-    from collections import Counter
-
+    # lazy: the catalogue (yaml) and the checks' marks, not at the CLI's start
     from catalogue.numbering import cite, printed
     from solvers.verify import marks as vocab
 
@@ -143,6 +146,7 @@ def errata(
 ):
     """List the paper's misprints (printed vs corrected form, residuals, exact witness,
     the command that reproduces each), the conventions and the findings."""
+    # lazy: the catalogue (yaml, pydantic) and the checks, not at the CLI's start
     from catalogue.load import load_catalogue
     from solvers.verify import errata as er
     from solvers.verify.parallel import verify_parallel
@@ -155,7 +159,7 @@ def errata(
     if as_json:
         write_json(out)
         return
-    from rich.console import Console
+    from rich.console import Console  # lazy: rich, not at the CLI's start
 
     con = Console(width=max(Console().width, 140))
 
@@ -199,6 +203,7 @@ def exact_summary(records) -> str:
     many certified with a Schwartz-Zippel bound (N and k read from the code), how many
     neither (solvers/verify/exact/report.py gives each one's reason); and how many failing
     records an exact rational witness settles."""
+    # lazy: the exact checks (numba, scipy, python-flint), not at the CLI's start
     from solvers.verify.exact.report import exact_counts
     c = exact_counts(records)
     return (f"exact: of {c['verified']} verified formula records, {c['proved']} proved "

@@ -2,6 +2,7 @@
 bounds of the inputs that size the work, --timeout's watchdog, the parsing of NAME=VALUE
 and state options."""
 
+import _thread
 import contextlib
 import os
 import signal
@@ -36,6 +37,7 @@ def check_bounds(request: str, **values) -> None:
     """Options bounded as the API bounds the same fields of its request model, by the
     same types (app.schemas.bounds: "simulate" or "poincare"), refused in the API's words
     (exit 2). Nothing of the solvers is imported: a refusal comes at once."""
+    # lazy: pydantic and FastAPI (the API's bounds and words), not at the CLI's start
     from app.core.errors import refusal
     from app.schemas.bounds import PoincareBounds, SimulateBounds
 
@@ -46,7 +48,8 @@ def check_bounds(request: str, **values) -> None:
 
 
 def write_json(obj) -> None:
-    from app.services.jobs import dumps
+    # lazy: numpy, orjson and FastAPI (the API's JSON encoder), not at the CLI's start
+    from app.services.payloads import dumps
 
     sys.stdout.write(dumps(obj).decode() + "\n")
 
@@ -122,8 +125,6 @@ def time_limit(seconds: float | None, graceful: threading.Event | None = None):
         if done.wait(seconds):
             return
         if graceful is not None and graceful.wait(15.0) and not done.is_set():
-            import _thread
-
             _thread.interrupt_main(signal.SIGUSR1)
             if done.wait(15.0):
                 return
@@ -168,6 +169,6 @@ def interrupted(code: int):
 
 
 def stderr_console():
-    from rich.console import Console
+    from rich.console import Console  # lazy: rich, not at the CLI's start
 
     return Console(stderr=True)

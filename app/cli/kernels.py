@@ -7,6 +7,7 @@ from typing import Annotated
 import typer
 
 from app.cli.common import fail, input_message, parse_sets
+from solvers.errors import InputError
 
 
 def kernels(
@@ -25,8 +26,8 @@ def kernels(
                                            "(seconds to minutes per kernel)")] = False,
 ):
     """List the kernels a run of the case needs, compiled or not (--compile: compile them)."""
+    # lazy: the solvers (numba and the compiled kernels), not at the CLI's start
     from solvers import compile_state
-    from solvers.errors import InputError
     from solvers.models.cases import get_case
 
     try:

@@ -21,6 +21,7 @@ from app.cli.common import (
     time_limit,
     write_json,
 )
+from solvers.errors import InputError
 
 
 def _parse_section(text: str) -> float:
@@ -60,9 +61,10 @@ def poincare(
     check_timeout(timeout)
     # refused before the solvers (and their compiled kernels) are imported
     check_bounds("poincare", energy=energy, direction=direction, rtol=rtol, atol=atol)
+    # lazy: rich's progress bar, not at the CLI's start
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TimeElapsedColumn
 
-    from solvers.errors import InputError
+    # lazy: the maps (numba and their compiled kernels), not at the CLI's start
     from solvers.maps.poincare import MapSpec, map_model, starts_for
     from solvers.maps.poincare import poincare as run
     from solvers.models.cases import get_case
@@ -125,9 +127,11 @@ def sweep(
     timeout: TimeoutOpt = None,
 ):
     """Maps over a parameter (--vary) or over energy levels (--energies) on dask."""
+    # lazy: rich's progress bar, not at the CLI's start
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TimeElapsedColumn
 
-    from solvers.errors import InputError
+    # lazy: the sweeps (numpy, pydantic) and the cases' models (numba), not at the CLI's
+    # start
     from solvers.maps.sweeps import (
         DaskSettings,
         energy_tasks,
@@ -174,6 +178,7 @@ def sweep(
     if as_json:
         write_json(res.to_json())
         return
+    # lazy: rich's tables, not at the CLI's start
     from rich.console import Console
     from rich.table import Table
 
@@ -190,6 +195,7 @@ def sweep(
 
 
 def _poincare_summary(out: dict):
+    # lazy: rich's tables, not at the CLI's start
     from rich.console import Console
     from rich.table import Table
 

@@ -17,10 +17,12 @@ from app.cli.common import (
     time_limit,
     write_json,
 )
+from solvers.errors import InputError
 
 
 def cases():
     """List the case ids (Tables 1 and 2) with their parameters."""
+    # lazy: the catalogue (yaml) and the cases' models (numba), not at the CLI's start
     from catalogue.numbering import cite
     from solvers.models.cases import registry
 
@@ -69,8 +71,8 @@ def simulate(
         t_end = 100.0
     # refused before the solvers (and their compiled kernels) are imported
     check_bounds("simulate", t_end=t_end, samples=samples, rtol=rtol, atol=atol, step=step)
+    # lazy: the solvers (numba and the compiled kernels), not at the CLI's start
     from solvers import simulate as sim
-    from solvers.errors import InputError
     from solvers.models.cases import get_case
 
     try:
@@ -94,6 +96,7 @@ def simulate(
 
 
 def _summary(res):
+    # lazy: rich's tables, not at the CLI's start
     from rich.console import Console
     from rich.table import Table
 
@@ -122,6 +125,8 @@ def _summary(res):
 
 def methods():
     """List the integration methods."""
+    # lazy: the methods' tableaux (numpy, mpmath) and the solvers (numba), not at the CLI's
+    # start
     from solvers.integrate.collocation import load
     from solvers.integrate.tableaux import TABLEAUX
     from solvers.simulate import SCIPY_METHODS, compiled_methods, symmetric_methods

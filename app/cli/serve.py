@@ -1,5 +1,6 @@
 """`rolling serve`: the web explorer on uvicorn with the server's bounds."""
 
+import os
 from typing import Annotated
 
 import typer
@@ -14,19 +15,21 @@ def serve(
                                                 "(default 2)")] = None,
 ):
     """Start the web explorer (FastAPI + uvicorn) on http://127.0.0.1:8000."""
-    import os
-
     check_workers(workers)
     if workers is not None:
         os.environ["ROLLING_WORKERS"] = str(workers)
     if host is not None:   # the app derives its Host allow-list from the address it serves
         os.environ["ROLLING_HOST"] = host
+    # lazy: pydantic-settings (the server's settings), only for `rolling serve`, not at
+    # the CLI's start
     from app.core.config import get_settings
 
     s = get_settings()
     host, port = host or s.host, port or s.port
     typer.echo(f"rolling-hierarchy explorer on http://{host}:{port}/  (API docs: /docs)")
-    from app.core.server import run  # uvicorn with bounds on what a client can hold
+    # lazy: uvicorn with bounds on what a client can hold (app.core.server) and the
+    # explorer itself (app.main: FastAPI, the solvers), only for `rolling serve`
+    from app.core.server import run
     from app.main import STOP_SIGNALS_SEEN
 
     try:

@@ -12,12 +12,13 @@ import html
 import math
 import re
 from pathlib import Path
+from typing import Annotated
 
 from fastapi import FastAPI, Request
 from fastapi.exceptions import RequestValidationError
 from fastapi.responses import HTMLResponse, JSONResponse, Response
 from markupsafe import Markup
-from pydantic import BaseModel
+from pydantic import BaseModel, TypeAdapter, ValidationError
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from app.core.disconnect import ClientDisconnected
@@ -124,10 +125,6 @@ def refusal(model: type[BaseModel], values: dict) -> str | None:
     """The API's 422 message for the first of `values` (field name -> value) that the
     request model `model` refuses by its own Field definition, or None: the command line
     checks its options by the same bounds and says the same words."""
-    from typing import Annotated
-
-    from pydantic import TypeAdapter, ValidationError
-
     for name, value in values.items():
         info = model.model_fields[name]
         try:
@@ -222,7 +219,10 @@ def not_found_page(static_dir: Path, heading: str, message: str) -> HTMLResponse
 def error_page(static_dir: Path, status: int, heading: str, message: str) -> HTMLResponse:
     """An HTML error page with the site's navigation (the 404 page's template)."""
     text = (Path(static_dir) / "404.html").read_text()
-    from app.services.reader_pages import render_page  # the site's navigation, lazily
+    # lazy: the site's navigation (app.services.reader_pages: jinja2, and numba through
+    # the checks the pages describe), not at the start of the command line, which imports
+    # this module for `refusal` (app/cli/common.py)
+    from app.services.reader_pages import render_page
 
     return HTMLResponse(render_page(text, "404.html", heading=Markup(html.escape(heading)),
                                     message=Markup(html.escape(message[:500]))),

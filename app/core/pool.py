@@ -30,6 +30,7 @@ from __future__ import annotations
 import contextlib
 import logging
 import math
+import os
 import threading
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -116,8 +117,6 @@ STOPPING = ("the server is stopping: the computation was stopped with it; retry 
 
 def _pid() -> int:
     """A job that only starts a worker (the pool's retry when it has no warm-up)."""
-    import os
-
     return os.getpid()
 
 

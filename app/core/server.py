@@ -49,6 +49,7 @@ The figures that chose h11 with these guards over httptools are in bench/results
 
 from __future__ import annotations
 
+import argparse
 import asyncio
 import logging
 import resource
@@ -56,9 +57,11 @@ import time
 from dataclasses import dataclass
 
 import h11
+import uvicorn
 from uvicorn.protocols.http.flow_control import HIGH_WATER_LIMIT
 from uvicorn.protocols.http.h11_impl import H11Protocol
 
+from app.core.config import get_settings
 from app.core.eviction import FAST_BYTES_S, KINDS, SLOW_SCAN, Candidates  # noqa: F401
 from app.core.guards import HEADERS
 
@@ -408,10 +411,6 @@ def protocol_for(limits: Limits) -> type[GuardedH11Protocol]:
 
 def config(host: str, port: int, settings=None, **kw):
     """The uvicorn Config of the explorer with the guarded protocol."""
-    import uvicorn
-
-    from app.core.config import get_settings
-
     s = settings or get_settings()
     limits = Limits.from_settings(s)
     raise_fd_limit(limits.max_connections)
@@ -424,14 +423,10 @@ def config(host: str, port: int, settings=None, **kw):
 
 
 def run(host: str, port: int, log_level: str = "info") -> None:
-    import uvicorn
-
     uvicorn.Server(config(host, port, log_level=log_level)).run()
 
 
 def main(argv=None) -> None:
-    import argparse
-
     ap = argparse.ArgumentParser(description="the explorer's HTTP server")
     ap.add_argument("--host", default="127.0.0.1")
     ap.add_argument("--port", type=int, default=8000)

@@ -8,13 +8,12 @@ from pydantic import BaseModel, ConfigDict, Field, field_validator
 from app.schemas.bounds import Atol, Direction, Int, MapRtol
 from app.schemas.common import FiniteFloat
 from app.schemas.simulate import CaseId, case_rules
+from solvers.models.cases import registry
 
 
 def _map_cases() -> list[str]:
     """The cases with the state (M, gamma): the flat-base ones (M, r1, r2) have no map, nor
     the rubber ones (solvers.maps.map_spec.map_model: starts off (omega, gamma) = 0)."""
-    from solvers.models.cases import registry
-
     return [cid for cid, c in registry().items()
             if len(c.state) == 6 and c.constraint == "marble"]
 

@@ -17,28 +17,19 @@ from app.schemas.bounds import (  # noqa: F401
     TEnd,
 )
 from app.schemas.common import FiniteFloat
+from solvers.models.bodies import param_bounds, param_upper_bounds
+from solvers.models.cases import case_ids, registry
+
+try:
+    from solvers.simulate import methods
+
+    METHODS = tuple(methods())
+except ImportError:  # the compiled integrator is missing: list what the API promises
+    METHODS = ("dop853", "vern9", "rk45", "gauss4", "gauss6", "gauss8", "taylor", "auto",
+               "scipy-dop853", "scipy-rk45", "scipy-lsoda", "scipy-radau")
 
 MAX_FRAMES = 600
-
-
-def _case_ids() -> tuple[str, ...]:
-    from solvers.models.cases import case_ids
-
-    return tuple(case_ids())
-
-
-def _methods() -> tuple[str, ...]:
-    try:
-        from solvers.simulate import methods
-
-        return tuple(methods())
-    except ImportError:  # the compiled integrator is missing: list what the API promises
-        return ("dop853", "vern9", "rk45", "gauss4", "gauss6", "gauss8", "taylor", "auto",
-                "scipy-dop853", "scipy-rk45", "scipy-lsoda", "scipy-radau")
-
-
-CASE_IDS = _case_ids()
-METHODS = _methods()
+CASE_IDS = tuple(case_ids())
 CaseId = Literal[CASE_IDS]  # type: ignore[valid-type]
 Method = Literal[METHODS]  # type: ignore[valid-type]
 
@@ -82,8 +73,6 @@ def param_schema(kind: str, symmetry: str) -> dict[str, dict]:
     model's validation checks (solvers.models.bodies.param_bounds, param_upper_bounds):
     exclusiveMinimum 0 for a positive parameter, minimum 0 for a non-negative one,
     exclusiveMaximum 0 for a negative one."""
-    from solvers.models.bodies import param_bounds, param_upper_bounds
-
     out = {name: ({"type": "number", "minimum": b["min"]} if b["min_inclusive"]
                   else {"type": "number", "exclusiveMinimum": b["min"]})
            for name, b in param_bounds(kind, symmetry).items()}
@@ -105,8 +94,6 @@ def case_rules(with_state: bool = True) -> dict:
     canonical form multiplies an anyOf beside another anyOf (METHOD_RULES) out into one list
     of every pair and gives up past a budget, where it leaves a oneOf standing and meets its
     branches one at a time while drawing."""
-    from solvers.models.cases import registry
-
     branches = []
     for cid, c in registry().items():
         props: dict[str, Any] = {"case": {"const": cid},

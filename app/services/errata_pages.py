@@ -31,6 +31,8 @@ from markupsafe import Markup
 from app import __version__
 from app.services import reader_pages
 from app.services.anchors import claim_anchor
+from app.services.ssr import symbol_link
+from app.services.views import symbol_refs
 
 SECTION_TITLES = {"1": "Equations of motion", "2": "Body on a plane", "3": "Body on a sphere"}
 
@@ -91,16 +93,12 @@ def formulas_of(e: dict) -> list[tuple[str, str]]:
 def with_symbols(rows: list[dict]) -> list[dict]:
     """The rows, each with `symbols`: role -> the symbols of that formula, each with its
     entry on /notation (views.symbol_refs)."""
-    from app.services.views import symbol_refs
-
     return [{**e, "symbols": {role: symbol_refs(tex) for role, tex in formulas_of(e)}}
             for e in rows]
 
 
 def _symbols(e: dict, role: str) -> str:
     """The symbols of one of the row's formulas, as the case pages list them."""
-    from app.services.ssr import symbol_link
-
     refs = (e.get("symbols") or {}).get(role) or []
     if not refs:
         return ""

@@ -14,10 +14,7 @@ import os
 
 from app.services.payloads import arrow_bytes, csv_header, dumps, finite, json_bytes
 from app.services.worker_run import lower_priority, run_request
-
-# The solvers are imported inside the jobs below: they load numba and the compiled kernels,
-# which a worker needs and the server's process (it imports this module for the jobs'
-# names, which the pool pickles by reference) does not.
+from solvers.verify import verify
 
 
 def warm() -> int:
@@ -25,6 +22,8 @@ def warm() -> int:
     of every case, so that no request pays for a first call (a noticeable wait on a sphere).
     Only once the kernels are compiled (the warm-up done): before, `warm_imports`."""
     lower_priority()
+    # lazy: numba and the kernels, imported at the worker's lower priority, not at its start
+    # (unpickling a job of this module)
     from solvers.models.cases import registry
     from solvers.simulate import simulate
 
@@ -38,33 +37,43 @@ def warm_imports() -> int:
     kernel_warmup.py): the imports only, no run, so that it compiles nothing the warm-up
     is compiling; the routes prepare what a request needs (kernel_prepare.py)."""
     lower_priority()
-    import pyarrow  # noqa: F401   (the Arrow answer's first use: its imports are slow)
+    # lazy: pyarrow, in a worker, not at the server's start: the Arrow answer's first use
+    # would wait for its imports
+    import pyarrow  # noqa: F401
 
-    import app.services.payloads  # noqa: F401
+    # lazy: numba, the kernels and the scenes' kinematics, imported at the worker's lower
+    # priority, not at its start (unpickling a job of this module)
     import solvers.models.kinematics
     import solvers.simulate  # noqa: F401
+
     return os.getpid()
 
 
-def prepare_kernels(req: dict) -> int:
-    """Compile (or load) the kernels a simulate request will run (no request pays a
-    compile inside its deadline; the route runs this without a deadline:
-    app/services/kernel_prepare.py): solvers/compile_state.py plans them from the request
-    and compiles each on a tiny run of it. A request that fails (bad input) is left to its
-    own run to report. Returns how many kernels are ready."""
+def prepare_kernels(req: dict, keys: list[tuple] | None = None) -> int:
+    """Compile (or load) the kernels `keys` of a simulate request, each on a tiny run of it
+    (solvers/compile_state.py compile; no request pays a compile inside its deadline; the
+    route runs this without a deadline: app/services/kernel_prepare.py). The route passes
+    the keys it planned (kernel_prepare.simulate_keys), so a request is planned once;
+    without them (a teaching scene's check) they are planned here. A request that fails
+    (bad input) is left to its own run to report. Returns how many kernels are ready."""
     lower_priority()
+    # lazy: solvers.compile_state (with auto's measured front and the Taylor backend), not
+    # at the server's start, which imports this module for the jobs' names
     from solvers import compile_state
 
-    try:
-        keys = compile_state.plan(req)
-    except Exception:   # the request's own run reports it
-        return 0
+    if keys is None:
+        try:
+            keys = compile_state.plan(req)
+        except Exception:   # the request's own run reports it
+            return 0
     return compile_state.compile(keys, req)
 
 
 def prepare_scene(req: dict) -> int:
     """The kernels of a scene (the scene model's compiled run), on a tiny run."""
     lower_priority()
+    # lazy: the scenes' kinematics (solvers.models.kinematics), not at the server's start,
+    # which imports this module for the jobs' names
     from solvers.models.kinematics import scene
 
     try:
@@ -79,6 +88,8 @@ def prepare_scene(req: dict) -> int:
 def prepare_scene_check(scene_id: str) -> int:
     """A teaching scene's checks run its scene and plain runs of its case: their
     kernels, on tiny runs of the scene's own declaration (catalogue/scenes.yaml)."""
+    # lazy: the cases' models (numba) and the teaching scenes (the catalogue), not at a
+    # worker's start (unpickling a job of this module)
     from solvers.models.cases import registry
     from solvers.scenes.teaching import load_scenes
 
@@ -108,6 +119,7 @@ def simulate_arrow(req: dict, max_steps: int, prov: dict | None = None) -> bytes
 def simulate_csv(req: dict, max_steps: int, prov: dict | None = None) -> bytes:
     """The provenance as "# " lines (app/services/provenance.py), then one row per sample:
     t, the state, then every invariant the case carries."""
+    # lazy: the provenance's glossary (the catalogue), not at a worker's start
     from app.services.provenance import stamped
 
     res = run_request(req, max_steps)
@@ -126,6 +138,8 @@ def simulate_csv(req: dict, max_steps: int, prov: dict | None = None) -> bytes:
 
 def scene_json(req: dict, frames: int, max_steps: int) -> bytes:
     lower_priority()
+    # lazy: the scenes' kinematics (solvers.models.kinematics), not at the server's start,
+    # which imports this module for the jobs' names
     from solvers.models.kinematics import scene
 
     return dumps(scene(req["case"], req["params"], req["state"], req["t_end"],
@@ -136,6 +150,4 @@ def scene_json(req: dict, frames: int, max_steps: int) -> bytes:
 
 def verify_case(case_id: str | None) -> list[dict]:
     lower_priority()
-    from solvers.verify import verify
-
     return [finite(dict(r)) for r in verify(case_id)]

@@ -15,6 +15,8 @@ from __future__ import annotations
 
 import time
 
+from solvers.kernels.module_cache import cache_dir, cache_probe
+
 PROBE_EVERY_S = 10.0
 
 
@@ -26,9 +28,6 @@ class KernelCache:
 
     def check(self) -> str | None:
         """Probe the cache now: None when it takes a written file, else why not."""
-        # imported here, not at start-up: the solvers' package loads numba on import
-        from solvers.kernels.module_cache import cache_dir, cache_probe
-
         self.reason = cache_probe()
         self.path = str(cache_dir())
         self._checked = time.monotonic()

@@ -36,9 +36,7 @@ import anyio
 import numpy as np
 
 from app.services.kernel_warmup import KernelWarmup
-
-# The solvers are imported inside the functions below: they load numba (and heyoka for the
-# Taylor rungs), which the server's process must not wait for at start-up.
+from solvers.models.cases import build
 
 _PREPARED: set = set()     # keys prepared by this server process (their kernels are cached)
 _WARMED: set = set()
@@ -46,15 +44,15 @@ _INFLIGHT: dict = {}       # key -> Event: a second request of a key waits for t
 
 
 def structure(model) -> tuple:
-    """(model code, nonzero parameter slots): solvers.kernels.generate.structure without
-    importing numba into the server's process."""
+    """(model code, nonzero parameter slots) of a built model: what its small kernel is
+    compiled for (solvers.kernels.generate.structure without the folded values)."""
     return (model.model, tuple(np.flatnonzero(np.asarray(model.p) != 0.0).tolist()))
 
 
 def _warmed() -> set:
     """("small", model, structure, method) of the small kernels the warm-up compiles."""
     if not _WARMED:
-        from solvers.models.cases import build
+        # lazy: the warm-up's list of targets (solvers.warmup), not at the server's start
         from solvers.warmup import WARM_SMALL, warm_targets
 
         _WARMED.update(("small", *structure(build(cid, params)), method)
@@ -66,6 +64,8 @@ def simulate_keys(resolved: dict) -> list[tuple]:
     """The kernels a simulate request runs: solvers/compile_state.py plan(), from the
     request alone. Not on the event loop: planning "auto" reads the measured front and
     imports heyoka."""
+    # lazy: solvers.compile_state (with auto's measured front and the Taylor backend), not
+    # at the server's start
     from solvers import compile_state
 
     return compile_state.plan(resolved)

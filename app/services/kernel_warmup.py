@@ -25,6 +25,7 @@ import signal
 import statistics
 import sys
 import time
+from pathlib import Path
 
 import anyio
 
@@ -234,8 +235,6 @@ def _group_alive(pgid: int) -> bool:
         os.killpg(pgid, 0)
     except (ProcessLookupError, PermissionError):
         return False
-    from pathlib import Path
-
     if not Path("/proc").is_dir():
         return True
     for stat in Path("/proc").glob("[0-9]*/stat"):

@@ -8,6 +8,8 @@ from functools import cache
 
 from catalogue.glossary import load_glossary
 from catalogue.numbering import cite, printed
+from solvers.models.bodies import param_bounds
+from solvers.models.cases import registry
 
 
 @cache
@@ -16,9 +18,6 @@ def describe(case_id: str) -> tuple[dict, ...]:
     example, meaning, units, range, bounds ({"min", "min_inclusive"} or null: any real
     but for the conditions `range` states) and the printed numbers of the equations where
     the paper uses it. A parameter the glossary lacks is a defect of the data: KeyError."""
-    from solvers.models.bodies import param_bounds
-    from solvers.models.cases import registry
-
     spec = registry()[case_id]
     g = load_glossary()
     bounds = param_bounds(spec.body, spec.symmetry)

@@ -120,6 +120,8 @@ def _plain(x):
 def result_dict(res, max_steps: int, prov: dict | None = None) -> dict:
     """The JSON answer of a run (SimulateResponse), arrays left as numpy arrays; `prov`:
     the run's provenance (app/services/provenance.py), stamped with the time it ran."""
+    # lazy: the provenance's glossary (the catalogue's pydantic models), not at the start of
+    # the command line's JSON output, which imports this module for `dumps`
     from app.services.provenance import stamped
 
     out = res.to_json(arrays=True)
@@ -134,7 +136,8 @@ def json_bytes(res, max_steps: int, prov: dict | None = None) -> bytes:
 
 
 def arrow_bytes(res, max_steps: int, prov: dict | None = None) -> bytes:
-    # imported here: pyarrow's imports take a noticeable time and only this answer needs it
+    # lazy: pyarrow, whose imports take a noticeable time and which only this answer needs,
+    # not at the server's start
     import pyarrow as pa
 
     out = result_dict(res, max_steps, prov)

@@ -5,11 +5,14 @@ processes already fill the cores."""
 
 from __future__ import annotations
 
+import time
+
+import numpy as np
+
 
 def trajectories(job: dict, starts: list[list[float]]) -> list[dict]:
-    import numpy as np
-
-    # imported here, in the worker: the maps load numba and their compiled kernels
+    # lazy: the Poincare maps (solvers.maps), not at the server's start, which imports this
+    # module for the jobs' names
     from solvers.maps.poincare import MapSpec, integral_spread, map_model, trace_checked_all
 
     model = map_model(job["case"], job["params"], allow_any_inertia=job["allow_any_inertia"])
@@ -26,8 +29,6 @@ def seconds_per_point(job: dict, y0: list[float], points: int) -> float:
     """The estimate before a map starts: the wall time of one crossing of this start,
     timed on `points` crossings after a first short run that pays the imports and the
     kernel compilation (which a cold worker would otherwise put into the estimate)."""
-    import time
-
     warm = {**job, "spec": {**job["spec"], "points": 1}}
     trajectories(warm, [y0])
     timed = {**job, "spec": {**job["spec"], "points": points}}

@@ -17,6 +17,8 @@ from datetime import UTC, datetime
 from urllib.parse import urlencode
 
 from app import __version__
+from catalogue.glossary import load_glossary
+from catalogue.numbering import cite
 
 # the inputs that decide a run's numbers, in the order the header lists them
 RUN_FIELDS = ("case", "params", "state", "t_end", "samples", "method", "rtol", "atol",
@@ -100,9 +102,6 @@ def stamped(prov: dict, res=None, stats: dict | None = None) -> dict:
 def column_lines(columns: list[str]) -> list[str]:
     """One "column <name>: what it holds" line per column but t, from the glossary (its
     state variables and the integrals a run reports, catalogue/glossary.yaml)."""
-    from catalogue.glossary import load_glossary
-    from catalogue.numbering import cite
-
     g = load_glossary()
     out = []
     for c in columns:

@@ -16,6 +16,9 @@ import json
 from functools import cache
 from pathlib import Path
 
+import numpy
+import scipy
+
 from catalogue.load import load_catalogue
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -35,9 +38,6 @@ def _digest(*parts: bytes) -> str:
 
 def shared_key() -> str:
     """Hash of the checking code every case shares (formula modules excluded)."""
-    import numpy
-    import scipy
-
     parts = [f"numpy {numpy.__version__} scipy {scipy.__version__}".encode()]
     files = sorted(p for p in (ROOT / "solvers").rglob("*")
                    if p.suffix in (".py", ".yaml", ".json") and FORMULA_DIR not in p.parents)
@@ -55,7 +55,9 @@ def _module_sources() -> dict[str, bytes]:
 def _implementing_modules(fid: str) -> list[str]:
     """The formula modules holding the implementation, correction or comparison of `fid`
     (their short names); every module when the registry cannot be imported."""
-    try:   # imported here: the formulas load sympy and the kernels, only for a re-check
+    try:
+        # lazy: the formula modules of the checks, which register every formula on import,
+        # not at the server's start: only a re-check needs them
         import solvers.verify.formulas  # noqa: F401  (registers on import)
         from solvers.verify import registry as reg
     except Exception:  # the check itself will say so; hash conservatively

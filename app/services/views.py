@@ -8,6 +8,7 @@ import re
 from functools import cache
 
 from app.services.notation_page import case_formulas
+from app.services.rubber_tables import rubber_table
 from app.services.verdicts import VERDICTS, summary
 from catalogue.load import load_catalogue, load_corrected_forms
 from catalogue.notation import entry_for
@@ -19,6 +20,7 @@ from catalogue.symbols import plain as plain_symbol
 from catalogue.symbols import symbols as symbol_tokens
 from solvers.models.bodies import STATE_LABELS
 from solvers.models.cases import CaseSpec, beyond_table_ids, build, registry
+from solvers.models.observables import RUBBER, rubber_integrals
 from solvers.verify import marks as vocab
 from solvers.verify.levels import formula_mark
 
@@ -292,10 +294,6 @@ def rubber_block(spec: CaseSpec) -> dict | None:
     the quantities its run plots (solvers/models/observables.py RUBBER)."""
     if getattr(spec, "constraint", "marble") != "rubber":
         return None
-    from app.services.rubber_tables import rubber_table
-    from solvers.models.observables import RUBBER, rubber_integrals
-    from solvers.verify import marks as vocab
-
     words = {m.id: f"{m.shape} {m.word}" for m in vocab.vocabulary()}
     cells = []
     table_id = f"rubber-{spec.surface}"

@@ -28,8 +28,8 @@ def run_request(req: dict, max_steps: int):
     """The run of a simulate request (a dict of SimulateRequest's fields), at the worker's
     priority."""
     lower_priority()
-    # imported here: solvers.simulate loads numba and the kernels, which the server's own
-    # process (that imports this module for its jobs' names) never needs
+    # lazy: numba and the kernels (solvers.simulate), imported at the worker's lower
+    # priority, not at its start (unpickling a job of app.services.jobs imports this module)
     from solvers.simulate import simulate
 
     return simulate(req["case"], req["params"], req["state"], req["t_end"],

@@ -12,6 +12,7 @@ from app.api.deps import SettingsDep, VerdictsDep
 from app.schemas.errata import ConventionPublic, ErratumPublic, FindingPublic
 from app.services.errata_pages import with_symbols
 from catalogue.load import load_catalogue
+from solvers.verify import errata
 
 router = APIRouter(tags=["errata"])
 
@@ -25,8 +26,6 @@ async def get_errata(store: VerdictsDep) -> list[dict]:
     """Every printed formula that fails where the project's correction holds (misprints,
     and failures inherited from one), with both forms, both residuals, where it is printed,
     the exact witness when there is one and the command that reproduces it."""
-    from solvers.verify import errata
-
     return with_symbols(errata.errata(store_records(store), load_catalogue()))
 
 
@@ -34,8 +33,6 @@ async def get_errata(store: VerdictsDep) -> list[dict]:
 async def get_conventions(store: VerdictsDep) -> list[dict]:
     """Printed forms that hold under another convention (e.g. the orientation of a
     Poisson bracket), with the convention and the residuals under it and under ours."""
-    from solvers.verify import errata
-
     return with_symbols(errata.conventions(store_records(store), load_catalogue()))
 
 
@@ -45,8 +42,6 @@ async def get_findings(store: VerdictsDep, settings: SettingsDep) -> list[dict]:
     printed statements refuted, with their evidence; checks that could not decide while
     what they found leans against the paper (inconclusive); and the paper's figures whose
     caption the recomputed figure does not confirm."""
-    from solvers.verify import errata
-
     cat = load_catalogue()
     return with_symbols(errata.findings(store_records(store), cat) + figure_findings_of(
         settings.static_dir / "data" / "paper_figures.json"))
@@ -55,8 +50,6 @@ async def get_findings(store: VerdictsDep, settings: SettingsDep) -> list[dict]:
 def figure_findings_of(path: Path) -> list[dict]:
     """From the figure data bench/paper_figures.py writes (about a megabyte of points:
     parsed again only when the file changes)."""
-    from solvers.verify import errata
-
     if not path.is_file():
         return []
     key = (str(path), path.stat().st_mtime_ns)

@@ -40,6 +40,8 @@ async def health(request: Request, pool: PoolDep, verdicts: VerdictsDep,
 
 
 def _connections() -> dict | None:
+    # lazy: uvicorn's protocol and the connection guards (app.core.server), which a served
+    # app has loaded and `import app.main` (the tests' TestClient) does not
     from app.core import server
 
     if server.ACTIVE is None:

@@ -4,6 +4,7 @@ solvers/models/observables.py in a worker process."""
 
 from __future__ import annotations
 
+import numpy as np
 from fastapi import APIRouter, Request
 from fastapi.responses import Response
 
@@ -16,23 +17,21 @@ from app.schemas.common import (
     PROBLEM_RESPONSES,
 )
 from app.schemas.observables import ObservablesRequest, ObservablesResponse
+from app.services.jobs import dumps
 from solvers.errors import InputError
+from solvers.models.cases import build, get_case
+from solvers.models.observables import RUBBER, rubber_integrals, series
 
 router = APIRouter(tags=["simulate"])
 
 
 def default_names(case_id: str, params: dict) -> list[str]:
     """The constraint and |gamma| - 1, then the case's integrals beyond the energy."""
-    from solvers.models.observables import rubber_integrals
-
     return ["spin", "gamma_norm_defect", *rubber_integrals(case_id, params)]
 
 
 def resolve(req: ObservablesRequest) -> tuple[dict, list[str]]:
     """The parameters (the case's example under the request's) and the names, checked."""
-    from solvers.models.cases import build, get_case
-    from solvers.models.observables import RUBBER
-
     spec = get_case(req.case)
     if len(spec.state) != 6:
         raise InputError(f"case = {req.case!r}: its state is not (M, gamma)")
@@ -48,11 +47,6 @@ def resolve(req: ObservablesRequest) -> tuple[dict, list[str]]:
 
 def observables_json(case_id: str, params: dict, rows: list, names: list[str]) -> dict:
     """The named quantities along `rows` (a worker process)."""
-    import numpy as np
-
-    from solvers.models.cases import build
-    from solvers.models.observables import RUBBER, series
-
     out = series(build(case_id, params), np.asarray(rows, dtype=float), names)
     return {"case": case_id, "names": names, "labels": {n: RUBBER[n][0] for n in names},
             "series": {n: [float(v) if np.isfinite(v) else None for v in out[n]]
@@ -66,8 +60,6 @@ async def observables(req: ObservablesRequest, request: Request, pool: PoolDep,
                       settings: SettingsDep) -> Response:
     """The no-spin constraint (omega, gamma), |gamma| - 1 and the case's integrals beyond
     the energy (solvers/models/observables.py RUBBER) along the given states."""
-    from app.services.jobs import dumps
-
     params, names = resolve(req)        # bad input answers here, before any work is queued
     d = await cancel_on_disconnect(request, lambda: pool.run(
         observables_json, req.case, params, req.state, names, deadline=settings.deadline_s))

@@ -5,6 +5,7 @@ plotly.js served from the installed plotly package (not copied into the reposito
 from functools import cache
 from pathlib import Path
 
+import plotly as plotly_package
 from fastapi import APIRouter, HTTPException, Request
 from fastapi.responses import FileResponse, HTMLResponse, RedirectResponse, Response
 
@@ -22,9 +23,7 @@ _ONE_DAY = {"Cache-Control": "public, max-age=86400"}
 
 @cache
 def plotly_js() -> Path:
-    import plotly
-
-    return Path(plotly.__file__).parent / "package_data" / "plotly.min.js"
+    return Path(plotly_package.__file__).parent / "package_data" / "plotly.min.js"
 
 
 @router.get("/")

@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import json
 import math
+from dataclasses import asdict
 
 import anyio
 from fastapi import APIRouter, Query, Request
@@ -42,6 +43,7 @@ from app.services import kernel_prepare, poincare_jobs
 from app.services.jobs import dumps
 from app.services.reader_pages import static_page
 from solvers.errors import InputError
+from solvers.models.cases import get_case
 
 router = APIRouter(tags=["poincare"])
 pages = APIRouter(include_in_schema=False)
@@ -50,10 +52,8 @@ _threads = anyio.CapacityLimiter(2)
 
 def resolve(req: PoincareRequest, max_steps: int) -> tuple[dict, dict, list[list[float]]]:
     """(header of the answer, the job every trajectory shares, the starts)."""
-    from dataclasses import asdict
-
+    # lazy: the Poincare maps (solvers.maps), not at the server's start
     from solvers.maps.poincare import MapSpec, map_model, resolve_kernel, starts_for
-    from solvers.models.cases import get_case
 
     spec_case = get_case(req.case)
     params = {**(spec_case.example if req.example else {}), **req.params}

@@ -18,15 +18,17 @@ from app.schemas.common import (
 )
 from app.schemas.scene_rerun import RerunRequest, RerunResponse
 from app.schemas.scenes import SceneCheck, ScenePreset
+from app.services import kernel_prepare
+from app.services.jobs import dumps, prepare_scene_check
 from app.services.reader_pages import static_page
+from catalogue.numbering import cite, printed
+from solvers.scenes.teaching import load_scenes
 
 router = APIRouter(tags=["scenes"])
 pages = APIRouter(include_in_schema=False)
 
 
 def _public(s) -> dict:
-    from catalogue.numbering import cite, printed
-
     # what a reader sees carries the paper's printed numbers; the labels stay as data
     d = s.model_dump(mode="json")
     return {**d, "title": cite(d["title"]), "explanation": cite(d["explanation"]),
@@ -36,16 +38,12 @@ def _public(s) -> dict:
 @router.get("/scenes", response_model=list[ScenePreset])
 async def scenes() -> list[dict]:
     """Every teaching scene, in the catalogue's order."""
-    from solvers.scenes.teaching import load_scenes
-
     return [_public(s) for s in load_scenes().values()]
 
 
 @router.get("/scenes/{scene_id}", response_model=ScenePreset,
             responses={404: {"description": "no such scene"}})
 async def scene_preset(scene_id: str) -> dict:
-    from solvers.scenes.teaching import load_scenes
-
     s = load_scenes().get(scene_id)
     if s is None:
         raise HTTPException(404, f"unknown scene {scene_id!r}; known scenes: "
@@ -64,10 +62,8 @@ async def scene_check(scene_id: str, k: int, request: Request, pool: PoolDep,
                       settings: SettingsDep) -> Response:
     """Check k of the scene on the scene's own run (solvers/scenes/scene_checks.py), with the
     plot of exactly the data its verdict was taken from: what /scenes draws."""
-    from app.services import kernel_prepare
-    from app.services.jobs import dumps, prepare_scene_check
+    # lazy: the scenes' checks (solvers.scenes.scene_checks), not at the server's start
     from solvers.scenes.scene_checks import check_json
-    from solvers.scenes.teaching import load_scenes
 
     s = load_scenes().get(scene_id)
     if s is None:
@@ -94,10 +90,8 @@ async def scene_rerun(scene_id: str, req: RerunRequest, request: Request, pool: 
                       settings: SettingsDep) -> Response:
     """The scene run again with its sliders moved, every check evaluated on the new run
     (solvers/scenes/rerun.py): what /scenes draws after a slider changes."""
-    from app.services import kernel_prepare
-    from app.services.jobs import dumps, prepare_scene_check
+    # lazy: the scenes' re-runs (solvers.scenes.rerun), not at the server's start
     from solvers.scenes.rerun import moved, rerun_json
-    from solvers.scenes.teaching import load_scenes
 
     s = load_scenes().get(scene_id)
     if s is None:

@@ -22,6 +22,7 @@ from app.schemas.common import (
     PROBLEM_RESPONSES,
 )
 from app.schemas.simulate import (
+    METHODS,
     CompilesPublic,
     MethodPublic,
     ScenePublic,
@@ -33,6 +34,9 @@ from app.schemas.simulate import (
 from app.services import jobs, kernel_prepare, payloads, provenance
 from catalogue.plain_words import invariant_name
 from solvers.errors import InputError
+from solvers.models.cases import build, get_case, initial_state
+from solvers.models.observables import public_name
+from solvers.simulate import check_step, symmetric_methods
 
 router = APIRouter(tags=["simulate"])
 _validation_threads = anyio.CapacityLimiter(2)
@@ -41,9 +45,6 @@ _validation_threads = anyio.CapacityLimiter(2)
 def resolve(req: SimulateRequest, max_steps: int | None = None) -> dict:
     """The run a request asks for, checked by the solvers' own validation (InputError);
     max_steps: the server's step budget, which a symmetric method's step must fit."""
-    from solvers.models.cases import build, get_case, initial_state
-    from solvers.simulate import check_step
-
     # the output times are linspace(0, t_end, samples); they must be distinct
     if not np.all(np.diff(np.linspace(0.0, req.t_end, req.samples)) > 0):
         raise InputError(f"t_end = {req.t_end!r}: too small to hold {req.samples} distinct "
@@ -60,6 +61,7 @@ def resolve(req: SimulateRequest, max_steps: int | None = None) -> dict:
                          f"the step); {req.method} is a scipy reference method")
     check_step(req.method, req.step, req.t_end, max_steps, req.project)
     if req.method == "taylor" or req.precision is not None:
+        # lazy: the Taylor backend, for method taylor only, not at the server's start
         from solvers.integrate.taylor_backend import check_taylor_options
 
         check_taylor_options(req.method, req.precision, req.project, req.step)
@@ -85,8 +87,10 @@ async def _resolved(req: SimulateRequest, settings=None) -> dict:
 async def _prepare(request: Request, pool, settings, resolved: dict, job: dict) -> None:
     """The kernels the run needs, compiled (or loaded) in a job without a deadline before
     the run's own deadline starts (app/services/kernel_prepare.py)."""
+    keys = await _keys(resolved)
+    # the worker compiles the keys planned here: the request is planned once
     await kernel_prepare.prepare(pool, request.app.state.kernels, settings.kernels_warm,
-                                 await _keys(resolved), jobs.prepare_kernels, job)
+                                 keys, jobs.prepare_kernels, job, keys)
 
 
 async def _keys(resolved: dict) -> list[tuple]:
@@ -158,8 +162,6 @@ async def simulate(req: SimulateRequest, request: Request, pool: PoolDep,
 async def validate(req: SimulateRequest, settings: SettingsDep) -> dict:
     """Check a run without running it (the explorer calls this as you type): 200 with the
     parameters it would use, or 422 naming the field, the value and why."""
-    from solvers.models.observables import public_name
-
     resolved = await _resolved(req, settings)
     model = resolved["_model"]
     return {"ok": True, "params": model.params, "state_labels": list(model.state_labels),
@@ -190,9 +192,6 @@ async def scene(req: SceneRequest, request: Request, pool: PoolDep,
 @router.get("/methods", response_model=list[MethodPublic])
 async def methods() -> list[dict]:
     """Integration methods: compiled Runge-Kutta pairs and scipy reference methods."""
-    from app.schemas.simulate import METHODS
-    from solvers.simulate import symmetric_methods
-
     return [{"name": m, "kind": "scipy reference" if m.startswith("scipy-") else
              "symmetric" if m in symmetric_methods() else
              "taylor" if m == "taylor" else "auto" if m == "auto" else "compiled"}

@@ -12,6 +12,7 @@ from pydantic import BaseModel, Field
 
 from app.api.deps import SettingsDep
 from app.services.reader_pages import static_page
+from solvers.integrate.workprecision import load_results
 
 router = APIRouter(tags=["work-precision"])
 pages = APIRouter(include_in_schema=False)
@@ -34,8 +35,6 @@ async def work_precision() -> dict:
     """Error against cost for every method on representative cases, six marble and two
     rubber (ours: DOP853 and Verner 9(8), with and without projection; scipy DOP853, LSODA,
     Radau; heyoka)."""
-    from solvers.integrate.workprecision import load_results
-
     try:
         return load_results()
     except FileNotFoundError:
