@@ -19,10 +19,13 @@ from __future__ import annotations
 import contextlib
 import hashlib
 import importlib.util
+import linecache
 import logging
 import os
 import sys
+import tempfile
 import threading
+import types
 from functools import cache
 from pathlib import Path
 
@@ -67,8 +70,6 @@ def cache_probe() -> str | None:
     """None when the kernel cache and its __pycache__ (numba's files for the generated
     modules) take a written file now, else why not (a read-only mount, a full disk, a
     path under a file)."""
-    import tempfile
-
     base = cache_dir()
     try:
         for d in (base, base / "__pycache__"):
@@ -150,8 +151,6 @@ def _memory_module(name: str, text: str):
     """The module `name` made from its text without a file: numba finds no place to cache
     its functions and compiles them in memory (solvers/kernels/numba_cache.py). The text is
     put in linecache, so that tracebacks and inspect show it."""
-    import linecache
-    import types
 
     filename = f"<generated kernel {name}>"
     linecache.cache[filename] = (len(text), None, text.splitlines(True), filename)
@@ -167,7 +166,7 @@ def bound_module(name: str, module, replace: dict, what: str):
     or a sequence of them) compiled over `replace` (solvers/kernels/bind.py: the same code
     objects, other callees; no source text is read or edited). Its file is a stub saying
     `what` it holds, beside which numba caches the machine code."""
-    # numba's: imported by the first bound module, not by what only reads the cache's
+    # lazy: numba, imported by the first bound module, not by what only reads the cache's
     # directory (the Taylor backend's disk cache, the server's probe)
     from solvers.kernels import bind
 

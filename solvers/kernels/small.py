@@ -60,7 +60,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from solvers.kernels import field_modules, generate, module_cache, rk, small_ops
+from solvers.kernels import baked, field_modules, generate, module_cache, rk, small_ops
 from solvers.kernels import layout as L
 from solvers.kernels.sections import SECTION_ANDOYER_G
 from solvers.kernels.step import IND, loop_source
@@ -423,8 +423,6 @@ def module_name(model: int, p, method: str, sections: bool = False,
                 projection: bool = False) -> str:
     """small_<structure and sources hash>_<tableau hash>[_sec|_proj]: any edit of
     solvers/kernels (module_cache.sources_hash) or of the tableau regenerates it."""
-    from solvers.kernels import baked
-
     tabs = baked.baked_tableaux((method,))
     return (f"small_{field_modules.module_name(model, p)[4:]}_{method}_"
             f"{baked.tableaux_stamp(tabs)[:10]}"
@@ -436,8 +434,6 @@ def small_kernel(model: int, p, method: str = "dop853", sections: bool = False,
     """The small kernel module of the case's structure and the tableau `method` (one of
     those the integrate layer provides: baked.set_provider), written on first use and
     compiled on its first call (then numba's on-disk cache)."""
-    from solvers.kernels import baked
-
     if model not in generate.GENERATED_MODELS:
         raise ValueError(f"no small kernel for model {model}")
     tab = baked.baked_tableaux((method,))[method]
