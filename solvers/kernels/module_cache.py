@@ -151,7 +151,6 @@ def _memory_module(name: str, text: str):
     """The module `name` made from its text without a file: numba finds no place to cache
     its functions and compiles them in memory (solvers/kernels/numba_cache.py). The text is
     put in linecache, so that tracebacks and inspect show it."""
-
     filename = f"<generated kernel {name}>"
     linecache.cache[filename] = (len(text), None, text.splitlines(True), filename)
     mod = types.ModuleType(name)
