@@ -4,6 +4,7 @@ and the worker (app/services/jobs.py prepare_kernels) compiles the keys it is gi
 travel to the worker through the process pool's pickling, which the pool here repeats."""
 
 import pickle
+from concurrent.futures import ThreadPoolExecutor
 from types import SimpleNamespace
 
 import anyio
@@ -65,7 +66,10 @@ def _prepare(body: dict) -> tuple[PicklingPool, dict]:
     async def main():
         await route._prepare(request, pool, settings, resolved, job)
 
-    anyio.run(main)
+    # in a thread of its own: a test run that has used Playwright's sync API keeps an event
+    # loop running in this thread, where anyio.run would refuse to start another
+    with ThreadPoolExecutor(1) as ex:
+        ex.submit(anyio.run, main).result()
     return pool, job
 
 
