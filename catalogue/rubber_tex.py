@@ -71,6 +71,11 @@ def mismatch(plain: str, tex: str) -> str | None:
     """Why the two forms of a statement do not name the same symbols, or None."""
     p, t = plain_symbols(plain), tex_symbols(tex)
     left = ascii_leftovers(tex)
+    if "$" not in tex:
+        # words only: nothing to typeset, so the two forms are the same words
+        return None if tex == plain and not p else (
+            "a statement that names symbols sets them in $...$" if p
+            else "a statement without math has the same words in both forms")
     if p == t and not left:
         return None
     parts = []

@@ -246,10 +246,18 @@ def _sources_line(c: dict) -> str:
     return f'<p class="cell-src">{"; ".join(parts)}</p>'
 
 
+def rubber_statement_html(c: dict, tag: str, cls: str) -> str:
+    """A rubber cell's statement: its plain text, with its LaTeX in `data-tex` for the page's
+    script to typeset as it typesets Tables 1 and 2 (static/js/home.js, latex.js textHtml)."""
+    return (f'<{tag} class="{cls}" data-tex="{escape(c["tex"])}">{escape(c["plain"])}'
+            f'</{tag}>')
+
+
 def rubber_table_html(t: dict) -> str:
     """A rubber table (rubber_tables.rubber_table): one column per body, one row per invariant;
     every cell its statement, its sources with their access, and its mark linking to its
-    claims. Nothing here is redrawn by a script: the marks are the catalogue's."""
+    claims. The marks are the catalogue's and stay as drawn here; the page's script only
+    typesets the statements (rubber_statement_html)."""
     head = "".join(
         '<th scope="col" class="case-head">'
         + (f'<a href="{escape(c["href"])}" data-case="{escape(c["model"])}">' if c["href"]
@@ -262,8 +270,8 @@ def rubber_table_html(t: dict) -> str:
     for grow in t["grid"]:
         cells = "".join(
             f'<td class="shade-none rubber-cell" data-case="{escape(c["case"])}" '
-            f'data-mark="{escape(c["mark"])}"><div class="cell-body">{escape(c["plain"])}'
-            f'</div>{_sources_line(c)}{rubber_mark_html(c)}</td>' for c in grow["cells"])
+            f'data-mark="{escape(c["mark"])}">{rubber_statement_html(c, "div", "cell-body")}'
+            f'{_sources_line(c)}{rubber_mark_html(c)}</td>' for c in grow["cells"])
         rows.append(f'<tr class="inv row-{escape(grow["key"])}"><th scope="row">'
                     f'{escape(labels[grow["key"]])}</th>{cells}</tr>')
     return table_shell("paper rubber", t["id"], head, rows)
@@ -303,7 +311,8 @@ def rubber_claims_html(t: dict) -> str:
                        f'<h4>{escape(titles[c["case"]])}: {escape(labels[grow["key"]])}</h4>'
                        f'<p>Mark: {badge_html(c["mark"])}'
                        f'{"; check: " + escape(c["level_words"]) if c["level_words"] else ""}'
-                       f'. {escape(c["plain"])}</p><ul>{items}</ul></article>')
+                       f'. {rubber_statement_html(c, "span", "cell-statement")}</p><ul>{items}</ul>'
+                       f'</article>')
     return "".join(out)
 
 
