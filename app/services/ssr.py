@@ -299,7 +299,8 @@ def _claim_item(cl: dict) -> str:
 
 def rubber_claims_html(t: dict) -> str:
     """Where each cell of a rubber table comes from: one entry per cell, at the anchor its
-    mark links to, with every claim's source, place, access and check."""
+    mark links to, with its statement (a box that scrolls sideways when a typeset matrix is
+    wider than a phone) and every claim's source, place, access and check."""
     labels = {r["key"]: r["plain"] for r in t["rows"]}
     titles = {c["id"]: c["title"] for c in t["columns"]}
     out = []
@@ -311,8 +312,8 @@ def rubber_claims_html(t: dict) -> str:
                        f'<h4>{escape(titles[c["case"]])}: {escape(labels[grow["key"]])}</h4>'
                        f'<p>Mark: {badge_html(c["mark"])}'
                        f'{"; check: " + escape(c["level_words"]) if c["level_words"] else ""}'
-                       f'. {rubber_statement_html(c, "span", "cell-statement")}</p><ul>{items}</ul>'
-                       f'</article>')
+                       f'.</p>{rubber_statement_html(c, "div", "cell-statement scroll-x")}'
+                       f'<ul>{items}</ul></article>')
     return "".join(out)
 
 
