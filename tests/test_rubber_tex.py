@@ -121,14 +121,35 @@ def test_every_cell_typesets_with_the_vendored_katex(tmp_path):
     assert sum(r["katex"] for r in out.values()) > 60
 
 
-def test_the_home_page_carries_both_forms_of_every_cell():
+@pytest.fixture(scope="module")
+def client():
+    with TestClient(create_app(settings_for_tests(warm_workers=False))) as c:
+        yield c
+
+
+def test_the_home_page_carries_both_forms_of_every_cell(client):
     """Drawn by the server: each rubber cell (and its claims below the tables) in plain text,
     for scripts off and screen readers before any script runs, with its LaTeX for the script
     to typeset."""
-    with TestClient(create_app(settings_for_tests(warm_workers=False))) as client:
-        html = client.get("/").text
+    html = client.get("/").text
     same = Counter((c.statement_tex, c.statement) for c in CELLS.values())
     for (tex, plain), n in same.items():
         # each cell twice: in its table and in its claims' entry below the tables
         assert html.count(f'data-tex="{escape(tex)}">{escape(plain)}</') == 2 * n, plain
     assert sum(same.values()) == 66
+
+
+def test_a_rubber_case_carries_both_forms_and_says_where_its_symbols_are_defined(client):
+    """GET /api/cases/{id}: a rubber case's cells with both forms, as the catalogue has them
+    (the page typesets statement_tex); its page's symbol list sends the reader to the guide,
+    where the rubber cells' symbols are defined, not to a list of none."""
+    case = "rubber-plane/chaplygin-ball"
+    cells = client.get(f"/api/cases/{case}").json()["rubber"]["cells"]
+    assert len(cells) == 6
+    for c in cells:
+        cell = CELLS[f"{case}/{c['row']}"]
+        assert (c["statement"], c["statement_tex"]) == (cell.statement, cell.statement_tex)
+    html = client.get(f"/case/{case}").text
+    box = html.split('id="symbollist"')[1].split("</section>")[0]
+    assert "No typeset formula" not in box
+    assert 'href="/guide/rubber/#the-rubber-tables"' in box and "Q and N" in box

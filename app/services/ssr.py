@@ -91,8 +91,18 @@ def symbol_link(s: dict) -> str:
             f'{escape(s["name"])}</span></a>')
 
 
-def notation_html(refs: list[dict]) -> str:
-    """The page's symbols, each linked to its definition (views.page_notation)."""
+# a rubber case page typesets its cells (beyond the paper): their symbols are the guide's
+RUBBER_SYMBOLS = ('<p class="status">The symbols of the rubber tables\' cells are defined on '
+                  'the guide\'s page Rubber rolling: Ĩ = I + m (r² E − r rᵀ) with '
+                  '<a href="/guide/rubber/#equations">the equations</a>, Q and N with '
+                  '<a href="/guide/rubber/#the-rubber-tables">the rubber tables</a>.</p>')
+
+
+def notation_html(refs: list[dict], rubber: bool = False) -> str:
+    """The page's symbols, each linked to its definition (views.page_notation); on a rubber
+    case's page, where its cells' symbols are defined instead."""
+    if rubber:
+        return RUBBER_SYMBOLS
     if not refs:
         return '<p class="status">No typeset formula on this page.</p>'
     return ('<ul class="symbols-page">' + "".join(
@@ -117,7 +127,8 @@ def case_context(detail: dict) -> dict:
     return {"title": Markup(escape(detail["title"])),
             "summary": Markup(escape(detail.get("summary") or "")),
             "claims": Markup(claims),
-            "notation": Markup(notation_html(detail.get("notation") or []))}
+            "notation": Markup(notation_html(detail.get("notation") or [],
+                                             rubber=bool(detail.get("rubber"))))}
 
 
 def shade_why(c: dict) -> str:
