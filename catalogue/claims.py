@@ -11,6 +11,7 @@ from typing import Literal
 
 from pydantic import Field, field_validator, model_validator
 
+from catalogue import rubber_tex
 from catalogue.kinds import (
     BEYOND_MARKS,
     NEGATIVE_CHECKS,
@@ -226,13 +227,17 @@ _EVIDENCE = ("evidence-for", "evidence-against", "inconclusive")
 
 class MarkedCell(Strict):
     """A cell of a table beyond the paper: its mark (one of the vocabulary's, BEYOND_MARKS),
-    the statement in words, and the claims it rests on. A mark that says something was shown
+    the statement in plain text (`statement`: search, CSV, the API's words, screen readers)
+    and as LaTeX for the pages to typeset (`statement_tex`: text with `$...$`, as the cells
+    of Tables 1 and 2 are printed; both required, and both must name the same symbols,
+    catalogue/rubber_tex.py), and the claims it rests on. A mark that says something was shown
     rests on a derived-here claim: 'holds with the project's formula' on an exact or
     pointwise check, evidence on a numerical one; a cell with no check of the project's is
     not checkable, whatever its sources say."""
 
     mark: str
     statement: str
+    statement_tex: str
     claims: list[SourcedClaim]
 
     @property
@@ -253,8 +258,11 @@ class MarkedCell(Strict):
         if self.mark not in BEYOND_MARKS:
             raise ValueError(f"mark {self.mark!r}: a cell beyond the paper takes one of "
                              f"{BEYOND_MARKS}")
-        if not self.statement.strip():
-            raise ValueError("a cell states what it claims")
+        if not self.statement.strip() or not self.statement_tex.strip():
+            raise ValueError("a cell states what it claims, in plain text and in LaTeX")
+        why = rubber_tex.mismatch(self.statement, self.statement_tex)
+        if why:
+            raise ValueError(f"statement and statement_tex differ: {why}")
         if self.mark == "not-checkable" and self.derived:
             raise ValueError("a cell with a check of the project's is not 'not checkable'")
         if self.mark != "not-checkable" and self.level is None:

@@ -84,22 +84,23 @@ def test_bad_table_is_refused():
                     says="x", agreement="unchecked")
     derived = dict(source="derived-here", place="x", access="derived-here", says="x",
                    agreement="n/a", check="tests/x.py::y", level="numerical")
+    x = dict(statement="x", statement_tex="x")   # a statement in both forms: refused for the rest
     refused = [
-        dict(mark="project-formula", statement="x", claims=[abstract]),  # no check of ours
-        dict(mark="project-formula", statement="x", claims=[derived]),   # numerical only
-        dict(mark="not-checkable", statement="x", claims=[derived]),     # it was checked
-        dict(mark="as-printed", statement="x", claims=[derived]),        # no paper prints it
-        dict(mark="open", statement="x", claims=[abstract]),
-        dict(mark="evidence-for", statement="x", claims=[{**derived, "access": "abstract-only"}]),
-        dict(mark="evidence-for", statement="x", claims=[{**derived, "level": None}]),
-        dict(mark="evidence-for", statement="x", claims=[{**derived, "check": "trust me"}]),
-        dict(mark="not-checkable", statement="x", claims=[{**abstract, "level": "exact"}]),
-        dict(mark="not-checkable", statement="x", claims=[{**abstract, "agreement": "confirmed"}]),
+        dict(mark="project-formula", **x, claims=[abstract]),  # no check of ours
+        dict(mark="project-formula", **x, claims=[derived]),   # numerical only
+        dict(mark="not-checkable", **x, claims=[derived]),     # it was checked
+        dict(mark="as-printed", **x, claims=[derived]),        # no paper prints it
+        dict(mark="open", **x, claims=[abstract]),
+        dict(mark="evidence-for", **x, claims=[{**derived, "access": "abstract-only"}]),
+        dict(mark="evidence-for", **x, claims=[{**derived, "level": None}]),
+        dict(mark="evidence-for", **x, claims=[{**derived, "check": "trust me"}]),
+        dict(mark="not-checkable", **x, claims=[{**abstract, "level": "exact"}]),
+        dict(mark="not-checkable", **x, claims=[{**abstract, "agreement": "confirmed"}]),
     ]
     for bad in refused:
         with pytest.raises(ValidationError):
             MarkedCell(**bad)
-    MarkedCell(mark="evidence-for", statement="x", claims=[derived, abstract])
+    MarkedCell(mark="evidence-for", **x, claims=[derived, abstract])
 
 
 def test_a_claim_cannot_say_more_was_read_than_was():

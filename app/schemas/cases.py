@@ -145,7 +145,8 @@ class CasePublic(CaseHead):
                                           "without slipping or spinning, beyond the 2002 "
                                           "paper): sentence, equations_href, table_href, "
                                           "cells (its rubber table cells: row, mark, "
-                                          "statement, href), quantities (name, label) "
+                                          "statement in plain text, statement_tex its "
+                                          "LaTeX, href), quantities (name, label) "
                                           "plotted along a run (POST /api/observables)")
     notation: list[SymbolRef] = Field(default_factory=list, description="every symbol of the "
                                       "page's typeset formulas (cells, claims, corrected "

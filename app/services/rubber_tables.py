@@ -35,7 +35,8 @@ def rubber_claim(c: SourcedClaim, sources: dict) -> dict:
 
 def rubber_table(table_id: str) -> dict:
     """A rubber table laid out like views.table: columns, rows and a grid of cells, each cell
-    with its mark (the vocabulary's), the level of the check behind it, its statement, its
+    with its mark (the vocabulary's), the level of the check behind it, its statement (plain
+    text, and the LaTeX the page typesets), its
     claims with source, place and access, and its anchor; the counts by mark."""
     rt = load_rubber()
     t = rt.plane if table_id == "rubber-plane" else rt.sphere
@@ -49,6 +50,7 @@ def rubber_table(table_id: str) -> dict:
             mc = case.cells[row.key]
             cells.append({
                 "row": row.key.value, "case": case.id, "plain": mc.statement,
+                "tex": mc.statement_tex,
                 "mark": mc.mark, "level": mc.level.value if mc.level else None,
                 "level_words": LEVEL_WORDS[mc.level.value] if mc.level else None,
                 "anchor": rubber_cell_anchor(case.id, row.key.value),

@@ -91,8 +91,18 @@ def symbol_link(s: dict) -> str:
             f'{escape(s["name"])}</span></a>')
 
 
-def notation_html(refs: list[dict]) -> str:
-    """The page's symbols, each linked to its definition (views.page_notation)."""
+# a rubber case page typesets its cells (beyond the paper): their symbols are the guide's
+RUBBER_SYMBOLS = ('<p class="status">The symbols of the rubber tables\' cells are defined on '
+                  'the guide\'s page Rubber rolling: Ĩ = I + m (r² E − r rᵀ) with '
+                  '<a href="/guide/rubber/#equations">the equations</a>, Q and N with '
+                  '<a href="/guide/rubber/#the-rubber-tables">the rubber tables</a>.</p>')
+
+
+def notation_html(refs: list[dict], rubber: bool = False) -> str:
+    """The page's symbols, each linked to its definition (views.page_notation); on a rubber
+    case's page, where its cells' symbols are defined instead."""
+    if rubber:
+        return RUBBER_SYMBOLS
     if not refs:
         return '<p class="status">No typeset formula on this page.</p>'
     return ('<ul class="symbols-page">' + "".join(
@@ -117,7 +127,8 @@ def case_context(detail: dict) -> dict:
     return {"title": Markup(escape(detail["title"])),
             "summary": Markup(escape(detail.get("summary") or "")),
             "claims": Markup(claims),
-            "notation": Markup(notation_html(detail.get("notation") or []))}
+            "notation": Markup(notation_html(detail.get("notation") or [],
+                                             rubber=bool(detail.get("rubber"))))}
 
 
 def shade_why(c: dict) -> str:
@@ -246,10 +257,18 @@ def _sources_line(c: dict) -> str:
     return f'<p class="cell-src">{"; ".join(parts)}</p>'
 
 
+def rubber_statement_html(c: dict, tag: str, cls: str) -> str:
+    """A rubber cell's statement: its plain text, with its LaTeX in `data-tex` for the page's
+    script to typeset as it typesets Tables 1 and 2 (static/js/home.js, latex.js textHtml)."""
+    return (f'<{tag} class="{cls}" data-tex="{escape(c["tex"])}">{escape(c["plain"])}'
+            f'</{tag}>')
+
+
 def rubber_table_html(t: dict) -> str:
     """A rubber table (rubber_tables.rubber_table): one column per body, one row per invariant;
     every cell its statement, its sources with their access, and its mark linking to its
-    claims. Nothing here is redrawn by a script: the marks are the catalogue's."""
+    claims. The marks are the catalogue's and stay as drawn here; the page's script only
+    typesets the statements (rubber_statement_html)."""
     head = "".join(
         '<th scope="col" class="case-head">'
         + (f'<a href="{escape(c["href"])}" data-case="{escape(c["model"])}">' if c["href"]
@@ -262,8 +281,8 @@ def rubber_table_html(t: dict) -> str:
     for grow in t["grid"]:
         cells = "".join(
             f'<td class="shade-none rubber-cell" data-case="{escape(c["case"])}" '
-            f'data-mark="{escape(c["mark"])}"><div class="cell-body">{escape(c["plain"])}'
-            f'</div>{_sources_line(c)}{rubber_mark_html(c)}</td>' for c in grow["cells"])
+            f'data-mark="{escape(c["mark"])}">{rubber_statement_html(c, "div", "cell-body")}'
+            f'{_sources_line(c)}{rubber_mark_html(c)}</td>' for c in grow["cells"])
         rows.append(f'<tr class="inv row-{escape(grow["key"])}"><th scope="row">'
                     f'{escape(labels[grow["key"]])}</th>{cells}</tr>')
     return table_shell("paper rubber", t["id"], head, rows)
@@ -291,7 +310,8 @@ def _claim_item(cl: dict) -> str:
 
 def rubber_claims_html(t: dict) -> str:
     """Where each cell of a rubber table comes from: one entry per cell, at the anchor its
-    mark links to, with every claim's source, place, access and check."""
+    mark links to, with its statement (a box that scrolls sideways when a typeset matrix is
+    wider than a phone) and every claim's source, place, access and check."""
     labels = {r["key"]: r["plain"] for r in t["rows"]}
     titles = {c["id"]: c["title"] for c in t["columns"]}
     out = []
@@ -303,7 +323,8 @@ def rubber_claims_html(t: dict) -> str:
                        f'<h4>{escape(titles[c["case"]])}: {escape(labels[grow["key"]])}</h4>'
                        f'<p>Mark: {badge_html(c["mark"])}'
                        f'{"; check: " + escape(c["level_words"]) if c["level_words"] else ""}'
-                       f'. {escape(c["plain"])}</p><ul>{items}</ul></article>')
+                       f'.</p>{rubber_statement_html(c, "div", "cell-statement scroll-x")}'
+                       f'<ul>{items}</ul></article>')
     return "".join(out)
 
 

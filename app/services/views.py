@@ -304,7 +304,8 @@ def rubber_block(spec: CaseSpec) -> dict | None:
         plain = {r["key"]: r["plain"] for r in t["rows"]}
         cells += [{"case": c["case"], "row": c["row"], "row_words": plain[c["row"]],
                    "mark": words.get(c["mark"], c["mark"]),
-                   "statement": c["plain"], "href": "/#" + c["anchor"]}
+                   "statement": c["plain"], "statement_tex": c["tex"],
+                   "href": "/#" + c["anchor"]}
                   for row in t["grid"] for c in row["cells"] if c["case"] in columns]
     names = ["spin", "gamma_norm_defect", *rubber_integrals(spec.id, spec.example)]
     return {"sentence": RUBBER_SENTENCE, "equations_href": RUBBER_EQUATIONS,

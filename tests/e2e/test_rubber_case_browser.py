@@ -2,7 +2,7 @@
 
   * the page says the case is beyond the 2002 paper and links to the guide's rubber
     equations and to its cells in the rubber tables of the home page;
-  * its cells in the rubber tables are listed with their marks;
+  * its cells in the rubber tables are listed with their marks, their statements typeset;
   * a run draws, besides the state, drift and gamma plots, the constraint (omega, gamma)
     and |gamma| - 1, and the energy with the case's integral F = |M x gamma|^2, all against
     time; the plotted numbers hold: the constraint and |gamma| - 1 at zero, F and the energy
@@ -41,7 +41,13 @@ def test_a_rubber_case_page_runs_and_plots_its_constraint_and_integrals(page, se
     expect(cells).to_have_count(6)
     hrefs = [cells.nth(i).get_attribute("href") for i in range(6)]
     assert all(h.startswith("/#claim-rubber-plane_chaplygin-ball_cell_") for h in hrefs), hrefs
-    expect(page.locator("[data-testid=rubber-cells]")).to_contain_text("|M x gamma|^2")
+    # the cells' statements typeset from their LaTeX, as on the home page: M × γ in KaTeX
+    listed = page.locator("table[data-testid=rubber-cells]")
+    expect(listed.locator(".cell-statement .katex").first).to_be_visible()
+    assert listed.locator(".tex-fallback").count() == 0
+    seen = listed.evaluate("""t => { const c = t.cloneNode(true);
+        c.querySelectorAll('.katex-mathml').forEach(m => m.remove()); return c.textContent; }""")
+    assert "M×γ" in seen.replace(" ", "") and "^(" not in seen and "gamma" not in seen, seen
     # a run, as the example fills the form
     expect(page.locator("#formmsg")).to_contain_text("valid", timeout=60_000)
     page.fill("#f-t_end", "60")

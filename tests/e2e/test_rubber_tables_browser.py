@@ -1,7 +1,8 @@
 """The rubber tables on the home page, in chromium: after Tables 1 and 2, marked as beyond
-the 2002 paper; every cell shows its statement, its sources with their access and a mark of
-the one vocabulary; the summary gives the counts by mark, and they match the marks drawn;
-a mark opens the cell's claims. Saves docs/screenshots/rubber-tables-1280.png."""
+the 2002 paper; every cell shows its statement typeset (KaTeX, as Tables 1 and 2's cells),
+its sources with their access and a mark of the one vocabulary; the summary gives the
+counts by mark, and they match the marks drawn; a mark opens the cell's claims, whose
+statements are typeset too. Saves docs/screenshots/rubber-tables-1280.png."""
 
 import re
 from pathlib import Path
@@ -15,6 +16,18 @@ from solvers.verify import marks as vocab
 
 pytestmark = pytest.mark.filterwarnings("ignore::DeprecationWarning")
 SHOT = Path(__file__).resolve().parents[2] / "docs" / "screenshots" / "rubber-tables-1280.png"
+
+
+# per element: its KaTeX formulas, fallbacks, and its text without KaTeX's MathML
+TYPESET = """els => els.map(el => {
+    const body = el.querySelector('SEL').cloneNode(true);
+    const katex = body.querySelectorAll('.katex').length;
+    const fallback = body.querySelectorAll('.tex-fallback').length;
+    body.querySelectorAll('.katex-mathml').forEach(m => m.remove());
+    return {katex, fallback, text: body.textContent}; })"""
+# the plain statements' ASCII for what is typeset: Greek by name, x for the cross product
+# (not `I~`: KaTeX draws the accent of a typeset tilde as a `~` of its own)
+ASCII = re.compile(r"\b(gamma|omega|eps|mu)\b|\sx\s")
 
 
 def test_rubber_tables_render_with_marks_sources_and_counts(page, server):
@@ -53,6 +66,14 @@ def test_rubber_tables_render_with_marks_sources_and_counts(page, server):
                 assert cl["short"] in d["src"]
                 if cl["access"] != "derived-here":
                     assert f"({ACCESS_WORDS[cl['access']]})" in d["src"]
+        # every statement typeset from its LaTeX, as Tables 1 and 2's cells are: one KaTeX
+        # formula per $...$, none fallen back to its source, no plain-ASCII formula left in
+        # the text a reader sees (KaTeX's MathML, which holds the TeX, set aside)
+        typeset = cells.evaluate_all(TYPESET.replace("SEL", ".cell-body"))
+        for d, c in zip(typeset, want, strict=True):
+            assert d["katex"] == c["tex"].count("$") // 2 and d["fallback"] == 0, c["plain"]
+            assert "^(" not in d["text"] and not ASCII.search(d["text"]), d["text"]
+        assert sum(d["katex"] for d in typeset) > 20
         # the table's own counts, as drawn
         for mark, n in data["mark_counts"].items():
             expect(tbl.locator(f"td.rubber-cell .mk.{mark}")).to_have_count(n)
@@ -69,6 +90,14 @@ def test_rubber_tables_render_with_marks_sources_and_counts(page, server):
     target = page.locator(f'#{cell["anchor"]}')
     expect(target).to_be_in_viewport()
     expect(target.locator("li.rubber-claim")).to_have_count(len(cell["claims"]))
+    # the claims' entries show the statements typeset too
+    entries = page.locator("#rubber-claims article.rubber-cell-claims")
+    expect(entries).to_have_count(sum(len(t["grid"]) * len(t["columns"]) for t in tables))
+    every = [c for t in tables for row in t["grid"] for c in row["cells"]]
+    typeset = entries.evaluate_all(TYPESET.replace("SEL", ".cell-statement"))
+    for d, c in zip(typeset, every, strict=True):
+        assert d["katex"] == c["tex"].count("$") // 2 and d["fallback"] == 0, c["plain"]
+        assert "^(" not in d["text"] and not ASCII.search(d["text"]), d["text"]
     expect(target.locator("li.access-abstract-only").first).to_contain_text("(abstract only)")
     derived = target.locator("li.access-derived-here").first
     expect(derived.locator("details.dev")).to_contain_text("tests/")   # the developer's view

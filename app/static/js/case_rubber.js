@@ -6,6 +6,7 @@
 "use strict";
 
 import { api, escapeHtml } from "./api.js";
+import { textHtml } from "./latex.js";
 import { base, CONFIG } from "./plots.js";
 import { $, C } from "./case_state.js";
 
@@ -15,7 +16,8 @@ const MAX_ROWS = 4000;
 
 export const isRubber = () => Boolean(C && C.rubber);
 
-// the head's box and the cells of the rubber tables, in place of Tables 1 and 2's cells
+// the head's box and the cells of the rubber tables, in place of Tables 1 and 2's cells,
+// each statement typeset from its LaTeX as Tables 1 and 2's cells are (latex.js textHtml)
 export function showRubber() {
   const R = C.rubber;
   const box = document.createElement("div");
@@ -28,7 +30,7 @@ export function showRubber() {
   $("facts").after(box);
   $("h-in-table").textContent = "The case in the rubber tables";
   const rows = R.cells.map((c) => `<tr><th scope="row">${escapeHtml(c.row_words || c.row.replaceAll("_", " "))}</th>
-    <td><span class="chip">${escapeHtml(c.mark)}</span> ${escapeHtml(c.statement)}
+    <td><span class="chip">${escapeHtml(c.mark)}</span> <span class="cell-statement">${textHtml(c.statement_tex)}</span>
     <a href="${escapeHtml(c.href)}" data-testid="rubber-cell">where it comes from</a></td></tr>`);
   $("cells").innerHTML = rows.length
     ? `<table class="cells" data-testid="rubber-cells"><tbody>${rows.join("")}</tbody></table>`

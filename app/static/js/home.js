@@ -1,6 +1,6 @@
 // Home: Tables 1 and 2 as printed (same rows, columns and merged cells, the paper's gray
 // and partial fill), a verdict mark in every checkable cell, case headers linking to
-// /case/<id>.
+// /case/<id>; the rubber tables' statements typeset like their cells.
 "use strict";
 
 import { api, escapeHtml } from "./api.js";
@@ -87,6 +87,13 @@ async function showTable(id) {
   }
 }
 
+// the rubber tables' statements and their claims' (beyond the paper): the server draws them
+// in plain text with their LaTeX in data-tex (ssr.py rubber_statement_html); typeset here as
+// Tables 1 and 2's cells are, KaTeX's MathML carrying them to screen readers
+function typesetRubber() {
+  for (const el of document.querySelectorAll("#rubber [data-tex]")) el.innerHTML = textHtml(el.dataset.tex);
+}
+
 let lastDone = null;
 
 // the cells of both tables counted by mark, in words (GET /api/marks; the same sentence the
@@ -120,6 +127,7 @@ async function showStatus() {
 }
 
 await katexReady();
+typesetRubber();
 await Promise.all([showTable("plane"), showTable("sphere"), showStatus(), showSummary()]);
 for (const id of ["plane", "sphere"]) pinHeader(document.querySelector(`#table-${id} .table-wrap`));
 document.body.dataset.ready = "1";
