@@ -13,7 +13,7 @@ from solvers.integrate.batch import integrate_batch, integrate_threads
 from solvers.integrate.ensemble import integrate_ensemble
 from solvers.integrate.integrator import Section, integrate
 from solvers.kernels import layout as L
-from solvers.kernels import rk
+from solvers.kernels import loop_kernel, rk
 from solvers.kernels.integrals import ENERGY
 from solvers.models.cases import build, registry
 
@@ -74,6 +74,17 @@ def test_workers_do_not_change_the_numbers():
     two = integrate_ensemble(m.model, m.p, Y0, t_out, workers=2, generated=False)
     for a, b in zip(one, two, strict=True):
         _same(a, b)
+
+
+def test_one_row_of_output_times_runs_the_loop_kernel_integrate_runs():
+    """A single row of output times becomes a C-ordered table, so the serial path hands the
+    loop kernel C-contiguous rows: the specialization integrate() and the warm-up compile,
+    not another one (numpy's copy of a broadcast row is F-ordered)."""
+    m, Y0 = _case("sphere/chaplygin-ball", n=3, seed=5)
+    integrate_ensemble(m.model, m.p, Y0, np.linspace(0.0, 2.0, 5), workers=1,
+                       generated=False)
+    integrate(m.model, m.p, Y0[0], [0.0, 1.0], generated=False, kernel="rk")
+    assert [sig[3].layout for sig in loop_kernel.rk_integrate.signatures] == ["C"]
 
 
 def test_one_singular_trajectory_does_not_spoil_the_others():

@@ -143,11 +143,11 @@ def _times(t_out, n_traj, n_out):
     """(T_out table (n_traj, N), n_out per row), every used prefix checked."""
     T = np.array(t_out, dtype=np.float64)
     if T.ndim <= 1:
-        # a copy, never the broadcast view: for one trajectory that view is already
-        # contiguous, so ascontiguousarray kept it read-only, and a read-only table is
-        # another numba specialization of rk_ensemble (a Poincare map, which passes a
-        # table, compiled its own after the warm-up had compiled this one)
-        T = np.array(np.broadcast_to(T.ravel(), (n_traj, T.size)))
+        # a writable C-ordered copy, never the broadcast view: a read-only table, or the
+        # F-ordered copy numpy makes of a view with a zero stride, is another numba
+        # specialization of rk_ensemble than a Poincare map's table, and its rows another
+        # of the loop kernel than integrate()'s t_out
+        T = np.array(np.broadcast_to(T.ravel(), (n_traj, T.size)), order="C")
     elif T.ndim != 2 or T.shape[0] != n_traj:
         raise ValueError(f"t_out: one row of output times, or one per trajectory "
                          f"({n_traj} rows); got shape {T.shape}")
