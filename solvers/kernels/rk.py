@@ -21,24 +21,12 @@ from solvers.kernels import layout as L
 from solvers.kernels.control import (  # noqa: F401 (callers import these from here)
     CROSSINGS_DONE,
     ERR_DOP853,
-    ERR_EMBEDDED,
-    GRAZE_H,
     MAX_STEPS,
     SECTION_TANGENT,
     STEP_UNDERFLOW,
-    advance,
-    clip_step,
-    crosses,
-    error_sums,
-    finish,
     first_guess,
     first_step,
     first_step_singular,
-    grow,
-    halve,
-    shrink,
-    step_end,
-    time_compensation,
 )
 from solvers.kernels.fields import rhs
 from solvers.kernels.jit import kernel
@@ -48,15 +36,11 @@ from solvers.kernels.projection import (  # noqa: F401 (callers import these fro
     TEST_ANGMOM,
     TEST_ENERGY,
     model_integral,
-    project,
 )
 from solvers.kernels.sections import (  # noqa: F401 (callers import these from here)
     SECTION_ANDOYER_G,
     SECTION_LINEAR,
     SECTION_NONE,
-    crossing_start,
-    section_accept,
-    section_step_error,
     section_value,
 )
 
