@@ -33,6 +33,7 @@ its work arrays once per call; the step loop allocates nothing.
 from __future__ import annotations
 
 import hashlib
+from functools import cache
 
 from solvers.kernels import layout as L
 from solvers.kernels import module_cache, rk
@@ -232,8 +233,10 @@ def source() -> str:
     return loop_source(ArrayLoop())
 
 
+@cache
 def loop_module():
-    """The loop kernel's module in the kernel cache (written on first use)."""
+    """The loop kernel's module in the kernel cache (written on first use; its text is
+    made once per process)."""
     text = source()
     key = hashlib.sha256((text + module_cache.sources_hash()).encode()).hexdigest()[:20]
     return module_cache.cached_module(f"loop_{key}", lambda: text)
