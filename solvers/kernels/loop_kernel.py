@@ -38,13 +38,10 @@ from functools import cache
 from solvers.kernels import layout as L
 from solvers.kernels import module_cache, rk
 from solvers.kernels.sections import SECTION_ANDOYER_G, SECTION_NONE
-from solvers.kernels.step import IND, loop_source
+from solvers.kernels.step import indent, loop_source
 
 OK = L.OK
 
-
-def _indent(lines, depth=1):
-    return [IND * depth + x for x in lines]
 
 
 class ArrayLoop:
@@ -136,7 +133,7 @@ class ArrayLoop:
 
     def stages(self, reject):
         return ["st = stages(model, p, t, y, h, A, c, 1, s, K, ytmp, stats)",
-                f"if st != {OK}:", *_indent(reject)]
+                f"if st != {OK}:", *indent(reject)]
 
     def advance(self):
         return ["for m in range(n):", "    acc = 0.0", "    for i in range(s):",
@@ -155,7 +152,7 @@ class ArrayLoop:
     def new_stage(self, reject):
         return ["if new >= s:", f"    stats[{rk.S_RHS}] += 1",
                 "    st = rhs(model, t_new, ynew, p, K[new])", f"    if st != {OK}:",
-                *_indent(reject, 2)]
+                *indent(reject, 2)]
 
     def section_ends(self):
         return ["from_start = crossing_start(code, sec_coef, y, K[0], ynew, K[new], h, grad, "
@@ -177,7 +174,7 @@ class ArrayLoop:
 
     def extra_stages(self, fail):
         return ["st = stages(model, p, t, y, h, A, c, max(s, new + 1), S, K, ytmp, stats)",
-                f"if st != {OK}:", *_indent(fail)]
+                f"if st != {OK}:", *indent(fail)]
 
     def dense_sample(self):
         return ["for i in range(S):      # Clenshaw: w_i = sum_k P[i, k] T_k(x)",

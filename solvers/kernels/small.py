@@ -63,11 +63,7 @@ import numpy as np
 from solvers.kernels import baked, field_modules, generate, module_cache, rk, small_ops
 from solvers.kernels import layout as L
 from solvers.kernels.sections import SECTION_ANDOYER_G
-from solvers.kernels.step import IND, loop_source
-
-
-def _indent(lines, depth=1):
-    return [IND * depth + x for x in lines]
+from solvers.kernels.step import IND, indent, loop_source
 
 
 class ScalarLoop:
@@ -136,7 +132,7 @@ class ScalarLoop:
         lines.append(f"st, {', '.join(self.kv(i))} = "
                      f"{self.call([f'z{i}_{m}' for m in self.R])}")
         lines.append(f"if st != {L.OK}:")
-        return lines + _indent(fail)
+        return lines + indent(fail)
 
     # --- the pieces step.loop_source places -------------------------------------------
     def header(self):
@@ -220,7 +216,7 @@ class ScalarLoop:
         order (0.0 + t_0 + t_1 + ...); the step from them: control.py."""
         R, n = self.R, self.n
         return [f"if fopt[{rk.F_H}] > 0.0:", f"    h = fopt[{rk.F_H}]", "else:",
-                *_indent(["span = t_end - t",
+                *indent(["span = t_end - t",
                           *(f"s0_{m} = at_{m} + rtol * abs(y_{m})" for m in R),
                           f"q0 = 0.0 + {' + '.join(f'(y_{m} / s0_{m}) ** 2' for m in R)}",
                           f"q1 = 0.0 + {' + '.join(f'(k0_{m} / s0_{m}) ** 2' for m in R)}",
@@ -314,7 +310,7 @@ class ScalarLoop:
         return ["n_rhs += 1",
                 f"st, {', '.join(self.kv(self.new))} = "
                 f"{self.call([f'yn{m}' for m in self.R])}",
-                f"if st != {L.OK}:", *_indent(reject)]
+                f"if st != {L.OK}:", *indent(reject)]
 
     def section_ends(self):
         return [self.put_yn(), self.put("wf1", self.kv(self.new)),
@@ -375,7 +371,7 @@ class ScalarLoop:
         loc = ("tabA, tabc, tabb, nst, code, coef, wKH, wz0, wz, wztmp, wytmp, wfb, wgrad, "
                "stats")
         return [f"if code != {rk.SECTION_NONE}:", "    if crosses(sa, sb, direction):",
-                *_indent([self.put_y(), self.put_f0(), "kc = n_cross",
+                *indent([self.put_y(), self.put_f0(), "kc = n_cross",
                           "if from_start != -1:",
                           f"    status = locate_crossing(model, p, t, wy, wf0, sa, {loc})",
                           "else:",

@@ -52,6 +52,11 @@ from solvers.kernels.sections import SECTION_NONE
 IND = "    "
 
 
+def indent(lines, depth: int = 1) -> list[str]:
+    """The lines one block (or `depth` blocks) further in."""
+    return [IND * depth + x for x in lines]
+
+
 class Lines:
     """The text being written: lines at an indentation depth."""
 
@@ -104,7 +109,7 @@ def loop_source(b) -> str:
     o.add(2, ["if err <= 1.0:",
               f"    t_new = step_end(t, h, t_comp, {target}, landing, compensated)"])
     o.add(3, b.new_stage(reject_singular))
-    o.add(2, ["if not (err <= 1.0):", *(IND + x for x in b.count("rejected")),
+    o.add(2, ["if not (err <= 1.0):", *indent(b.count("rejected")),
               "    rejected_last = True",
               f"    h = shrink(h, err, {b.shrink_exponent}, safety, {b.facmin})",
               "    continue"])
@@ -114,7 +119,7 @@ def loop_source(b) -> str:
         o.add(2, ["from_start = 0", f"if code != {SECTION_NONE}:"])
         o.add(3, b.section_ends())
         o.add(3, [f"if {b.halve_guard}halve(from_start, h, t):",
-                  *(IND + x for x in b.count("rejected")), "    rejected_last = True",
+                  *indent(b.count("rejected")), "    rejected_last = True",
                   "    h = 0.5 * h", "    continue"])
     o.add(2, [*b.count("accepted"),
               "t_comp = time_compensation(t, h, t_comp, t_new, landing, compensated)"])
