@@ -141,17 +141,7 @@ def routh_field(values=None):
         fixed = {"I1": I1, "I3": I3, "m": m, "R": R, "a": a, "g": gr}
         I1, I3, m, R, a, gr = (sp.nsimplify(values.get(k, s)) for k, s in fixed.items())
     r = R * G + a * sp.Matrix([0, 0, 1])
-    It = sp.diag(I1, I1, I3) + m * (r.dot(r) * sp.eye(3) - r * r.T)
-    gd = G.cross(W)
-    rd = R * gd
-    N = (It * W).cross(W) + m * rd.cross(W.cross(r)) + G.cross(m * gr * r)
-    Itd = m * (2 * r.dot(rd) * sp.eye(3) - rd * r.T - r * rd.T)
-    Iti = It.adjugate() / It.det()
-    base = Iti * (N - Itd * W)
-    Ag = Iti * G
-    lam = -base.dot(G) / Ag.dot(G)
-    wd = base + lam * Ag
-    return list(wd) + list(gd), dict(I1=I1, I3=I3, m=m, R=R, a=a, r=r)
+    return body_field((I1, I1, I3), m, gr, r), dict(I1=I1, I3=I3, m=m, R=R, a=a, r=r)
 
 
 def routh_nose_squared(prm):
